@@ -1,0 +1,145 @@
+#pragma once
+/// \file flow.hpp
+/// The exact flow of one linear regime (free flight, or the stuck subsystem):
+///
+///     y' = S y + b cos(Ω t) + d,     y = (x, v),
+///     S = [[0, I], [-M⁻¹K, -M⁻¹C]],  b = (0, M⁻¹A),  d = (0, M⁻¹f0).
+///
+/// y(t) = y_p(t) + e^{S (t - t0)} (y(t0) - y_p(t0)), y_p the steady response.
+/// S is split into 2 x 2 real blocks (one per mode): for each block the
+/// spectral projection P_j, and with B_j its restriction, a_j = -tr(B_j)/2 and
+/// β_j² = det(B_j) - a_j², Cayley–Hamilton gives exactly
+///
+///     e^{B_j τ} = e^{-a_j τ} [ C_j(τ) I + S_j(τ) (B_j + a_j I) ],
+///     C_j = cos β_j τ, S_j = sin(β_j τ)/β_j   (cosh, sinh/|β| when β² < 0;
+///                                              1, τ when β = 0)
+///
+/// which covers under-, critically and over-damped modes alike. Classically
+/// damped systems (C M⁻¹ K = K M⁻¹ C) use the real normal modes, so exact
+/// critical damping is fine; otherwise the blocks come from the complex
+/// eigenvectors of S (pairs of conjugate or real eigenvalues).
+///
+/// Any linear output w = l_x·x + l_v·v + α cos Ωt + β along a flight is then an
+/// exponential sum (Signal) whose derivatives of every order have the same
+/// form, with computable bounds: the basis of event detection (events.hpp).
+
+#include <complex>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace impactkit {
+
+/// The time dependence of one mode: e^{-a τ} C(τ) and e^{-a τ} S(τ).
+struct ModeBasis {
+  double decay = 0.0;  ///< a >= 0
+  double beta2 = 0.0;  ///< β² (negative: over-damped)
+  double root = 0.0;   ///< sqrt(|β²|)
+
+  static ModeBasis Make(double decay, double beta2);
+
+  /// ec = e^{-aτ} C(τ), es = e^{-aτ} S(τ), computed without overflow.
+  void Evaluate(double tau, double* ec, double* es) const;
+  /// Coefficients of the derivative: d/dτ e^{-aτ}(α C + γ S) = e^{-aτ}(α' C + γ' S).
+  void Differentiate(double* alpha, double* gamma) const;
+  /// An upper bound of |e^{-aτ}(α C(τ) + γ S(τ))| over all τ >= tau_from >= 0.
+  double Envelope(double alpha, double gamma, double tau_from) const;
+};
+
+/// w(t) = Σ_j e^{-a_j τ}(α_j C_j(τ) + γ_j S_j(τ)) + Re(P e^{iΩt}) + R,  τ = t - t0.
+class Signal {
+ public:
+  friend class LinearFlow;
+  Signal() = default;
+  Signal(const std::vector<ModeBasis>* modes, double omega, double t0,
+         Eigen::VectorXd alpha, Eigen::VectorXd gamma, std::complex<double> forced,
+         double constant);
+
+  double Value(double t) const;
+  /// w(t) and w'(t) in one pass (they share the transcendental calls).
+  void ValueAndSlope(double t, double* value, double* slope) const;
+  /// The derivative of the given order as a Signal.
+  Signal Derivative(int order = 1) const;
+  /// sup |w^(order)(t)| over t >= t_from (t_from >= t0): a bound, not the value.
+  double DerivativeBound(int order, double t_from) const;
+  /// -w.
+  Signal Negated() const;
+  double Origin() const { return t0_; }
+  double Omega() const { return omega_; }
+
+ private:
+  const std::vector<ModeBasis>* modes_ = nullptr;
+  double omega_ = 0.0;
+  double t0_ = 0.0;
+  Eigen::VectorXd alpha_;
+  Eigen::VectorXd gamma_;
+  std::complex<double> forced_{0.0, 0.0};
+  double constant_ = 0.0;
+};
+
+/// A linear output l_x·x + l_v·v + α cos Ωt + β of a flow's state.
+struct LinearOutput {
+  Eigen::RowVectorXd wx;  ///< l_x (size N)
+  Eigen::RowVectorXd wv;  ///< l_v (size N)
+  double cos_amplitude = 0.0;
+  double offset = 0.0;
+};
+
+/// A LinearOutput expressed in a flow's modal coordinates, ready to be
+/// turned into a Signal for any flight at O(n) cost.
+struct PreparedOutput {
+  Eigen::RowVectorXd modal_weights;       ///< l^T V
+  std::complex<double> forced{0.0, 0.0};  ///< l^T V Z + α
+  double constant = 0.0;                  ///< l^T V z_c + β
+};
+
+/// The closed-form flow of one linear regime, decomposed once.
+class LinearFlow {
+ public:
+  LinearFlow() = default;
+  /// M, C, K (n x n), force amplitude A and constant force f0 (size n).
+  /// Throws InvalidInput where no bounded steady response exists (undamped
+  /// mode forced at its frequency) or the damping is non-classical with a
+  /// defective (repeated) eigenvalue.
+  LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
+             const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing,
+             const Eigen::VectorXd& constant_force, double omega);
+
+  int Dof() const { return dof_; }
+  double Omega() const { return omega_; }
+  const std::vector<ModeBasis>& Modes() const { return modes_; }
+  /// Largest |eigenvalue| of S (the fastest rate in the flow), 0 if n = 0.
+  double FastestRate() const { return fastest_rate_; }
+
+  /// Modal coordinates of the transient y(t) - y_p(t).
+  Eigen::VectorXd Transient(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+  /// The state at t of the flight that had transient z0 at t0.
+  void State(double t0, const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
+             Eigen::VectorXd* v) const;
+  /// The steady (particular) response y_p(t).
+  void SteadyState(double t, Eigen::VectorXd* x, Eigen::VectorXd* v) const;
+  PreparedOutput Prepare(const LinearOutput& output) const;
+  /// An output along the flight that had transient z0 at t0.
+  Signal Output(const PreparedOutput& output, double t0, const Eigen::VectorXd& z0) const;
+  /// Same, reusing the storage of `signal` (no allocation in the event loop).
+  void Output(const PreparedOutput& output, double t0, const Eigen::VectorXd& z0,
+              Signal* signal) const;
+  /// e^{S τ}, the state transition matrix (2n x 2n) in y = (x, v).
+  Eigen::MatrixXd Transition(double tau) const;
+  /// S, the first-order system matrix.
+  const Eigen::MatrixXd& SystemMatrix() const { return system_matrix_; }
+
+ private:
+  int dof_ = 0;
+  double omega_ = 0.0;
+  double fastest_rate_ = 0.0;
+  std::vector<ModeBasis> modes_;
+  Eigen::MatrixXd basis_;          ///< V: y = V z, columns in pairs per mode
+  Eigen::MatrixXd inverse_basis_;  ///< W = V⁻¹
+  Eigen::MatrixXd shifted_blocks_; ///< 2 x 2n: per mode, B_j + a_j I
+  Eigen::VectorXcd steady_forced_; ///< Z: z_p(t) = Re(Z e^{iΩt}) + z_c
+  Eigen::VectorXd steady_constant_;
+  Eigen::MatrixXd system_matrix_;
+};
+
+}  // namespace impactkit
