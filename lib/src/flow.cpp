@@ -133,7 +133,7 @@ double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
   const double overdamped_root = beta2 < 0 ? root : 0.0;
   const double slow_decay = decay - overdamped_root;
   const double generic = std::abs(alpha) * std::exp(-slow_decay * tau_from) +
-                         std::abs(gamma) * TauDecayMax(slow_decay, tau_from);
+                         (gamma == 0 ? 0.0 : std::abs(gamma) * TauDecayMax(slow_decay, tau_from));
   if (beta2 > 0) {
     return std::min(generic, std::exp(-decay * tau_from) *
                                  std::hypot(alpha, gamma / root));

@@ -5,6 +5,7 @@
 
 #include "impactkit/flow.hpp"
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace impactkit {
 namespace {
@@ -89,9 +90,8 @@ int ForcingIndex(std::string_view name, int dof) {
 }
 
 [[noreturn]] void UnknownParameter(const System& s, std::string_view name) {
-  std::string names;
-  for (const auto& known : ParameterNames(s)) names += (names.empty() ? "" : ", ") + known;
-  throw InvalidInput(fmt::format("unknown parameter '{}'; known: {}", name, names));
+  throw InvalidInput(
+      fmt::format("unknown parameter '{}'; known: {}", name, fmt::join(ParameterNames(s), ", ")));
 }
 
 }  // namespace
@@ -109,7 +109,8 @@ Eigen::MatrixXd ChainCouplingMatrix(int dof) {
 
 System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
                     double stop, double restitution) {
-  ValidateChain(chain);
+  // Values are checked by Validate(); only the shape is needed to build.
+  Require(chain.dof >= 1, fmt::format("n (number of masses) must be >= 1, got {}", chain.dof));
   const Eigen::MatrixXd e = ChainCouplingMatrix(chain.dof);
   System s = GeneralSystem(chain.mass * Eigen::MatrixXd::Identity(chain.dof, chain.dof),
                            chain.damping * e, chain.stiffness * e, forcing, omega, stop,

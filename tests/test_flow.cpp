@@ -1,0 +1,134 @@
+#include <cmath>
+#include <numbers>
+
+#include <catch2/catch.hpp>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "cvode_impacts.hpp"
+#include "impactkit/flow.hpp"
+#include "impactkit/model.hpp"
+
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+using namespace impactkit;
+
+namespace {
+
+/// A linear regime to test: M, C, K, A, constant force, Ω.
+struct Regime {
+  const char* name;
+  Eigen::MatrixXd m, c, k;
+  Eigen::VectorXd a, f0;
+  double omega;
+};
+
+Regime Chain(const char* name, int n, double c, double omega) {
+  const System s = UniformChain({n, 1.0, 1.0, c}, Eigen::VectorXd::LinSpaced(n, 0.5, 0.1), omega,
+                                0.1, 0.7);
+  return {name, s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(n), omega};
+}
+
+/// Non-proportional damping: a dashpot on the first mass only.
+Regime NonProportional() {
+  Regime r = Chain("3-DOF non-proportional", 3, 0.0, 0.8);
+  r.m.diagonal() << 1.0, 2.0, 0.5;
+  r.c(0, 0) = 0.4;
+  r.c(2, 2) = 0.05;
+  r.f0 = Eigen::Vector3d(0.0, 0.1, -0.2);
+  return r;
+}
+
+std::vector<Regime> Regimes() {
+  Regime stuck = Chain("1-DOF with constant force (stuck subsystem)", 1, 0.2, 0.7);
+  stuck.f0 = Eigen::VectorXd::Constant(1, 0.1);
+  return {Chain("1-DOF under-damped", 1, 0.1, 1.3),  Chain("1-DOF over-damped", 1, 3.0, 0.4),
+          Chain("1-DOF critically damped", 1, 2.0, 0.9),
+          Chain("2-DOF paper", 2, 0.1, 1.4),         Chain("2-DOF over-damped", 2, 8.0, 1.4),
+          Chain("5-DOF under-damped", 5, 0.1, 0.9),  Chain("5-DOF over-damped", 5, 10.0, 0.9),
+          NonProportional(),                         stuck};
+}
+
+}  // namespace
+
+TEST_CASE("closed-form flow agrees with CVODE to 1e-9 over several periods", "[flow]") {
+  for (const Regime& r : Regimes()) {
+    INFO(r.name);
+    const LinearFlow flow(r.m, r.c, r.k, r.a, r.f0, r.omega);
+    const Eigen::Index n = r.m.rows();
+    Eigen::VectorXd x0 = Eigen::VectorXd::LinSpaced(n, 0.3, -0.2);
+    Eigen::VectorXd v0 = Eigen::VectorXd::LinSpaced(n, -0.4, 0.6);
+    const double t0 = 0.7, t1 = t0 + 5.0 * 2.0 * std::numbers::pi / r.omega;
+    const Eigen::VectorXd z0 = flow.Transient(t0, x0, v0);
+    Eigen::VectorXd x, v;
+    flow.State(t0, z0, t1, &x, &v);
+    reference::CvodeLinearFlow(r.m, r.c, r.k, r.a, r.f0, r.omega, t0, x0, v0, t1);
+    CHECK((x - x0).cwiseAbs().maxCoeff() < 1e-9);
+    CHECK((v - v0).cwiseAbs().maxCoeff() < 1e-9);
+  }
+}
+
+TEST_CASE("state transition equals the matrix exponential e^{S tau}", "[flow]") {
+  for (const Regime& r : Regimes()) {
+    INFO(r.name);
+    const LinearFlow flow(r.m, r.c, r.k, r.a, r.f0, r.omega);
+    for (double tau : {0.0, 0.37, 4.1}) {
+      const Eigen::MatrixXd expected = (flow.SystemMatrix() * tau).exp();
+      CHECK((flow.Transition(tau) - expected).cwiseAbs().maxCoeff() < 1e-11);
+    }
+  }
+}
+
+TEST_CASE("1-DOF closed forms: critical damping and the steady amplitude", "[flow]") {
+  // x'' + 2x' + x = 0: x(t) = (x0 + (v0 + x0) t) e^{-t}.
+  const Eigen::MatrixXd one = Eigen::MatrixXd::Ones(1, 1);
+  const LinearFlow critical(one, 2.0 * one, one, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1),
+                            1.0);
+  const double x0 = 0.3, v0 = -1.1;
+  const Eigen::VectorXd z0 = critical.Transient(0.0, Eigen::VectorXd::Constant(1, x0),
+                                                Eigen::VectorXd::Constant(1, v0));
+  Eigen::VectorXd x, v;
+  for (double t : {0.5, 2.0, 9.0}) {
+    critical.State(0.0, z0, t, &x, &v);
+    CHECK_THAT(x(0), WithinAbs((x0 + (v0 + x0) * t) * std::exp(-t), 1e-15));
+  }
+  // m x'' + c x' + k x = A cos Ωt: amplitude A / sqrt((k - m Ω²)² + (c Ω)²).
+  const double m = 2.0, c = 0.3, k = 5.0, a = 0.7, omega = 1.9;
+  const LinearFlow forced(m * one, c * one, k * one, Eigen::VectorXd::Constant(1, a),
+                          Eigen::VectorXd::Zero(1), omega);
+  double peak = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    forced.SteadyState(i * 2.0 * std::numbers::pi / omega / 2000, &x, &v);
+    peak = std::max(peak, std::hypot(x(0), v(0) / omega));
+  }
+  CHECK_THAT(peak, WithinRel(a / std::hypot(k - m * omega * omega, c * omega), 1e-12));
+}
+
+TEST_CASE("signal derivative bounds hold everywhere after their start", "[flow]") {
+  for (const Regime& r : Regimes()) {
+    INFO(r.name);
+    const LinearFlow flow(r.m, r.c, r.k, r.a, r.f0, r.omega);
+    const Eigen::Index n = r.m.rows();
+    const Eigen::VectorXd z0 = flow.Transient(0.0, Eigen::VectorXd::Constant(n, 0.2),
+                                              Eigen::VectorXd::Constant(n, -0.3));
+    LinearOutput last{Eigen::RowVectorXd::Unit(n, n - 1), Eigen::RowVectorXd::Zero(n), 0.1, -0.1};
+    const Signal w = flow.Output(flow.Prepare(last), 0.0, z0);
+    Eigen::VectorXd x, v;
+    for (int order = 0; order <= 3; ++order) {
+      const Signal d = w.Derivative(order);
+      for (double from : {0.0, 3.0}) {
+        const double bound = w.DerivativeBound(order, from);
+        for (double t = from; t < from + 40.0; t += 0.01) {
+          REQUIRE(std::abs(d.Value(t)) <= bound * (1 + 1e-12));
+        }
+      }
+    }
+    // The output is the state's: l·x + 0.1 cos Ωt - 0.1.
+    for (double t : {0.3, 7.0}) {
+      flow.State(0.0, z0, t, &x, &v);
+      CHECK_THAT(w.Value(t), WithinAbs(x(n - 1) + 0.1 * std::cos(r.omega * t) - 0.1, 1e-14));
+      double value, slope;
+      w.ValueAndSlope(t, &value, &slope);
+      CHECK_THAT(slope, WithinAbs(v(n - 1) - 0.1 * r.omega * std::sin(r.omega * t), 1e-14));
+    }
+  }
+}

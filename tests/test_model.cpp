@@ -1,0 +1,121 @@
+#include <cmath>
+#include <limits>
+
+#include <catch2/catch.hpp>
+
+#include "impactkit/modal.hpp"
+#include "impactkit/model.hpp"
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+using namespace impactkit;
+
+TEST_CASE("paper system: modal data of Sec. 3", "[model]") {
+  const ModalData d = ComputeModalData(PaperSystem());
+  // Closed form for E = [[2,-1],[-1,1]]: λ = (3 ∓ √5)/2, ω = √λ.
+  const double l1 = (3.0 - std::sqrt(5.0)) / 2.0, l2 = (3.0 + std::sqrt(5.0)) / 2.0;
+  CHECK_THAT(d.eigenvalues(0), WithinRel(l1, 1e-12));
+  CHECK_THAT(d.eigenvalues(1), WithinRel(l2, 1e-12));
+  CHECK_THAT(d.natural_frequencies(0), WithinRel(std::sqrt(l1), 1e-12));
+  CHECK_THAT(d.natural_frequencies(1), WithinRel(std::sqrt(l2), 1e-12));
+  // The paper's printed values (3 digits) and ζ_j = (c/2) sqrt(λ_j / (k m)).
+  CHECK_THAT(d.eigenvalues(0), WithinAbs(0.382, 5e-4));
+  CHECK_THAT(d.natural_frequencies(1), WithinAbs(1.618, 5e-4));
+  CHECK_THAT(d.mode_shapes(0, 0), WithinAbs(0.526, 5e-4));
+  CHECK_THAT(d.mode_shapes(1, 0), WithinAbs(0.851, 5e-4));
+  CHECK_THAT(d.mode_shapes(0, 1), WithinAbs(-0.851, 5e-4));
+  CHECK_THAT(d.mode_shapes(1, 1), WithinAbs(0.526, 5e-4));
+  CHECK_THAT(d.damping_ratios(0), WithinRel(0.05 * std::sqrt(l1), 1e-12));
+  CHECK_THAT(d.damping_ratios(1), WithinRel(0.05 * std::sqrt(l2), 1e-12));
+  CHECK(d.proportional);
+}
+
+TEST_CASE("uniform chain matrices", "[model]") {
+  const System s = UniformChain({3, 2.0, 5.0, 0.3}, Eigen::Vector3d(1, 0, 0), 1.2, 0.2, 0.5);
+  Eigen::Matrix3d e;
+  e << 2, -1, 0, -1, 2, -1, 0, -1, 1;
+  CHECK(s.mass.isApprox(2.0 * Eigen::Matrix3d::Identity()));
+  CHECK(s.stiffness.isApprox(5.0 * e));
+  CHECK(s.damping.isApprox(0.3 * e));
+  CHECK(s.contact_dof == 2);
+}
+
+TEST_CASE("named parameters round-trip and rebuild the chain", "[model]") {
+  System s = PaperSystem();
+  for (const auto& name : ParameterNames(s)) {
+    const double value = GetParameter(s, name) + (name == "n" ? 1.0 : 0.125);
+    SetParameter(s, name, value);
+    CHECK(GetParameter(s, name) == value);
+  }
+  CHECK(s.Dof() == 3);
+  CHECK(s.forcing.size() == 3);
+  CHECK(s.stiffness(0, 0) == 2.0 * s.chain->stiffness);
+}
+
+namespace {
+void CheckRejected(const System& s, const std::string& fragment) {
+  try {
+    Validate(s);
+    FAIL("accepted a system that should be rejected: " << fragment);
+  } catch (const InvalidInput& e) {
+    CHECK_THAT(e.what(), Contains(fragment));
+    CHECK(std::string(e.what()).find('\n') == std::string::npos);
+  }
+}
+}  // namespace
+
+TEST_CASE("validation names the bad parameter and the allowed range", "[model]") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  System s = PaperSystem();
+  SECTION("non-positive mass") {
+    SetParameter(s, "m", 0.0);
+    CheckRejected(s, "m (mass) must be finite and > 0");
+  }
+  SECTION("restitution outside [0, 1]") {
+    SetParameter(s, "r", 1.5);
+    CheckRejected(s, "r (coefficient of restitution) must be in [0, 1]");
+  }
+  SECTION("NaN") {
+    SetParameter(s, "A1", nan);
+    CheckRejected(s, "A (forcing) has a NaN");
+  }
+  SECTION("infinite omega") {
+    SetParameter(s, "omega", std::numeric_limits<double>::infinity());
+    CheckRejected(s, "omega (forcing frequency) must be finite and > 0");
+  }
+  SECTION("wrong vector length") {
+    s.forcing = Eigen::Vector3d(1, 2, 3);
+    CheckRejected(s, "A (forcing) must have N = 2 entries, got 3");
+  }
+  SECTION("non-symmetric matrix") {
+    s.stiffness(0, 1) = 0.0;
+    CheckRejected(s, "K (stiffness matrix) must be symmetric");
+  }
+  SECTION("undamped system forced at resonance") {
+    SetParameter(s, "c", 0.0);
+    SetParameter(s, "omega", std::sqrt((3.0 - std::sqrt(5.0)) / 2.0));
+    CheckRejected(s, "no bounded steady response");
+  }
+}
+
+TEST_CASE("undamped but forced off resonance, or resonance of an unforced mode, is fine",
+          "[model]") {
+  System s = PaperSystem(0.9);
+  SetParameter(s, "c", 0.0);
+  CHECK_NOTHROW(Validate(s));
+}
+
+TEST_CASE("initial state checks", "[model]") {
+  const System s = PaperSystem();
+  HybridState state = RestState(s);
+  CHECK_NOTHROW(ValidateState(s, state));
+  state.x(1) = 0.5;
+  CHECK_THROWS_WITH(ValidateState(s, state), Contains("beyond the stop"));
+  state = RestState(s);
+  state.v.resize(3);
+  CHECK_THROWS_WITH(ValidateState(s, state), Contains("2 velocities"));
+  state = RestState(s);
+  state.v(0) = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(ValidateState(s, state), Contains("NaN"));
+}

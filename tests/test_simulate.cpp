@@ -1,0 +1,224 @@
+#include <cmath>
+#include <numbers>
+
+#include <catch2/catch.hpp>
+
+#include "cvode_impacts.hpp"
+#include "impactkit/recorders.hpp"
+#include "impactkit/simulate.hpp"
+
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+using namespace impactkit;
+
+namespace {
+
+double Energy(const System& s, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+  return 0.5 * v.dot(s.mass * v) + 0.5 * x.dot(s.stiffness * x);
+}
+
+/// Checks each impact's rebound: the segment after an impact starts with
+/// v_c = -r v_c(t-), and every sample stays behind the stop.
+class ImpactLawChecker : public Observer {
+ public:
+  explicit ImpactLawChecker(const System& s) : s_(s) {}
+  void OnImpact(const Impact& impact) override { pending_speed_ = impact.velocity; }
+  void OnSegment(const Segment& segment) override {
+    Eigen::VectorXd x, v;
+    if (pending_speed_ >= 0 && !segment.Stuck()) {
+      segment.StateAt(segment.Begin(), &x, &v);
+      worst_rebound_error_ = std::max(worst_rebound_error_,
+                                      std::abs(v(s_.contact_dof) + s_.restitution * pending_speed_));
+    }
+    pending_speed_ = -1.0;
+    const double dt = s_.ForcingPeriod() / 4000.0;
+    for (double t = segment.Begin(); t <= segment.End(); t += dt) {
+      segment.StateAt(t, &x, &v);
+      all_finite_ = all_finite_ && x.allFinite() && v.allFinite();
+      max_gap_ = std::max(max_gap_, x(s_.contact_dof) - s_.stop);
+    }
+  }
+  double worst_rebound_error_ = 0.0;
+  double max_gap_ = -INFINITY;
+  bool all_finite_ = true;
+
+ private:
+  const System& s_;
+  double pending_speed_ = -1.0;
+};
+
+void CompareWithCvode(const System& s, int count) {
+  ImpactRecorder recorder;
+  HybridState state = RestState(s);
+  const double t_end = 200 * s.ForcingPeriod();
+  Simulator(s).Run(state, t_end, recorder);
+  const reference::ReferenceRun cvode =
+      reference::CvodeImpacts(s, RestState(s).x, RestState(s).v, 0.0, t_end, {});
+  REQUIRE(recorder.Impacts().size() >= static_cast<std::size_t>(count));
+  REQUIRE(cvode.impacts.size() >= static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    INFO("impact " << i);
+    CHECK_THAT(recorder.Impacts()[i].t, WithinAbs(cvode.impacts[i].t, 1e-7));
+    CHECK_THAT(recorder.Impacts()[i].velocity, WithinAbs(cvode.impacts[i].velocity, 1e-7));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("default simulation options are valid", "[simulate]") {
+  std::string error;
+  CHECK(SimulationOptions{}.IsValid(&error));
+  SimulationOptions bad;
+  bad.chatter_span = 0.0;
+  CHECK_FALSE(bad.IsValid(&error));
+  CHECK_THROWS_AS(Simulator(PaperSystem(), bad), InvalidInput);
+}
+
+TEST_CASE("elastic, undamped, unforced: energy conserved across 1000 impacts", "[simulate]") {
+  System s = PaperSystem();
+  SetParameter(s, "c", 0.0);
+  SetParameter(s, "A1", 0.0);
+  SetParameter(s, "r", 1.0);
+  HybridState state = RestState(s);
+  state.x << -0.2, 0.05;
+  state.v << 0.3, 0.4;
+  const double e0 = Energy(s, state.x, state.v);
+  ImpactRecorder impacts;
+  SimulationSummary summary;
+  Simulator simulator(s);
+  while (impacts.Impacts().size() < 1000) summary = simulator.Run(state, state.t + 100.0, impacts);
+  double worst = 0.0;
+  for (const Impact& i : impacts.Impacts()) worst = std::max(worst, std::abs(Energy(s, i.x, i.v) - e0));
+  CHECK(worst <= 1e-9 * e0);
+  CHECK(std::abs(Energy(s, state.x, state.v) - e0) <= 1e-9 * e0);
+}
+
+TEST_CASE("impact law, stop never crossed, no NaN, across regimes", "[simulate]") {
+  for (double omega : {0.1, 0.2, 0.4, 0.6, 0.9, 1.4, 1.7, 2.0}) {
+    INFO("omega = " << omega);
+    const System s = PaperSystem(omega);
+    ImpactLawChecker checker(s);
+    HybridState state = RestState(s);
+    const SimulationSummary summary = Simulator(s).Run(state, 60 * s.ForcingPeriod(), checker);
+    CHECK(summary.status == SimulationStatus::kReachedEnd);
+    CHECK(summary.impacts > 0);
+    CHECK(checker.worst_rebound_error_ <= 1e-12);
+    CHECK(checker.max_gap_ <= 1e-12);
+    CHECK(checker.all_finite_);
+  }
+}
+
+TEST_CASE("first 50 impacts from rest match CVODE with rootfinding", "[simulate]") {
+  SECTION("omega = 1.4") { CompareWithCvode(PaperSystem(1.4), 50); }
+  SECTION("omega = 0.6") { CompareWithCvode(PaperSystem(0.6), 50); }
+  SECTION("5 masses") {
+    System s = UniformChain({5, 1.0, 1.0, 0.1}, Eigen::VectorXd::Unit(5, 0) * 0.5, 0.9, 0.1, 0.7);
+    CompareWithCvode(s, 30);
+  }
+  SECTION("3 masses, general M and non-proportional C, contact on the middle mass") {
+    Eigen::Matrix3d m, c, k;
+    m << 1.0, 0.1, 0.0, 0.1, 2.0, 0.0, 0.0, 0.0, 0.5;
+    c << 0.3, 0.0, 0.0, 0.0, 0.05, 0.0, 0.0, 0.0, 0.02;
+    k << 2.0, -1.0, 0.0, -1.0, 3.0, -1.5, 0.0, -1.5, 1.5;
+    CompareWithCvode(GeneralSystem(m, c, k, Eigen::Vector3d(0.4, 0.0, 0.2), 1.1, 0.15, 0.8, 1), 30);
+  }
+}
+
+TEST_CASE("Zeno cases end in bounded work", "[simulate]") {
+  struct Case {
+    double omega, r;
+    int periods;
+  };
+  for (const Case& c : {Case{0.2, 0.7, 1000}, Case{0.1, 0.7, 1000}, Case{0.2, 0.0, 1000},
+                        Case{0.2, 0.95, 1000}, Case{0.3, 0.95, 200}}) {
+    INFO("omega = " << c.omega << ", r = " << c.r);
+    System s = PaperSystem(c.omega);
+    SetParameter(s, "r", c.r);
+    HybridState state = RestState(s);
+    const SimulationSummary summary = Simulator(s).Run(state, c.periods * s.ForcingPeriod());
+    CHECK(summary.status == SimulationStatus::kReachedEnd);
+    // A bounded number of impacts per period, and sticking every period
+    // where chatter completes (r = 0.95 chatter stays incomplete: see docs).
+    CHECK(summary.impacts <= 400L * c.periods);
+    if (c.r < 0.9) CHECK(summary.releases >= c.periods - 2);
+  }
+}
+
+TEST_CASE("release happens where the contact force vanishes (paper Eq. 16)", "[simulate]") {
+  const System s = PaperSystem(0.2);
+  struct Releases : Observer {
+    std::vector<double> times;
+    void OnRelease(double, double t) override { times.push_back(t); }
+  } releases;
+  HybridState state = RestState(s);
+  Simulator simulator(s);
+  simulator.Run(state, 3 * s.ForcingPeriod(), releases);
+  REQUIRE(releases.times.size() >= 2);
+  // Run to each release again and evaluate Fs = c x1' + k (x1 - xs) there.
+  for (double t : releases.times) {
+    HybridState at = RestState(s);
+    simulator.Run(at, t);
+    CHECK_THAT(0.1 * at.v(0) + (at.x(0) - 0.1), WithinAbs(0.0, 1e-10));
+    CHECK(at.x(1) == s.stop);
+  }
+}
+
+TEST_CASE("the stuck phase follows the paper's Eq. 17", "[simulate]") {
+  const System s = PaperSystem(0.2);
+  // Find the first sticking interval, then integrate x1'' + 0.2 x1' + 2 x1 - xs
+  // = 0.5 cos Ωt over it with CVODE and compare the state at release.
+  struct FirstStick : Observer {
+    double begin = -1, end = -1;
+    void OnRelease(double b, double e) override {
+      if (begin < 0) begin = b, end = e;
+    }
+  } stick;
+  HybridState state = RestState(s);
+  Simulator simulator(s);
+  simulator.Run(state, 2 * s.ForcingPeriod(), stick);
+  REQUIRE(stick.begin > 0);
+  HybridState at_begin = RestState(s), at_end = RestState(s);
+  simulator.Run(at_begin, stick.begin);
+  simulator.Run(at_end, stick.end);
+  REQUIRE(at_begin.stuck);
+  Eigen::VectorXd x = at_begin.x.head(1), v = at_begin.v.head(1);
+  const Eigen::MatrixXd one = Eigen::MatrixXd::Ones(1, 1);
+  reference::CvodeLinearFlow(one, 0.2 * one, 2.0 * one, Eigen::VectorXd::Constant(1, 0.5),
+                             Eigen::VectorXd::Constant(1, 0.1), 0.2, stick.begin, x, v, stick.end);
+  CHECK_THAT(at_end.x(0), WithinAbs(x(0), 1e-9));
+  CHECK_THAT(at_end.v(0), WithinAbs(v(0), 1e-9));
+}
+
+TEST_CASE("chatter: accumulation and threshold methods agree on the sticking motion",
+          "[simulate]") {
+  const System s = PaperSystem(0.2);
+  SimulationOptions threshold;
+  threshold.chatter = ChatterMethod::kThreshold;
+  threshold.chatter_threshold = 1e-7;
+  HybridState a = RestState(s), b = RestState(s);
+  Simulator(s).Run(a, 50 * s.ForcingPeriod());
+  Simulator(s, threshold).Run(b, 50 * s.ForcingPeriod());
+  CHECK(a.stuck == b.stuck);
+  CHECK((a.x - b.x).cwiseAbs().maxCoeff() < 1e-5);
+  CHECK((a.v - b.v).cwiseAbs().maxCoeff() < 1e-5);
+}
+
+TEST_CASE("runs can be split anywhere without changing the result", "[simulate]") {
+  const System s = PaperSystem(0.2);
+  Simulator simulator(s);
+  HybridState whole = RestState(s), split = RestState(s);
+  simulator.Run(whole, 20 * s.ForcingPeriod());
+  for (int k = 1; k <= 20; ++k) simulator.Run(split, k * s.ForcingPeriod());
+  CHECK((whole.x - split.x).cwiseAbs().maxCoeff() < 1e-9);
+  CHECK(whole.stuck == split.stuck);
+}
+
+TEST_CASE("bad run arguments are rejected", "[simulate]") {
+  const System s = PaperSystem();
+  Simulator simulator(s);
+  HybridState state = RestState(s);
+  CHECK_THROWS_AS(simulator.Run(state, -1.0), InvalidInput);
+  CHECK_THROWS_AS(simulator.Run(state, std::nan("")), InvalidInput);
+  state.x(1) = 1.0;
+  CHECK_THROWS_AS(simulator.Run(state, 1.0), InvalidInput);
+}
