@@ -150,7 +150,7 @@ void Validate(const System& s) {
 
 std::vector<std::string> ParameterNames(const System& s) {
   std::vector<std::string> names = {"omega", "xs", "r"};
-  for (int i = 0; i < s.Dof(); ++i) names.push_back("A" + std::to_string(i + 1));
+  for (int i = 0; i < s.Dof(); ++i) names.push_back(fmt::format("A{}", i + 1));
   if (s.chain) names.insert(names.end(), {"m", "k", "c", "n"});
   return names;
 }
