@@ -9,26 +9,69 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-/// w and w' at one time.
+/// w, w' and w'' at one time.
 struct Point {
   double t;
   double w;
   double dw;
+  double d2w;
 };
 
 Point Evaluate(const Signal& signal, double t) {
-  Point p{t, 0.0, 0.0};
-  signal.ValueAndSlope(t, &p.w, &p.dw);
+  Point p{t, 0.0, 0.0, 0.0};
+  signal.ValueSlopeCurvature(t, &p.w, &p.dw, &p.d2w);
   return p;
 }
 
-/// The first positive root of w + w' s + B s²/2 (w <= 0): no crossing can
-/// lie in [t, t + h*). Written to avoid cancellation in either sign of w'.
-double CertifiedStep(const Point& p, double bound) {
-  const double discriminant = std::sqrt(std::max(0.0, p.dw * p.dw - 2.0 * bound * p.w));
-  if (p.dw > 0) return -2.0 * p.w / (p.dw + discriminant);
-  if (bound == 0) return kInfinity;
-  return (-p.dw + discriminant) / bound;
+/// The cubic upper bound P(s) = w + w' s + w'' s²/2 + B3 s³/6 >= w(t + s).
+double UpperCubic(const Point& p, double b3, double s) {
+  return p.w + s * (p.dw + s * (0.5 * p.d2w + s * b3 / 6.0));
+}
+
+/// A step h with P < 0 on [0, h) (w < 0 at p), within 2% of P's first
+/// positive root: no crossing can lie in [t, t + h). P is monotone between
+/// its critical points, so the root is bracketed on the first monotone
+/// piece whose end is not negative and bisected there (polynomial
+/// evaluations cost nothing beside the signal's transcendental calls).
+double CertifiedStep(const Point& p, double b3) {
+  if (p.w >= 0) return 0.0;
+  double pieces[2];
+  int count = 0;
+  // Critical points: P'(s) = w' + w'' s + B3 s²/2 = 0.
+  if (b3 > 0) {
+    const double discriminant = p.d2w * p.d2w - 2.0 * b3 * p.dw;
+    if (discriminant > 0) {
+      const double root = std::sqrt(discriminant);
+      for (double s : {(-p.d2w - root) / b3, (-p.d2w + root) / b3}) {
+        if (s > 0) pieces[count++] = s;
+      }
+    }
+  } else if (p.d2w != 0 && -p.dw / p.d2w > 0) {
+    pieces[count++] = -p.dw / p.d2w;
+  }
+  double low = 0.0, high = kInfinity;
+  for (int i = 0; i < count && high == kInfinity; ++i) {
+    if (UpperCubic(p, b3, pieces[i]) >= 0) {
+      high = pieces[i];
+    } else {
+      low = pieces[i];
+    }
+  }
+  if (high == kInfinity) {
+    // The last piece rises to +inf when B3 > 0; find an end that is not negative.
+    double span = std::max(1.0, low);
+    int doublings = 0;
+    while (UpperCubic(p, b3, low + span) < 0) {
+      if (++doublings > 64) return kInfinity;
+      span *= 2.0;
+    }
+    high = low + span;
+  }
+  while (high - low > 0.02 * high) {
+    const double mid = 0.5 * (low + high);
+    (UpperCubic(p, b3, mid) < 0 ? low : high) = mid;
+  }
+  return low;
 }
 
 /// max over [a, b] of min(upper bound from a, upper bound from b), with
@@ -58,23 +101,23 @@ double TimeTolerance(double t, const EventOptions& options) {
 }
 
 /// The root of w in [a, b], where w(a) < 0 <= w(b) and w' > 0: Newton on the
-/// exact derivative, kept inside the shrinking bracket (bisection when a
-/// Newton step would leave it). Hand-written because the certified
-/// bracket and the exact w' make it converge in a few steps, and the
-/// bracket invariant is what the caller relies on.
+/// exact derivative from the end nearer the root, kept inside the shrinking
+/// bracket (bisection when a Newton step would leave it). Hand-written
+/// because the certified bracket and the exact w' make it converge in a few
+/// steps, and the bracket invariant is what the caller relies on.
 double RefineRoot(const Signal& w, Point a, Point b, const EventOptions& options) {
-  double t = a.w - b.w != 0 ? a.t - a.w * (b.t - a.t) / (b.w - a.w) : 0.5 * (a.t + b.t);
+  const Point& nearer = -a.w < b.w ? a : b;
+  double t = nearer.t - nearer.w / nearer.dw;
   for (int iteration = 0; iteration < 100; ++iteration) {
+    if (!(t > a.t && t < b.t)) t = 0.5 * (a.t + b.t);
     const Point p = Evaluate(w, t);
-    if (p.w < 0) {
-      a = p;
-    } else {
-      b = p;
-    }
-    if (b.t - a.t <= TimeTolerance(b.t, options) || p.w == 0) break;
-    double next = p.dw > 0 ? p.t - p.w / p.dw : 0.5 * (a.t + b.t);
-    if (!(next > a.t && next < b.t)) next = 0.5 * (a.t + b.t);
-    t = next;
+    if (p.w == 0) return t;
+    (p.w < 0 ? a : b) = p;
+    const double tolerance = TimeTolerance(t, options);
+    const double newton = t - p.w / p.dw;
+    if (std::abs(newton - t) <= tolerance) return std::clamp(newton, a.t, b.t);
+    if (b.t - a.t <= tolerance) return b.t;
+    t = newton;
   }
   return b.t;
 }
@@ -87,7 +130,7 @@ double RefineRoot(const Signal& w, Point a, Point b, const EventOptions& options
 /// an interval starting on the surface could never be certified empty.
 double SurfaceExitStep(const Signal& w, const Point& p) {
   constexpr double kNoise = 1e-11;
-  if (std::abs(p.w) > kNoise * w.DerivativeBound(0, p.t)) return 0.0;
+  if (std::abs(p.w) > kNoise * w.Scale()) return 0.0;
   constexpr int kHighestOrder = 3;
   for (int k = 1; k <= kHighestOrder; ++k) {
     const double derivative = k == 1 ? p.dw : w.Derivative(k).Value(p.t);
@@ -121,25 +164,27 @@ std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, d
 
 std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_end,
                                       const EventOptions& options) {
+  if (w.DerivativeBound(0, t_begin) == 0) return std::nullopt;  // w = 0 throughout
   const double short_step = 1e-3 * options.time_scale;
   Point p = Evaluate(w, t_begin);
   if (const double exit = SurfaceExitStep(w, p); exit > 0) {
     if (exit >= t_end - t_begin) return std::nullopt;
     p = Evaluate(w, t_begin + exit);
   }
+  // Bounds valid for every t >= t_begin (Signal::DerivativeBound).
+  const double b2 = w.DerivativeBound(2, t_begin), b3 = w.DerivativeBound(3, t_begin);
   while (p.t < t_end) {
-    const double bound = w.DerivativeBound(2, p.t);
-    const double step = CertifiedStep(p, bound);
+    const double step = CertifiedStep(p, b3);
     if (step >= t_end - p.t) return std::nullopt;
     if (step >= short_step) {
       const Point next = Evaluate(w, p.t + step);
       // The bound makes next.w <= 0; rounding can make it touch 0.
-      if (next.w >= 0) return Examine(w, p, next, bound, options);
+      if (next.w >= 0) return Examine(w, p, next, b2, options);
       p = next;
       continue;
     }
     const Point b = Evaluate(w, std::min(t_end, p.t + std::max(4.0 * step, short_step)));
-    if (auto crossing = Examine(w, p, b, bound, options)) return crossing;
+    if (auto crossing = Examine(w, p, b, b2, options)) return crossing;
     p = b;
   }
   return std::nullopt;

@@ -104,8 +104,10 @@ ModeBasis ModeBasis::Make(double decay, double beta2) {
 void ModeBasis::Evaluate(double tau, double* ec, double* es) const {
   if (beta2 > 0) {
     const double e = std::exp(-decay * tau);
-    *ec = e * std::cos(root * tau);
-    *es = e * std::sin(root * tau) / root;
+    double sine, cosine;
+    ::sincos(root * tau, &sine, &cosine);  // glibc: one call for both
+    *ec = e * cosine;
+    *es = e * sine / root;
   } else if (beta2 < 0) {
     // e^{-aτ}cosh(bτ) and e^{-aτ}sinh(bτ)/b from the two decaying
     // exponentials, so nothing overflows for long flights.
@@ -135,8 +137,8 @@ double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
   const double generic = std::abs(alpha) * std::exp(-slow_decay * tau_from) +
                          (gamma == 0 ? 0.0 : std::abs(gamma) * TauDecayMax(slow_decay, tau_from));
   if (beta2 > 0) {
-    return std::min(generic, std::exp(-decay * tau_from) *
-                                 std::hypot(alpha, gamma / root));
+    const double ratio = gamma / root;
+    return std::min(generic, std::exp(-decay * tau_from) * std::sqrt(alpha * alpha + ratio * ratio));
   }
   if (beta2 < 0) {
     const double split = 0.5 * (std::abs(alpha + gamma / root) * std::exp(-slow_decay * tau_from) +
@@ -165,8 +167,14 @@ double Signal::Value(double t) const {
 }
 
 void Signal::ValueAndSlope(double t, double* value, double* slope) const {
+  double curvature;
+  ValueSlopeCurvature(t, value, slope, &curvature);
+}
+
+void Signal::ValueSlopeCurvature(double t, double* value, double* slope,
+                                 double* curvature) const {
   const double tau = t - t0_;
-  double w = constant_, dw = 0.0;
+  double w = constant_, dw = 0.0, d2w = 0.0;
   const auto& modes = *modes_;
   for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
     double ec, es;
@@ -175,11 +183,13 @@ void Signal::ValueAndSlope(double t, double* value, double* slope) const {
     w += a * ec + g * es;
     modes[j].Differentiate(&a, &g);
     dw += a * ec + g * es;
+    modes[j].Differentiate(&a, &g);
+    d2w += a * ec + g * es;
   }
-  const std::complex<double> rotor = std::polar(1.0, omega_ * t);
-  const std::complex<double> forced = forced_ * rotor;
+  const std::complex<double> forced = forced_ * std::polar(1.0, omega_ * t);
   *value = w + forced.real();
   *slope = dw - omega_ * forced.imag();
+  *curvature = d2w - omega_ * omega_ * forced.real();
 }
 
 Signal Signal::Derivative(int order) const {
@@ -203,6 +213,11 @@ double Signal::DerivativeBound(int order, double t_from) const {
     bound += (*modes_)[j].Envelope(a, g, tau);
   }
   return bound + std::abs(forced_) * std::pow(omega_, order);
+}
+
+double Signal::Scale() const {
+  return alpha_.cwiseAbs().sum() + gamma_.cwiseAbs().sum() + std::abs(forced_) +
+         std::abs(constant_);
 }
 
 Signal Signal::Negated() const {

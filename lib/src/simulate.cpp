@@ -91,7 +91,10 @@ struct Simulator::Impl {
   double time_scale = 1.0;
 
   Impl(const System& s, const SimulationOptions& o);
+  /// a_c and its rate of change in free flight, using `force` and
+  /// `acceleration` (size N) as scratch.
   double FreeAcceleration(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                          Eigen::VectorXd* force, Eigen::VectorXd* acceleration,
                           double* jerk) const;
   double ContactForce(double t, const Eigen::VectorXd& xs, const Eigen::VectorXd& vs) const;
 };
@@ -159,15 +162,19 @@ Simulator::Impl::Impl(const System& s, const SimulationOptions& o) : system(s), 
 }
 
 double Simulator::Impl::FreeAcceleration(double t, const Eigen::VectorXd& x,
-                                         const Eigen::VectorXd& v, double* jerk) const {
+                                         const Eigen::VectorXd& v, Eigen::VectorXd* force,
+                                         Eigen::VectorXd* acceleration, double* jerk) const {
   const double wt = system.omega * t;
-  const Eigen::VectorXd force =
-      system.forcing * std::cos(wt) - system.damping * v - system.stiffness * x;
-  const Eigen::VectorXd acceleration = inverse_mass * force;
-  const Eigen::VectorXd force_rate = -system.forcing * (system.omega * std::sin(wt)) -
-                                     system.damping * acceleration - system.stiffness * v;
-  *jerk = inverse_mass_row.dot(force_rate);
-  return acceleration(system.contact_dof);
+  force->noalias() = -system.damping * v;
+  force->noalias() -= system.stiffness * x;
+  *force += system.forcing * std::cos(wt);
+  acceleration->noalias() = inverse_mass * *force;
+  // d/dt of the force: -A Ω sin Ωt - C a - K v.
+  force->noalias() = -system.damping * *acceleration;
+  force->noalias() -= system.stiffness * v;
+  *force -= system.forcing * (system.omega * std::sin(wt));
+  *jerk = inverse_mass_row.dot(*force);
+  return (*acceleration)(system.contact_dof);
 }
 
 double Simulator::Impl::ContactForce(double t, const Eigen::VectorXd& xs,
@@ -182,7 +189,12 @@ namespace {
 class HybridRun {
  public:
   HybridRun(const Simulator::Impl& impl, HybridState& state, double t_end, Observer& observer)
-      : impl_(impl), state_(state), t_end_(t_end), observer_(observer) {}
+      : impl_(impl),
+        state_(state),
+        t_end_(t_end),
+        observer_(observer),
+        force_scratch_(impl.system.Dof()),
+        acceleration_scratch_(impl.system.Dof()) {}
 
   SimulationSummary Execute();
 
@@ -190,7 +202,7 @@ class HybridRun {
   void FreePhase();
   void StuckPhase();
   void ApplyImpact(double te, double speed);
-  bool ChatterAccumulates(double te, double speed) const;
+  std::optional<double> AccumulationTime(double te, double speed);
   void JumpToAccumulation(double te, double t_star);
   void LandAtStop();
   std::int64_t Events() const {
@@ -203,6 +215,8 @@ class HybridRun {
   Observer& observer_;
   SimulationSummary summary_;
   Signal witness_;
+  Impact impact_;  ///< reused: no allocation per impact
+  Eigen::VectorXd force_scratch_, acceleration_scratch_;
   double last_impact_ = -std::numeric_limits<double>::infinity();
   double stick_begin_ = 0.0;
   static constexpr int kMaxStalledPhases = 1000;
@@ -257,7 +271,12 @@ void HybridRun::FreePhase() {
 void HybridRun::ApplyImpact(double te, double speed) {
   const System& s = impl_.system;
   const int c = s.contact_dof;
-  observer_.OnImpact(Impact{te, Phase(te, s.ForcingPeriod()), speed, state_.x, state_.v});
+  impact_.t = te;
+  impact_.phase = Phase(te, s.ForcingPeriod());
+  impact_.velocity = speed;
+  impact_.x = state_.x;
+  impact_.v = state_.v;
+  observer_.OnImpact(impact_);
   ++summary_.impacts;
   state_.v(c) = -s.restitution * speed;
   const double previous = last_impact_;
@@ -266,27 +285,29 @@ void HybridRun::ApplyImpact(double te, double speed) {
     LandAtStop();
   } else if (impl_.options.chatter == ChatterMethod::kThreshold) {
     if (te - previous < impl_.options.chatter_threshold) JumpToAccumulation(te, te);
-  } else if (ChatterAccumulates(te, speed)) {
-    const double u = s.restitution * speed;
-    double jerk;
-    const double a = impl_.FreeAcceleration(te, state_.x, state_.v, &jerk);
-    JumpToAccumulation(te, std::min(t_end_, te + 2.0 * u / (a * (1.0 - s.restitution))));
+  } else if (const std::optional<double> t_star = AccumulationTime(te, speed)) {
+    JumpToAccumulation(te, std::min(t_end_, *t_star));
   }
 }
 
-/// Budd & Dux: with rebound speed u and acceleration a > 0 towards the stop,
-/// the impacts that follow come at intervals 2 r^k u / a and end after
+/// The accumulation time of the chatter that starts here, if it is to be
+/// jumped to. Budd & Dux: with rebound speed u and acceleration a > 0
+/// towards the stop, the impacts that follow come at intervals 2 r^k u / a and end after
 /// 2 u / (a (1 - r)). Jump there when that span is short on the system's
 /// time scale and the acceleration barely changes over it (the geometric
 /// model's premise); otherwise keep simulating impacts one by one.
-bool HybridRun::ChatterAccumulates(double te, double speed) const {
+std::optional<double> HybridRun::AccumulationTime(double te, double speed) {
   const System& s = impl_.system;
-  if (s.restitution >= 1.0) return false;
+  if (s.restitution >= 1.0) return std::nullopt;
   double jerk;
-  const double a = impl_.FreeAcceleration(te, state_.x, state_.v, &jerk);
-  if (!(a > 0)) return false;
+  const double a = impl_.FreeAcceleration(te, state_.x, state_.v, &force_scratch_,
+                                          &acceleration_scratch_, &jerk);
+  if (!(a > 0)) return std::nullopt;
   const double span = 2.0 * s.restitution * speed / (a * (1.0 - s.restitution));
-  return span <= impl_.options.chatter_span * impl_.time_scale && std::abs(jerk) * span <= 0.01 * a;
+  if (span > impl_.options.chatter_span * impl_.time_scale || std::abs(jerk) * span > 0.01 * a) {
+    return std::nullopt;
+  }
+  return te + span;
 }
 
 void HybridRun::JumpToAccumulation(double te, double t_star) {

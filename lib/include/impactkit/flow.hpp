@@ -58,12 +58,17 @@ class Signal {
   double Value(double t) const;
   /// w(t) and w'(t) in one pass (they share the transcendental calls).
   void ValueAndSlope(double t, double* value, double* slope) const;
+  /// w(t), w'(t), w''(t) in one pass.
+  void ValueSlopeCurvature(double t, double* value, double* slope, double* curvature) const;
   /// The derivative of the given order as a Signal.
   Signal Derivative(int order = 1) const;
   /// sup |w^(order)(t)| over t >= t_from (t_from >= t0): a bound, not the value.
   double DerivativeBound(int order, double t_from) const;
   /// -w.
   Signal Negated() const;
+  /// The sum of the coefficients' magnitudes: a cheap scale for rounding
+  /// noise in w (no transcendental calls).
+  double Scale() const;
   double Origin() const { return t0_; }
   double Omega() const { return omega_; }
 

@@ -1,0 +1,147 @@
+#!/usr/bin/env bash
+# Good runs of `impactkit simulate`, checked through what a user gets: the
+# summary on stdout and the files, whose contents must hold together.
+#
+#     check_runs.sh outputs    IMPACTKIT IMPACT_SPEEDS   CSV columns and contents
+#     check_runs.sh sticking   IMPACTKIT                 a chatter-and-sticking run
+#     check_runs.sh plot       IMPACTKIT                 the PNG (skipped, 77, without gnuplot)
+#     check_runs.sh examples   IMPACTKIT DIR             every system file in DIR runs
+#     check_runs.sh unwritable IMPACTKIT                 an output that cannot be written
+#     check_runs.sh failed-plot IMPACTKIT                gnuplot fails: no file of the set is written
+#     check_runs.sh help       IMPACTKIT                 --help names every option
+source "$(dirname "$0")/testlib.sh"
+check=$1
+impactkit=$2
+
+# The paper's system, as the runs below use it.
+readonly dof=2 xs=0.1
+
+# Columns: `first`, x1..xN, v1..vN, then `last` (either may be empty).
+state_header() {
+  local first=$1 last=$2
+  echo "${first}$(seq -s, -f 'x%g' 1 "$dof"),$(seq -s, -f 'v%g' 1 "$dof")${last}"
+}
+
+check_provenance_and_header() {
+  local file=$1 header=$2
+  [[ $(head -1 "$file") == "# impactkit simulate "* ]] || fail "$file: no '# impactkit simulate' line"
+  [[ $(sed -n 2p "$file") == "$header" ]] ||
+    fail "$file: header '$(sed -n 2p "$file")', expected '$header'"
+}
+
+# t strictly increasing, the contact mass x_N never beyond the stop (and at
+# it whenever stuck), stuck 0 or 1, every row complete.
+check_series() {
+  local file=$1
+  check_provenance_and_header "$file" "$(state_header t, ,stuck)"
+  awk -F, -v n="$dof" -v xs="$xs" '
+    NR <= 2 { next }
+    NF != 2 * n + 2 { print "row " NR ": " NF " fields"; bad = 1; exit }
+    NR > 3 && $1 <= t { print "row " NR ": t = " $1 " does not increase (" t ")"; bad = 1; exit }
+    $(1 + n) > xs + 1e-12 { print "row " NR ": x" n " = " $(1 + n) " > xs"; bad = 1; exit }
+    $NF != 0 && $NF != 1 { print "row " NR ": stuck = " $NF; bad = 1; exit }
+    $NF == 1 && $(1 + n) != xs { print "row " NR ": stuck with x" n " = " $(1 + n); bad = 1; exit }
+    { t = $1; rows++ }
+    END { if (!bad && rows == 0) { print "no rows"; bad = 1 }; exit bad }
+  ' "$file" || fail "$file: bad series"
+}
+
+run_outputs() {
+  local oracle=$1
+  "$impactkit" simulate --omega 1.4 --transient 200 --periods 20 --samples-per-period 200 \
+    --series "$work/series.csv" --impacts "$work/impacts.csv" --json "$work/summary.json" \
+    >"$work/stdout"
+  grep -q '^motion: *P(1,1) ' "$work/stdout" || fail "summary: $(cat "$work/stdout")"
+  grep -q '"label": "P(1,1)"' "$work/summary.json" || fail "summary.json has no P(1,1)"
+
+  check_series "$work/series.csv"
+  local rows
+  rows=$(($(wc -l <"$work/series.csv") - 2))
+  ((rows >= 20 * 200)) || fail "series: $rows rows, expected at least 4000"
+
+  check_provenance_and_header "$work/impacts.csv" "$(state_header t,phase,v, '')"
+  awk -F, -v n="$dof" -v xs="$xs" 'NR > 2 && $(3 + n) != xs { print "row " NR ": x" n " = " $(3 + n); bad = 1 }
+    END { exit bad }' "$work/impacts.csv" || fail "impacts: contact mass not at the stop"
+  # The speeds must be the library's, bit for bit (both shortest round-trip).
+  "$oracle" 1.4 200 20 >"$work/expected-speeds"
+  awk -F, 'NR > 2 { print $3 }' "$work/impacts.csv" >"$work/speeds"
+  [[ -s $work/expected-speeds ]] || fail "the reference run has no impacts"
+  diff "$work/expected-speeds" "$work/speeds" || fail "impact speeds differ from the library's"
+}
+
+run_sticking() {
+  # Ω = 0.2: chatter, then sticking once per forcing period (the paper's Fig. 4b).
+  "$impactkit" simulate --omega 0.2 --transient 100 --periods 3 --series "$work/series.csv" \
+    >"$work/stdout"
+  grep -q '^motion: *P(inf,1) sticking' "$work/stdout" || fail "summary: $(cat "$work/stdout")"
+  check_series "$work/series.csv"
+  grep -q ',1$' "$work/series.csv" || fail "no stuck sample in a sticking motion"
+}
+
+run_plot() {
+  command -v gnuplot >/dev/null || { echo "gnuplot not installed: skipped"; exit 77; }
+  "$impactkit" simulate --omega 1.4 --periods 5 --plot "$work/plot.png" >/dev/null
+  # PNG signature, then the IHDR chunk: width and height, 4 bytes each, big-endian.
+  local header
+  header=$(od -An -tu1 -N24 "$work/plot.png" | tr -s ' \n' ' ')
+  [[ $header == " 137 80 78 71 13 10 26 10 "* ]] || fail "not a PNG: $header"
+  read -r -a bytes <<<"$header"
+  local width=$(((bytes[16] << 24) | (bytes[17] << 16) | (bytes[18] << 8) | bytes[19]))
+  local height=$(((bytes[20] << 24) | (bytes[21] << 16) | (bytes[22] << 8) | bytes[23]))
+  [[ $width -eq 1000 && $height -eq 600 ]] || fail "PNG is ${width}x${height}, expected 1000x600"
+}
+
+run_examples() {
+  local dir=$1 file
+  for file in "$dir"/*.json "$dir"/*.toml; do
+    "$impactkit" simulate --system "$file" --transient 20 --periods 4 >"$work/stdout" ||
+      fail "$file did not run"
+    grep -q '^motion:' "$work/stdout" || fail "$file: no motion line"
+  done
+}
+
+run_unwritable() {
+  local status=0
+  "$impactkit" simulate --series "$work/no-such-directory/series.csv" \
+    >"$work/stdout" 2>"$work/stderr" || status=$?
+  [[ $status -eq 1 ]] || fail "exit status $status, expected 1"
+  [[ $(wc -l <"$work/stderr") -eq 1 ]] || fail "stderr: $(cat "$work/stderr")"
+  grep -q '^impactkit: error: cannot create .*series.csv' "$work/stderr" ||
+    fail "stderr: $(cat "$work/stderr")"
+}
+
+run_failed_plot() {
+  mkdir "$work/bin" "$work/out"
+  printf '#!/bin/sh\necho "line 1: simulated failure" >&2\nexit 1\n' >"$work/bin/gnuplot"
+  chmod +x "$work/bin/gnuplot"
+  local status=0
+  PATH="$work/bin:$PATH" "$impactkit" simulate --periods 2 --series "$work/out/series.csv" \
+    --plot "$work/out/plot.png" --json "$work/out/summary.json" \
+    >"$work/stdout" 2>"$work/stderr" || status=$?
+  [[ $status -eq 1 ]] || fail "exit status $status, expected 1"
+  grep -q '^impactkit: error: gnuplot failed: line 1: simulated failure$' "$work/stderr" ||
+    fail "stderr: $(cat "$work/stderr")"
+  [[ -z $(ls -A "$work/out") ]] || fail "files left behind: $(ls -A "$work/out")"
+}
+
+run_help() {
+  "$impactkit" --help | grep -q 'simulate' || fail "impactkit --help does not list simulate"
+  "$impactkit" simulate --help >"$work/help"
+  local option
+  for option in --system --set --omega --dof --transient --periods --samples-per-period --x0 \
+    --v0 --chatter --chatter-threshold --series --impacts --plot --json; do
+    grep -q -- "$option\b" "$work/help" || fail "simulate --help does not explain $option"
+  done
+}
+
+case $check in
+  outputs) run_outputs "$3" ;;
+  sticking) run_sticking ;;
+  plot) run_plot ;;
+  examples) run_examples "$3" ;;
+  unwritable) run_unwritable ;;
+  failed-plot) run_failed_plot ;;
+  help) run_help ;;
+  *) fail "unknown check '$check'" ;;
+esac
+echo "ok: $check"

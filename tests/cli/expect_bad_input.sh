@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Bad input must fail cleanly: `impactkit simulate ARGS...`, with every output
+# requested, exits with status 2, prints exactly one line on stderr, starting
+# "impactkit: error: " and containing EXPECTED, prints nothing on stdout, and
+# leaves no file behind (not even a temporary one).
+#
+#     expect_bad_input.sh IMPACTKIT EXPECTED ARGS...
+source "$(dirname "$0")/testlib.sh"
+impactkit=$1
+expected=$2
+shift 2
+
+mkdir "$work/out"
+status=0
+"$impactkit" simulate "$@" \
+  --series "$work/out/series.csv" --impacts "$work/out/impacts.csv" \
+  --plot "$work/out/plot.png" --json "$work/out/summary.json" \
+  >"$work/stdout" 2>"$work/stderr" || status=$?
+
+message=$(cat "$work/stderr")
+[[ $status -eq 2 ]] || fail "exit status $status, expected 2; stderr: $message"
+lines=$(wc -l <"$work/stderr")
+[[ $lines -eq 1 ]] || fail "$lines lines on stderr, expected 1: $message"
+[[ $message == "impactkit: error: "* ]] || fail "stderr does not start with 'impactkit: error: ': $message"
+[[ $message == *"$expected"* ]] || fail "stderr does not mention '$expected': $message"
+[[ ! -s $work/stdout ]] || fail "unexpected output on stdout: $(cat "$work/stdout")"
+leftovers=$(ls -A "$work/out")
+[[ -z $leftovers ]] || fail "files left behind: $leftovers"
+echo "ok: $message"
