@@ -25,8 +25,10 @@ std::filesystem::path TemporaryPathFor(const std::filesystem::path& path) {
 }  // namespace
 
 AtomicOutputFile::AtomicOutputFile(std::filesystem::path path) : path_(std::move(path)) {
-  if (path_.filename().empty()) {
-    throw OutputError(fmt::format("cannot write '{}': not a file name", path_.string()));
+  std::error_code ignored;
+  if (path_.filename().empty() || std::filesystem::is_directory(path_, ignored)) {
+    throw OutputError(
+        fmt::format("cannot write {}: it names a directory, not a file", path_.string()));
   }
   // O_EXCL: never truncate someone else's file; 0666 lets the umask decide
   // the permissions, as for any file the user creates.

@@ -1,0 +1,15 @@
+#pragma once
+/// \file commands.hpp
+/// The subcommands of `impactkit`. Each registers its flags and its job on
+/// the app; main() adds them all. A new job is a new Add...Command here and
+/// a file that defines it.
+
+#include <CLI/CLI.hpp>
+
+namespace impactkit::cli {
+
+/// `impactkit simulate`: a run from an initial state, transient discarded,
+/// a window recorded to CSV/JSON/PNG and summarised (simulate_command.cpp).
+void AddSimulateCommand(CLI::App& app);
+
+}  // namespace impactkit::cli

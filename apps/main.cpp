@@ -1,0 +1,72 @@
+/// impactkit: the command-line tool. Subcommands register themselves
+/// (commands.hpp); this file turns every failure into one line on stderr and
+/// an exit status a script can act on:
+///
+///     0  success
+///     1  the run failed: an output could not be written, gnuplot failed,
+///        the simulation could not reach its end
+///     2  bad input: unknown flags, values out of range, a bad system file
+
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+#include "impactkit/model.hpp"
+#include "system_options.hpp"
+
+namespace {
+
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+int ReportError(std::string message, int status) {
+  // Messages are one line by contract; make sure of it, since a multi-line
+  // message from a dependency would break scripts that read stderr.
+  for (char& c : message) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  fmt::print(stderr, "impactkit: error: {}\n", message);
+  return status;
+}
+
+/// Where to look after a command-line syntax error.
+std::string HelpHint(const CLI::App& app) {
+  const auto chosen = app.get_subcommands();
+  return chosen.empty() ? "impactkit --help"
+                        : fmt::format("impactkit {} --help", chosen.front()->get_name());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{fmt::format(
+      "impactkit: exact simulation and analysis of impact oscillators (N masses in a chain, "
+      "one of them limited by a rigid stop; Wagg & Bishop 2001).\n"
+      "Without --system every command uses the paper's system: {}.",
+      impactkit::cli::ParameterList(impactkit::PaperSystem()))};
+  app.name("impactkit");
+  app.set_version_flag("--version", std::string("impactkit ") + IMPACTKIT_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success, 1 the run failed (output, gnuplot, simulation), "
+      "2 bad input.\nDocs: docs/cli.md (commands), docs/system-files.md (system files).");
+  impactkit::cli::AddSimulateCommand(app);
+
+  try {
+    app.parse(argc, argv);
+    return 0;
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+    return ReportError(fmt::format("{} (see '{}')", error.what(), HelpHint(app)), kExitBadInput);
+  } catch (const impactkit::InvalidInput& error) {
+    return ReportError(error.what(), kExitBadInput);
+  } catch (const std::exception& error) {
+    return ReportError(error.what(), kExitFailure);
+  } catch (...) {
+    return ReportError("unexpected failure of unknown type", kExitFailure);
+  }
+}
