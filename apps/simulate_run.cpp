@@ -124,9 +124,7 @@ WindowAnalysis Analyse(const WindowRecorders& recorders, const Window& window) {
   const PeriodOptions options;
   const std::vector<Sample>& strobe = recorders.strobe.Points();
   analysis.motion = DetectPeriod(strobe, impact_times, recorders.chatter.EndTimes(), options);
-  // DetectPeriod needs 2q + 1 points to confirm a period q.
-  analysis.searched_q =
-      strobe.size() < 3 ? 0 : std::min<int>(options.max_q, static_cast<int>(strobe.size() - 1) / 2);
+  analysis.searched_q = analysis.motion.searched_q;
   return analysis;
 }
 

@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "chatter_recorder.hpp"
 #include "impactkit/periodicity.hpp"
 #include "impactkit/recorders.hpp"
 #include "impactkit/simulate.hpp"

@@ -2,9 +2,7 @@
 // transient, record impacts and stroboscopic points, and name the motion.
 #include <cstdio>
 
-#include "impactkit/periodicity.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/impactkit.hpp"
 
 int main() {
   using namespace impactkit;

@@ -97,6 +97,12 @@ TEST_CASE("validation names the bad parameter and the allowed range", "[model]")
     SetParameter(s, "omega", std::sqrt((3.0 - std::sqrt(5.0)) / 2.0));
     CheckRejected(s, "no bounded steady response");
   }
+  SECTION("undamped stuck subsystem forced at its resonance") {
+    // Mass 2 held: x1'' + 2 x1 = ..., natural frequency sqrt(2).
+    SetParameter(s, "c", 0.0);
+    SetParameter(s, "omega", std::sqrt(2.0));
+    CheckRejected(s, "stuck subsystem (mass 2 held at the stop): undamped mode");
+  }
 }
 
 TEST_CASE("undamped but forced off resonance, or resonance of an unforced mode, is fine",

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "impactkit/flow.hpp"
+#include "subsystem.hpp"
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -77,6 +78,20 @@ void ValidateScalars(const System& s) {
           fmt::format("contact DOF must be in [1, {}], got {}", n, s.contact_dof + 1));
 }
 
+/// The subsystem that moves while the contact mass sticks must have a
+/// bounded steady response too.
+void ValidateStuckSubsystem(const System& s) {
+  const int c = s.contact_dof;
+  try {
+    LinearFlow(WithoutIndex(s.mass, c), WithoutIndex(s.damping, c), WithoutIndex(s.stiffness, c),
+               WithoutIndex(s.forcing, c),
+               -WithoutIndex(Eigen::VectorXd(s.stiffness.col(c)), c) * s.stop, s.omega);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("stuck subsystem (mass {} held at the stop): {}", c + 1,
+                                   e.what()));
+  }
+}
+
 /// Index of the parameter A<i> (1-based in the name), or -1.
 int ForcingIndex(std::string_view name, int dof) {
   if (name.size() < 2 || name[0] != 'A') return -1;
@@ -143,9 +158,10 @@ void Validate(const System& s) {
   if (s.chain) ValidateChain(*s.chain);
   ValidateMatrices(s);
   ValidateScalars(s);
-  // Constructing the free flow rejects an undamped resonance (no bounded
+  // Constructing the flows rejects an undamped resonance (no bounded
   // steady response): the same test the simulator relies on.
   LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()), s.omega);
+  if (s.Dof() > 1) ValidateStuckSubsystem(s);
 }
 
 std::vector<std::string> ParameterNames(const System& s) {

@@ -37,7 +37,7 @@ long CountIn(const std::vector<double>& times, double begin, double end) {
 }  // namespace
 
 std::string MotionPeriod::ToString() const {
-  if (!periodic) return "not periodic";
+  if (!periodic) return fmt::format("no period up to q = {}", searched_q);
   return sticking ? fmt::format("P(inf,{})", q) : fmt::format("P({},{})", p, q);
 }
 
@@ -47,8 +47,8 @@ MotionPeriod DetectPeriod(const std::vector<Sample>& strobe, const std::vector<d
   MotionPeriod result;
   if (strobe.size() < 3) return result;
   const double scale = Scale(strobe);
-  const int max_q = std::min<int>(options.max_q, static_cast<int>((strobe.size() - 1) / 2));
-  for (int q = 1; q <= max_q; ++q) {
+  result.searched_q = std::min<int>(options.max_q, static_cast<int>((strobe.size() - 1) / 2));
+  for (int q = 1; q <= result.searched_q; ++q) {
     const double mismatch = Mismatch(strobe, q, scale);
     if (mismatch > options.tolerance) continue;
     const double end = strobe.back().t, begin = strobe[strobe.size() - 1 - q].t;

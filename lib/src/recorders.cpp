@@ -31,8 +31,10 @@ TimeSeriesRecorder::TimeSeriesRecorder(double t_first, double dt) : t_first_(t_f
 }
 
 void TimeSeriesRecorder::OnSegment(const Segment& segment) {
+  // A grid time that equals Begin() up to rounding belongs to this segment
+  // (evaluating the closed form a few ulps outside it is harmless).
   const long first_inside =
-      static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_));
+      static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_ - 1e-9));
   next_ = std::max(next_, first_inside);
   for (double t = t_first_ + next_ * dt_; t <= segment.End(); t = t_first_ + (++next_) * dt_) {
     Sample s;

@@ -317,6 +317,7 @@ void HybridRun::JumpToAccumulation(double te, double t_star) {
     const Eigen::VectorXd z0 = impl_.stuck_flow.Transient(te, WithoutIndex(state_.x, c),
                                                           WithoutIndex(state_.v, c));
     observer_.OnSegment(Segment(impl_.stuck_flow, te, z0, te, t_star, true, c, s.stop));
+    summary_.stuck_time += t_star - te;
     Eigen::VectorXd xs, vs;
     impl_.stuck_flow.State(te, z0, t_star, &xs, &vs);
     state_.x = EmbedAtStop(xs, c, s.stop);

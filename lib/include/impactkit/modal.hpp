@@ -14,9 +14,10 @@ struct ModalData {
   /// otherwise ω_j². Ascending.
   Eigen::VectorXd eigenvalues;
   Eigen::VectorXd natural_frequencies;  ///< ω_j
-  /// ζ_j = ξ_jᵀ... modal damping ratio, (φ_jᵀ C φ_j) / (2 ω_j) with φ_j
-  /// mass-normalised; for non-proportional damping the ratio of the
-  /// projected damping (an approximation, flagged by `proportional`).
+  /// Modal damping ratios ζ_j = (φ_jᵀ C φ_j) / (2 ω_j), φ_j mass-normalised
+  /// (for the chain the paper's ζ_j = (c/2) sqrt(λ_j / (k m))); with
+  /// non-proportional damping only the diagonal of the projected C, an
+  /// approximation flagged by `proportional` = false.
   Eigen::VectorXd damping_ratios;
   /// Columns ξ_j of unit Euclidean norm, sign chosen so that the last
   /// component is positive (the paper's convention).

@@ -16,7 +16,12 @@ struct MotionPeriod {
   long p = 0;             ///< impacts in q periods (before chatter ends, if sticking)
   bool sticking = false;  ///< chatter ends at the stop within the period: P(∞, q)
   double mismatch = 0.0;  ///< max |y(t + qT) - y(t)| over the window, relative
-  std::string ToString() const;  ///< "P(2,1)", "P(inf,1)", "not periodic"
+  /// The largest q tried: min(max_q, (points - 1) / 2), since a period q is
+  /// confirmed by 2q + 1 points. Below max_q, "not periodic" only means
+  /// "no period up to searched_q".
+  int searched_q = 0;
+  /// "P(2,1)", "P(inf,1)", or "no period up to q = 64".
+  std::string ToString() const;
 };
 
 struct PeriodOptions {

@@ -94,14 +94,30 @@ class ExtremaRecorder : public Observer {
   std::vector<PeriodExtrema> periods_;
 };
 
+/// The times at which chatter sequences ended at the stop (what
+/// DetectPeriod needs to call a motion sticking).
+class ChatterRecorder : public Observer {
+ public:
+  void OnChatter(double t_first, double t_end) override {
+    (void)t_first;
+    end_times_.push_back(t_end);
+  }
+  const std::vector<double>& EndTimes() const { return end_times_; }
+
+ private:
+  std::vector<double> end_times_;
+};
+
 /// An interval during which the contact mass is at the stop (after chatter).
 struct StickingInterval {
   double begin = 0.0;
   double end = 0.0;
 };
 
-/// Sticking intervals, from the end of chatter (or the impact with r = 0)
-/// to release. An interval still open at the end of the run ends there.
+/// Sticking intervals, from the impact that starts a completed chatter
+/// sequence (its accumulated tail is simulated as held at the stop) or the
+/// impact with r = 0, to release. An interval still open at the end of the
+/// run ends there. TotalTime() equals SimulationSummary::stuck_time.
 class StickingRecorder : public Observer {
  public:
   void OnSegment(const Segment& segment) override;

@@ -86,7 +86,9 @@ struct SimulationSummary {
   std::int64_t impacts = 0;        ///< impacts with the stop
   std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
   std::int64_t releases = 0;       ///< ends of sticking
-  double stuck_time = 0.0;         ///< total time spent stuck
+  /// Total time held at the stop, including the accumulated tails of
+  /// completed chatter sequences.
+  double stuck_time = 0.0;
   double elapsed_seconds = 0.0;
   std::string BriefReport() const;
 };

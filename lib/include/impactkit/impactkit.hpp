@@ -1,0 +1,13 @@
+#pragma once
+/// \file impactkit.hpp
+/// Everything of the impactkit numerics library (the io area has its own
+/// headers: system_file.hpp, csv.hpp, output_file.hpp).
+
+#include "impactkit/events.hpp"
+#include "impactkit/flow.hpp"
+#include "impactkit/modal.hpp"
+#include "impactkit/model.hpp"
+#include "impactkit/periodicity.hpp"
+#include "impactkit/recorders.hpp"
+#include "impactkit/segment.hpp"
+#include "impactkit/simulate.hpp"
