@@ -128,16 +128,16 @@ double RefineRoot(const Signal& w, Point a, Point b, const EventOptions& options
 /// k = 1, at a release from sticking k = 2 or 3. Returns that step, or 0
 /// when w is not at the surface or not certainly leaving it. Without this,
 /// an interval starting on the surface could never be certified empty.
-double SurfaceExitStep(const Signal& w, const Point& p) {
+double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds) {
   constexpr double kNoise = 1e-11;
-  if (std::abs(p.w) > kNoise * w.Scale()) return 0.0;
+  if (std::abs(p.w) > kNoise * bounds[0]) return 0.0;
   constexpr int kHighestOrder = 3;
   for (int k = 1; k <= kHighestOrder; ++k) {
-    const double derivative = k == 1 ? p.dw : w.Derivative(k).Value(p.t);
-    if (std::abs(derivative) <= kNoise * w.DerivativeBound(k, p.t)) continue;
+    const double derivative = k == 1 ? p.dw : k == 2 ? p.d2w : w.Derivative(k).Value(p.t);
+    if (std::abs(derivative) <= kNoise * bounds[k]) continue;
     if (derivative > 0) return 0.0;
-    const double bound = w.DerivativeBound(k + 1, p.t);
-    return bound > 0 ? (k + 1) * -derivative / bound : std::numeric_limits<double>::infinity();
+    return bounds[k + 1] > 0 ? (k + 1) * -derivative / bounds[k + 1]
+                             : std::numeric_limits<double>::infinity();
   }
   return 0.0;
 }
@@ -164,15 +164,17 @@ std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, d
 
 std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_end,
                                       const EventOptions& options) {
-  if (w.DerivativeBound(0, t_begin) == 0) return std::nullopt;  // w = 0 throughout
   const double short_step = 1e-3 * options.time_scale;
+  // Bounds of |w^(k)| valid for every t >= t_begin (Signal::DerivativeBound).
+  double bounds[5];
+  w.DerivativeBounds(t_begin, 4, bounds);
+  if (bounds[0] == 0) return std::nullopt;  // w = 0 throughout
+  const double b2 = bounds[2], b3 = bounds[3];
   Point p = Evaluate(w, t_begin);
-  if (const double exit = SurfaceExitStep(w, p); exit > 0) {
+  if (const double exit = SurfaceExitStep(w, p, bounds); exit > 0) {
     if (exit >= t_end - t_begin) return std::nullopt;
     p = Evaluate(w, t_begin + exit);
   }
-  // Bounds valid for every t >= t_begin (Signal::DerivativeBound).
-  const double b2 = w.DerivativeBound(2, t_begin), b3 = w.DerivativeBound(3, t_begin);
   while (p.t < t_end) {
     const double step = CertifiedStep(p, b3);
     if (step >= t_end - p.t) return std::nullopt;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -129,24 +130,32 @@ void ModeBasis::Differentiate(double* alpha, double* gamma) const {
   *gamma = -decay * g - beta2 * a;
 }
 
-double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
-  if (alpha == 0 && gamma == 0) return 0.0;
+ModeBasis::Decay ModeBasis::DecayFrom(double tau_from) const {
   // |S| <= τ e^{bτ} in every regime (b = 0 unless over-damped).
-  const double overdamped_root = beta2 < 0 ? root : 0.0;
-  const double slow_decay = decay - overdamped_root;
-  const double generic = std::abs(alpha) * std::exp(-slow_decay * tau_from) +
-                         (gamma == 0 ? 0.0 : std::abs(gamma) * TauDecayMax(slow_decay, tau_from));
+  const double slow_decay = decay - (beta2 < 0 ? root : 0.0);
+  if (tau_from <= 0) return Decay{1.0, TauDecayMax(slow_decay, 0.0), 1.0, 1.0};
+  return Decay{std::exp(-slow_decay * tau_from), TauDecayMax(slow_decay, tau_from),
+               std::exp(-decay * tau_from), std::exp(-(decay + root) * tau_from)};
+}
+
+double ModeBasis::Envelope(double alpha, double gamma, const Decay& d) const {
+  if (alpha == 0 && gamma == 0) return 0.0;
+  const double generic =
+      std::abs(alpha) * d.slow + (gamma == 0 ? 0.0 : std::abs(gamma) * d.tau_times_slow);
   if (beta2 > 0) {
     const double ratio = gamma / root;
-    return std::min(generic, std::exp(-decay * tau_from) * std::sqrt(alpha * alpha + ratio * ratio));
+    return std::min(generic, d.own * std::sqrt(alpha * alpha + ratio * ratio));
   }
   if (beta2 < 0) {
-    const double split = 0.5 * (std::abs(alpha + gamma / root) * std::exp(-slow_decay * tau_from) +
-                                std::abs(alpha - gamma / root) *
-                                    std::exp(-(decay + root) * tau_from));
+    const double split = 0.5 * (std::abs(alpha + gamma / root) * d.slow +
+                                std::abs(alpha - gamma / root) * d.fast);
     return std::min(generic, split);
   }
   return generic;
+}
+
+double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
+  return Envelope(alpha, gamma, DecayFrom(tau_from));
 }
 
 Signal::Signal(const std::vector<ModeBasis>* modes, double omega, double t0,
@@ -205,14 +214,28 @@ Signal Signal::Derivative(int order) const {
 }
 
 double Signal::DerivativeBound(int order, double t_from) const {
-  const double tau = t_from - t0_;
-  double bound = order == 0 ? std::abs(constant_) : 0.0;
-  for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
-    double a = alpha_(j), g = gamma_(j);
-    for (int k = 0; k < order; ++k) (*modes_)[j].Differentiate(&a, &g);
-    bound += (*modes_)[j].Envelope(a, g, tau);
+  double bounds[kMaxBoundOrder + 1];
+  DerivativeBounds(t_from, order, bounds);
+  return bounds[order];
+}
+
+void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) const {
+  if (max_order < 0 || max_order > kMaxBoundOrder) {
+    throw std::out_of_range("Signal::DerivativeBounds: order must be in [0, 6]");
   }
-  return bound + std::abs(forced_) * std::pow(omega_, order);
+  const double tau = t_from - t0_;
+  for (int k = 0; k <= max_order; ++k) {
+    bounds[k] = std::abs(forced_) * std::pow(omega_, k) + (k == 0 ? std::abs(constant_) : 0.0);
+  }
+  for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
+    const ModeBasis& mode = (*modes_)[j];
+    const ModeBasis::Decay decay = mode.DecayFrom(tau);  // shared by every order
+    double a = alpha_(j), g = gamma_(j);
+    for (int k = 0; k <= max_order; ++k) {
+      bounds[k] += mode.Envelope(a, g, decay);
+      mode.Differentiate(&a, &g);
+    }
+  }
 }
 
 double Signal::Scale() const {

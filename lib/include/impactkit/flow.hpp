@@ -44,6 +44,16 @@ struct ModeBasis {
   void Differentiate(double* alpha, double* gamma) const;
   /// An upper bound of |e^{-aτ}(α C(τ) + γ S(τ))| over all τ >= tau_from >= 0.
   double Envelope(double alpha, double gamma, double tau_from) const;
+
+  /// The decay factors Envelope needs at one τ (they do not depend on α, γ).
+  struct Decay {
+    double slow;            ///< e^{-(a - b) τ0}, b = sqrt(-β²) if over-damped, else 0
+    double tau_times_slow;  ///< sup over τ >= τ0 of τ e^{-(a - b) τ}
+    double own;             ///< e^{-a τ0}
+    double fast;            ///< e^{-(a + b) τ0}
+  };
+  Decay DecayFrom(double tau_from) const;
+  double Envelope(double alpha, double gamma, const Decay& decay) const;
 };
 
 /// w(t) = Σ_j e^{-a_j τ}(α_j C_j(τ) + γ_j S_j(τ)) + Re(P e^{iΩt}) + R,  τ = t - t0.
@@ -64,6 +74,10 @@ class Signal {
   Signal Derivative(int order = 1) const;
   /// sup |w^(order)(t)| over t >= t_from (t_from >= t0): a bound, not the value.
   double DerivativeBound(int order, double t_from) const;
+  static constexpr int kMaxBoundOrder = 6;
+  /// bounds[k] = DerivativeBound(k, t_from) for k = 0..max_order (<= 6), in
+  /// one pass over the modes.
+  void DerivativeBounds(double t_from, int max_order, double* bounds) const;
   /// -w.
   Signal Negated() const;
   /// The sum of the coefficients' magnitudes: a cheap scale for rounding
