@@ -311,6 +311,11 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
   }
 }
 
+double LinearFlow::ShortestPeriod() const {
+  const double two_pi = 2.0 * std::numbers::pi;
+  return fastest_rate_ > 0 ? std::min(two_pi / omega_, two_pi / fastest_rate_) : two_pi / omega_;
+}
+
 Eigen::VectorXd LinearFlow::Transient(double t, const Eigen::VectorXd& x,
                                       const Eigen::VectorXd& v) const {
   const Eigen::Index n = dof_;

@@ -13,28 +13,6 @@
 
 namespace impactkit {
 
-Eigen::VectorXd WithoutIndex(const Eigen::VectorXd& full, int removed) {
-  const Eigen::Index n = full.size();
-  Eigen::VectorXd reduced(n - 1);
-  reduced << full.head(removed), full.tail(n - 1 - removed);
-  return reduced;
-}
-
-Eigen::MatrixXd WithoutIndex(const Eigen::MatrixXd& full, int removed) {
-  const Eigen::Index n = full.rows(), after = n - 1 - removed;
-  Eigen::MatrixXd reduced(n - 1, n - 1);
-  reduced << full.topLeftCorner(removed, removed), full.topRightCorner(removed, after),
-      full.bottomLeftCorner(after, removed), full.bottomRightCorner(after, after);
-  return reduced;
-}
-
-Eigen::VectorXd EmbedAtStop(const Eigen::VectorXd& reduced, int inserted, double value) {
-  const Eigen::Index n = reduced.size() + 1;
-  Eigen::VectorXd full(n);
-  full << reduced.head(inserted), value, reduced.tail(n - 1 - inserted);
-  return full;
-}
-
 std::string ToString(ChatterMethod method) {
   return method == ChatterMethod::kAccumulation ? "accumulation" : "threshold";
 }
@@ -155,8 +133,7 @@ Simulator::Impl::Impl(const System& s, const SimulationOptions& o) : system(s), 
   release_witness = stuck_flow.Prepare(Negated(contact_force));
   inverse_mass = s.mass.inverse();
   inverse_mass_row = inverse_mass.row(c);
-  const double two_pi = 2.0 * std::numbers::pi;
-  time_scale = std::min(two_pi / s.omega, two_pi / free_flow.FastestRate());
+  time_scale = free_flow.ShortestPeriod();
   event_options.time_tolerance = options.event_time_tolerance;
   event_options.time_scale = time_scale;
 }

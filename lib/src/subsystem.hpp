@@ -12,6 +12,9 @@ Eigen::VectorXd WithoutIndex(const Eigen::VectorXd& full, int removed);
 /// Rows and columns of `full` other than `removed`.
 Eigen::MatrixXd WithoutIndex(const Eigen::MatrixXd& full, int removed);
 
+/// Rows of `full` other than `removed` (all columns).
+Eigen::MatrixXd WithoutRow(const Eigen::MatrixXd& full, int removed);
+
 /// The full vector: `reduced` with `value` inserted at index `inserted`.
 Eigen::VectorXd EmbedAtStop(const Eigen::VectorXd& reduced, int inserted, double value);
 

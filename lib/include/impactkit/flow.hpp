@@ -129,6 +129,8 @@ class LinearFlow {
   const std::vector<ModeBasis>& Modes() const { return modes_; }
   /// Largest |eigenvalue| of S (the fastest rate in the flow), 0 if n = 0.
   double FastestRate() const { return fastest_rate_; }
+  /// The shortest time scale of the motion: min(2π/Ω, 2π/FastestRate()).
+  double ShortestPeriod() const;
 
   /// Modal coordinates of the transient y(t) - y_p(t).
   Eigen::VectorXd Transient(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;

@@ -1,0 +1,125 @@
+#include <algorithm>
+#include <complex>
+
+#include <catch2/catch.hpp>
+
+#include "impactkit/impact_map.hpp"
+#include "impactkit/recorders.hpp"
+#include "impactkit/simulate.hpp"
+
+using Catch::Matchers::WithinAbs;
+using namespace impactkit;
+
+namespace {
+
+/// A stable orbit of the paper's system, converged by simulation: the last
+/// impact after a long transient, and the stroboscopic state before it.
+struct SteadyOrbit {
+  System system;
+  Eigen::VectorXd eta;
+  HybridState strobe;
+};
+
+SteadyOrbit Steady(double omega) {
+  SteadyOrbit o{PaperSystem(omega), {}, {}};
+  const Simulator simulator(o.system);
+  const double period = o.system.ForcingPeriod();
+  HybridState state = RestState(o.system);
+  simulator.Run(state, 800 * period);
+  o.strobe = state;
+  ImpactRecorder impacts;
+  simulator.Run(state, 804 * period, impacts);
+  const Impact& last = impacts.Impacts().back();
+  o.eta = ImpactMap(o.system).ToEta(last.t, last.x, last.v);
+  return o;
+}
+
+Eigen::VectorXcd SortedEigenvalues(const Eigen::MatrixXd& m) {
+  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(m).eigenvalues();
+  std::sort(lambda.begin(), lambda.end(), [](auto a, auto b) {
+    return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : a.imag() > b.imag();
+  });
+  return lambda;
+}
+
+/// The stroboscopic map's Jacobian over q periods by central differences of
+/// plain simulations: an independent route to the same multipliers.
+Eigen::MatrixXd StroboscopicMonodromy(const SteadyOrbit& o, int q) {
+  const Simulator simulator(o.system);
+  const int n = o.system.Dof();
+  const double h = 1e-6;
+  Eigen::MatrixXd monodromy(2 * n, 2 * n);
+  for (int j = 0; j < 2 * n; ++j) {
+    Eigen::VectorXd image[2];
+    for (int side = 0; side < 2; ++side) {
+      HybridState s = o.strobe;
+      (j < n ? s.x(j) : s.v(j - n)) += side == 0 ? h : -h;
+      simulator.Run(s, s.t + q * o.system.ForcingPeriod());
+      image[side].resize(2 * n);
+      image[side] << s.x, s.v;
+    }
+    monodromy.col(j) = (image[0] - image[1]) / (2 * h);
+  }
+  return monodromy;
+}
+
+}  // namespace
+
+TEST_CASE("the map's fixed points are the simulated orbits", "[impact_map]") {
+  struct Case { double omega; int p, q; };
+  for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{2.0, 1, 2}, Case{1.7, 4, 4}}) {
+    INFO("omega = " << c.omega);
+    const SteadyOrbit o = Steady(c.omega);
+    const ImpactMap map(o.system);
+    const MapResult image = map.Apply(o.eta, c.p, false);
+    REQUIRE(image.status == MapStatus::kOk);
+    Eigen::VectorXd shift = Eigen::VectorXd::Zero(o.eta.size());
+    shift(map.TimeIndex()) = c.q * o.system.ForcingPeriod();
+    CHECK((image.eta - o.eta - shift).cwiseAbs().maxCoeff() < 1e-9);
+  }
+}
+
+TEST_CASE("analytic and finite-difference Jacobians agree, and match the stroboscopic map",
+          "[impact_map]") {
+  struct Case { double omega; int p, q; };
+  for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{2.0, 1, 2}}) {
+    INFO("omega = " << c.omega << ", P(" << c.p << "," << c.q << ")");
+    const SteadyOrbit o = Steady(c.omega);
+    const ImpactMap map(o.system);
+    const MapResult image = map.Apply(o.eta, c.p, true);
+    REQUIRE(image.status == MapStatus::kOk);
+    const Eigen::MatrixXd fd = map.FiniteDifferenceJacobian(o.eta, c.p);
+    REQUIRE(fd.size() > 0);
+    CHECK((image.jacobian - fd).norm() <= 1e-6 * fd.norm());
+
+    const Eigen::VectorXcd from_map = SortedEigenvalues(image.jacobian);
+    const Eigen::VectorXcd from_simulation = SortedEigenvalues(StroboscopicMonodromy(o, c.q));
+    REQUIRE(from_map.size() == from_simulation.size());
+    for (Eigen::Index i = 0; i < from_map.size(); ++i) {
+      INFO("multiplier " << from_map(i) << " vs " << from_simulation(i));
+      CHECK(std::abs(from_map(i) - from_simulation(i)) < 1e-5);
+    }
+  }
+}
+
+TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]") {
+  SECTION("a flight with no further impact") {
+    const System s = PaperSystem(4.0);  // far above resonance: tiny response
+    const ImpactMap map(s, ImpactMapOptions{4.0, 1e-8});
+    Eigen::VectorXd eta(4);
+    eta << 0.0, 0.0, 0.0, 0.01;
+    const MapResult r = map.Apply(eta, 1, true);
+    CHECK(r.status == MapStatus::kNoImpact);
+    CHECK(r.jacobian.size() == 0);
+  }
+  SECTION("bad impact states and p") {
+    const ImpactMap map(PaperSystem(0.9));
+    Eigen::VectorXd eta(4);
+    eta << 0.0, 0.0, 0.0, -0.1;  // moving away from the stop
+    CHECK_THROWS_AS(map.Apply(eta, 1, false), InvalidInput);
+    eta(3) = std::nan("");
+    CHECK_THROWS_AS(map.Apply(eta, 1, false), InvalidInput);
+    CHECK_THROWS_AS(map.Apply(Eigen::VectorXd::Ones(3), 1, false), InvalidInput);
+    CHECK_THROWS_AS(map.Apply(Eigen::VectorXd::Ones(4), 0, false), InvalidInput);
+  }
+}
