@@ -12,4 +12,8 @@ namespace impactkit::cli {
 /// a window recorded to CSV/JSON/PNG and summarised (simulate_command.cpp).
 void AddSimulateCommand(CLI::App& app);
 
+/// `impactkit orbit`: a periodic orbit P(p,q) as a fixed point of the impact
+/// map, its impacts and multipliers (orbit_command.cpp).
+void AddOrbitCommand(CLI::App& app);
+
 }  // namespace impactkit::cli

@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
       "Exit status: 0 success, 1 the run failed (output, gnuplot, simulation), "
       "2 bad input.\nDocs: docs/cli.md (commands), docs/system-files.md (system files).");
   impactkit::cli::AddSimulateCommand(app);
+  impactkit::cli::AddOrbitCommand(app);
 
   try {
     app.parse(argc, argv);

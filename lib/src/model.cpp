@@ -113,6 +113,12 @@ int ForcingIndex(std::string_view name, int dof) {
 
 double System::ForcingPeriod() const { return 2.0 * std::numbers::pi / omega; }
 
+double System::Phase(double t) const {
+  const double period = ForcingPeriod();
+  const double phase = std::fmod(t, period);
+  return phase < 0 ? phase + period : phase;
+}
+
 Eigen::MatrixXd ChainCouplingMatrix(int dof) {
   Eigen::MatrixXd e = Eigen::MatrixXd::Zero(dof, dof);
   for (int i = 0; i < dof; ++i) {

@@ -108,11 +108,6 @@ LinearOutput Negated(LinearOutput output) {
   return output;
 }
 
-double Phase(double t, double period) {
-  const double phase = std::fmod(t, period);
-  return phase < 0 ? phase + period : phase;
-}
-
 }  // namespace
 
 Simulator::Impl::Impl(const System& s, const SimulationOptions& o) : system(s), options(o) {
@@ -249,7 +244,7 @@ void HybridRun::ApplyImpact(double te, double speed) {
   const System& s = impl_.system;
   const int c = s.contact_dof;
   impact_.t = te;
-  impact_.phase = Phase(te, s.ForcingPeriod());
+  impact_.phase = s.Phase(te);
   impact_.velocity = speed;
   impact_.x = state_.x;
   impact_.v = state_.v;

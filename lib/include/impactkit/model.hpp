@@ -53,6 +53,8 @@ struct System {
   int Dof() const { return static_cast<int>(mass.rows()); }
   /// T = 2π/Ω.
   double ForcingPeriod() const;
+  /// The forcing phase of time t: t mod T, in [0, T).
+  double Phase(double t) const;
 };
 
 /// The coupling matrix E of the uniform chain (N x N).

@@ -1,0 +1,188 @@
+#include "impactkit/orbit.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "impactkit/periodicity.hpp"
+#include "impactkit/recorders.hpp"
+#include "impactkit/simulate.hpp"
+
+namespace impactkit {
+namespace {
+
+/// The same impact state with τ moved into [0, T): the map commutes with
+/// shifts by T, and small times keep event times precise.
+Eigen::VectorXd WithPhase(const ImpactMap& map, Eigen::VectorXd eta) {
+  const int i = map.TimeIndex();
+  eta(i) = map.GetSystem().Phase(eta(i));
+  return eta;
+}
+
+/// U(η) = P_I^p(η) - η - q T e_τ and its Jacobian, as callbacks for the
+/// nonlinear solvers; a failing map (or an η that is no impact state)
+/// tells the solver to shorten its step.
+class FixedPointProblem {
+ public:
+  FixedPointProblem(const ImpactMap& map, const OrbitOptions& options)
+      : map_(map), options_(options) {}
+
+  bool Residual(const Eigen::VectorXd& eta, Eigen::VectorXd* u) const {
+    const std::optional<MapResult> image = Map(eta, false);
+    if (!image) return false;
+    *u = image->eta - eta;
+    (*u)(map_.TimeIndex()) -= options_.q * map_.GetSystem().ForcingPeriod();
+    return u->allFinite();
+  }
+
+  bool Jacobian(const Eigen::VectorXd& eta, Eigen::MatrixXd* jacobian) const {
+    if (options_.jacobian == JacobianMethod::kFiniteDifference) {
+      *jacobian = map_.FiniteDifferenceJacobian(eta, options_.p);
+      if (jacobian->size() == 0) return false;
+    } else {
+      const std::optional<MapResult> image = Map(eta, true);
+      if (!image) return false;
+      *jacobian = image->jacobian;
+    }
+    jacobian->diagonal().array() -= 1.0;
+    return jacobian->allFinite();
+  }
+
+ private:
+  std::optional<MapResult> Map(const Eigen::VectorXd& eta, bool with_jacobian) const {
+    const int speed_index = map_.TimeIndex() + 1 + map_.GetSystem().contact_dof;
+    if (!eta.allFinite() || !(eta(speed_index) > 0)) return std::nullopt;
+    MapResult image = map_.Apply(eta, options_.p, with_jacobian);
+    if (image.status != MapStatus::kOk) return std::nullopt;
+    return image;
+  }
+
+  const ImpactMap& map_;
+  const OrbitOptions& options_;
+};
+
+void Describe(const ImpactMap& map, const OrbitOptions& options, PeriodicOrbit* orbit) {
+  const MapResult image = map.Apply(orbit->eta, options.p, true);
+  orbit->p = options.p;
+  orbit->q = options.q;
+  orbit->omega = map.GetSystem().omega;
+  orbit->jacobian = image.jacobian;
+  orbit->impacts.clear();
+  Eigen::VectorXd at = orbit->eta;
+  const int n = map.GetSystem().Dof(), c = map.GetSystem().contact_dof;
+  for (int k = 0; k < options.p; ++k) {
+    const double t = at(map.TimeIndex());
+    orbit->impacts.push_back({t, map.GetSystem().Phase(t), at(n + c)});
+    if (k + 1 < options.p) at = image.path[k];
+  }
+  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(image.jacobian).eigenvalues();
+  std::sort(lambda.begin(), lambda.end(),
+            [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
+  orbit->multipliers = lambda;
+  orbit->stable = lambda.size() == 0 || std::abs(lambda(0)) < 1.0;
+}
+
+}  // namespace
+
+std::string ToString(JacobianMethod method) {
+  return method == JacobianMethod::kAnalytic ? "analytic" : "finite-difference";
+}
+
+std::string ToString(OrbitTermination termination) {
+  switch (termination) {
+    case OrbitTermination::kConverged: return "converged";
+    case OrbitTermination::kNoConvergence: return "no convergence";
+    case OrbitTermination::kMapFailed: return "map failed at the seed";
+  }
+  return "unknown";
+}
+
+bool OrbitOptions::IsValid(std::string* error) const {
+  if (p < 1 || q < 1) {
+    if (error) *error = fmt::format("p and q must be >= 1, got p = {}, q = {}", p, q);
+    return false;
+  }
+  return newton.IsValid(error) && map.IsValid(error);
+}
+
+std::string OrbitSummary::BriefReport() const {
+  return fmt::format("{}: residual {:.2e} after {} iterations{}, {:.3g} s{}", ToString(termination),
+                     residual, iterations, used_fallback ? " (Levenberg-Marquardt fallback)" : "",
+                     seconds, message.empty() ? "" : " (" + message + ")");
+}
+
+OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
+                       const OrbitOptions& options, PeriodicOrbit* orbit) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  const ImpactMap map(system, options.map);
+  map.ValidateEta(guess);
+  const FixedPointProblem problem(map, options);
+  const Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
+    return problem.Residual(x, f);
+  };
+  const Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
+    return problem.Jacobian(x, j);
+  };
+
+  OrbitSummary summary;
+  Eigen::VectorXd eta = WithPhase(map, guess);
+  Eigen::VectorXd u;
+  if (!problem.Residual(eta, &u)) {
+    const MapResult image = map.Apply(eta, options.p, false);
+    summary.termination = OrbitTermination::kMapFailed;
+    summary.message = fmt::format("after {} of {} impacts: {}", image.impacts_done, options.p,
+                                  ToString(image.status));
+    return summary;
+  }
+  SolveSummary solve = SolveNewton(residual, jacobian, options.newton, &eta);
+  summary.iterations = solve.iterations;
+  if (solve.termination != SolveTermination::kConverged && options.least_squares_fallback) {
+    eta = WithPhase(map, guess);
+    solve = SolveLeastSquares(residual, jacobian, options.newton, &eta);
+    summary.iterations += solve.iterations;
+    summary.used_fallback = true;
+  }
+  summary.termination = solve.termination == SolveTermination::kConverged
+                            ? OrbitTermination::kConverged
+                            : OrbitTermination::kNoConvergence;
+  summary.message = solve.message;
+  summary.residual = solve.residual_norm;
+  orbit->eta = WithPhase(map, eta);
+  orbit->residual = solve.residual_norm;
+  if (summary.termination == OrbitTermination::kConverged) Describe(map, options, orbit);
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient, int max_q) {
+  if (transient < 0 || max_q < 1) {
+    throw InvalidInput(fmt::format("transient must be >= 0 and max_q >= 1, got {} and {}",
+                                   transient, max_q));
+  }
+  const Simulator simulator(system);
+  const double period = system.ForcingPeriod();
+  HybridState state = RestState(system);
+  simulator.Run(state, transient * period);
+  ImpactRecorder impacts;
+  StroboscopicRecorder strobe(period);
+  ChatterRecorder chatter;
+  ObserverList recorders;
+  recorders.Add(impacts);
+  recorders.Add(strobe);
+  recorders.Add(chatter);
+  simulator.Run(state, (transient + 2 * max_q + 1) * period, recorders);
+  std::vector<double> times;
+  for (const Impact& i : impacts.Impacts()) times.push_back(i.t);
+  if (impacts.Impacts().empty()) return std::nullopt;
+  const Impact& last = impacts.Impacts().back();
+  return OrbitSeed{
+      DetectPeriod(strobe.Points(), times, chatter.EndTimes(), PeriodOptions{max_q, 1e-6}),
+      ImpactMap(system).ToEta(last.t, last.x, last.v)};
+}
+
+}  // namespace impactkit

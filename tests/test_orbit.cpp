@@ -1,0 +1,110 @@
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "impactkit/orbit.hpp"
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+using namespace impactkit;
+
+namespace {
+
+/// A converged orbit from a simulation seed perturbed by `offset` in every entry.
+PeriodicOrbit Solve(double omega, int p, int q, double offset, OrbitSummary* summary,
+                    JacobianMethod method = JacobianMethod::kAnalytic) {
+  const System s = PaperSystem(omega);
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(s);
+  REQUIRE(seed);
+  OrbitOptions options;
+  options.p = p;
+  options.q = q;
+  options.jacobian = method;
+  PeriodicOrbit orbit;
+  *summary = FindOrbit(s, seed->eta.array() + offset, options, &orbit);
+  return orbit;
+}
+
+}  // namespace
+
+TEST_CASE("Newton finds the paper's orbits from seeds 1e-2 away", "[orbit]") {
+  struct Case { double omega; int p, q; };
+  for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{2.0, 1, 2}, Case{1.4, 1, 1}}) {
+    INFO("omega = " << c.omega);
+    OrbitSummary summary;
+    const PeriodicOrbit orbit = Solve(c.omega, c.p, c.q, 1e-2, &summary);
+    REQUIRE(summary.termination == OrbitTermination::kConverged);
+    CHECK(summary.residual <= 1e-11);
+    CHECK_FALSE(summary.used_fallback);
+    CHECK(orbit.stable);
+    CHECK(orbit.impacts.size() == static_cast<std::size_t>(c.p));
+    // The seed's own p, q from simulation are those the paper states.
+    const std::optional<OrbitSeed> seed = SeedFromSimulation(PaperSystem(c.omega));
+    CHECK(seed->motion.p == c.p);
+    CHECK(seed->motion.q == c.q);
+  }
+}
+
+TEST_CASE("analytic and finite-difference Jacobians give the same orbit", "[orbit]") {
+  OrbitSummary analytic_summary, fd_summary;
+  const PeriodicOrbit analytic = Solve(0.6, 2, 1, 1e-3, &analytic_summary);
+  const PeriodicOrbit fd = Solve(0.6, 2, 1, 1e-3, &fd_summary, JacobianMethod::kFiniteDifference);
+  REQUIRE(analytic_summary.termination == OrbitTermination::kConverged);
+  REQUIRE(fd_summary.termination == OrbitTermination::kConverged);
+  CHECK((analytic.eta - fd.eta).cwiseAbs().maxCoeff() < 1e-10);
+  for (Eigen::Index i = 0; i < analytic.multipliers.size(); ++i) {
+    CHECK(std::abs(analytic.multipliers(i) - fd.multipliers(i)) < 1e-9);
+  }
+}
+
+TEST_CASE("an unstable orbit is found as readily: P(1,1) past its period doubling", "[orbit]") {
+  // Continue P(1,1) by hand from Ω = 1.6 (stable) to 1.65, beyond the
+  // paper's period doubling near 1.61: a multiplier must have passed -1.
+  OrbitSummary summary;
+  PeriodicOrbit orbit = Solve(1.6, 1, 1, 0.0, &summary);
+  REQUIRE(summary.termination == OrbitTermination::kConverged);
+  REQUIRE(orbit.stable);
+  for (double omega = 1.61; omega <= 1.6501; omega += 0.01) {
+    OrbitOptions options;
+    PeriodicOrbit next;
+    // The fixed point's phase moves little: reuse it, time rescaled to the new period.
+    Eigen::VectorXd guess = orbit.eta;
+    guess(1) *= orbit.omega / omega;
+    summary = FindOrbit(PaperSystem(omega), guess, options, &next);
+    REQUIRE(summary.termination == OrbitTermination::kConverged);
+    orbit = next;
+  }
+  CHECK_FALSE(orbit.stable);
+  CHECK(orbit.multipliers(0).real() < -1.0);
+  CHECK(std::abs(orbit.multipliers(0).imag()) < 1e-12);
+}
+
+TEST_CASE("orbit input errors are clear", "[orbit]") {
+  const System s = PaperSystem(0.9);
+  Eigen::VectorXd eta(4);
+  eta << 0.1, 1.0, 0.2, 0.5;
+  PeriodicOrbit orbit;
+  OrbitOptions options;
+  options.p = 0;
+  CHECK_THROWS_WITH(FindOrbit(s, eta, options, &orbit), Contains("p and q must be >= 1"));
+  options.p = 1;
+  options.q = 0;
+  CHECK_THROWS_WITH(FindOrbit(s, eta, options, &orbit), Contains("p and q must be >= 1"));
+  options.q = 1;
+  eta(3) = -0.5;
+  CHECK_THROWS_WITH(FindOrbit(s, eta, options, &orbit), Contains("not an impact state"));
+  eta(3) = std::nan("");
+  CHECK_THROWS_WITH(FindOrbit(s, eta, options, &orbit), Contains("NaN"));
+}
+
+TEST_CASE("a seed whose map fails is reported, not solved", "[orbit]") {
+  const System s = PaperSystem(4.0);  // far above resonance: no second impact
+  Eigen::VectorXd eta(4);
+  eta << 0.0, 0.0, 0.0, 0.01;
+  OrbitOptions options;
+  options.map.max_flight_periods = 4.0;
+  PeriodicOrbit orbit;
+  const OrbitSummary summary = FindOrbit(s, eta, options, &orbit);
+  CHECK(summary.termination == OrbitTermination::kMapFailed);
+  CHECK_THAT(summary.message, Contains("lost impact"));
+}
