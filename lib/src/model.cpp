@@ -5,6 +5,7 @@
 
 #include "impactkit/flow.hpp"
 #include "subsystem.hpp"
+#include "validate_parameters.hpp"
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -160,10 +161,14 @@ System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping
   return s;
 }
 
-void Validate(const System& s) {
+void ValidateParameters(const System& s) {
   if (s.chain) ValidateChain(*s.chain);
   ValidateMatrices(s);
   ValidateScalars(s);
+}
+
+void Validate(const System& s) {
+  ValidateParameters(s);
   // Constructing the flows rejects an undamped resonance (no bounded
   // steady response): the same test the simulator relies on.
   LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()), s.omega);

@@ -30,8 +30,15 @@ class FixedPointProblem {
       : map_(map), options_(options) {}
 
   bool Residual(const Eigen::VectorXd& eta, Eigen::VectorXd* u) const {
-    const std::optional<MapResult> image = Map(eta, false);
+    // Newton asks for the Jacobian where it has just asked for the residual:
+    // the analytic one costs little beside the map, so compute both at once.
+    const bool analytic = options_.jacobian == JacobianMethod::kAnalytic;
+    const std::optional<MapResult> image = Map(eta, analytic);
     if (!image) return false;
+    if (analytic) {
+      cached_eta_ = eta;
+      cached_jacobian_ = image->jacobian;
+    }
     *u = image->eta - eta;
     (*u)(map_.TimeIndex()) -= options_.q * map_.GetSystem().ForcingPeriod();
     return u->allFinite();
@@ -41,6 +48,8 @@ class FixedPointProblem {
     if (options_.jacobian == JacobianMethod::kFiniteDifference) {
       *jacobian = map_.FiniteDifferenceJacobian(eta, options_.p);
       if (jacobian->size() == 0) return false;
+    } else if (cached_eta_.size() == eta.size() && cached_eta_ == eta) {
+      *jacobian = cached_jacobian_;
     } else {
       const std::optional<MapResult> image = Map(eta, true);
       if (!image) return false;
@@ -61,6 +70,8 @@ class FixedPointProblem {
 
   const ImpactMap& map_;
   const OrbitOptions& options_;
+  mutable Eigen::VectorXd cached_eta_;  ///< where cached_jacobian_ was computed
+  mutable Eigen::MatrixXd cached_jacobian_;
 };
 
 void Describe(const ImpactMap& map, const OrbitOptions& options, PeriodicOrbit* orbit) {

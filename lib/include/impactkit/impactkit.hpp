@@ -5,8 +5,11 @@
 
 #include "impactkit/events.hpp"
 #include "impactkit/flow.hpp"
+#include "impactkit/impact_map.hpp"
 #include "impactkit/modal.hpp"
 #include "impactkit/model.hpp"
+#include "impactkit/nonlinear_solve.hpp"
+#include "impactkit/orbit.hpp"
 #include "impactkit/periodicity.hpp"
 #include "impactkit/recorders.hpp"
 #include "impactkit/segment.hpp"
