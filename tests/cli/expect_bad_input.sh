@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
-# Bad input must fail cleanly: `impactkit simulate ARGS...`, with every output
-# requested, exits with status 2, prints exactly one line on stderr, starting
-# "impactkit: error: " and containing EXPECTED, prints nothing on stdout, and
-# leaves no file behind (not even a temporary one).
+# Bad input must fail cleanly: `impactkit COMMAND ARGS...`, with every output
+# of COMMAND requested, exits with status 2, prints exactly one line on
+# stderr, starting "impactkit: error: " and containing EXPECTED, prints
+# nothing on stdout, and leaves no file behind (not even a temporary one).
 #
-#     expect_bad_input.sh IMPACTKIT EXPECTED ARGS...
+#     expect_bad_input.sh IMPACTKIT COMMAND EXPECTED ARGS...
 source "$(dirname "$0")/testlib.sh"
 impactkit=$1
-expected=$2
-shift 2
+command=$2
+expected=$3
+shift 3
 
 mkdir "$work/out"
+case $command in
+  simulate) outputs=(--series "$work/out/series.csv" --impacts "$work/out/impacts.csv"
+                     --plot "$work/out/plot.png" --json "$work/out/summary.json") ;;
+  *) outputs=(--json "$work/out/result.json") ;;
+esac
 status=0
-"$impactkit" simulate "$@" \
-  --series "$work/out/series.csv" --impacts "$work/out/impacts.csv" \
-  --plot "$work/out/plot.png" --json "$work/out/summary.json" \
-  >"$work/stdout" 2>"$work/stderr" || status=$?
+"$impactkit" "$command" "$@" "${outputs[@]}" >"$work/stdout" 2>"$work/stderr" || status=$?
 
 message=$(cat "$work/stderr")
 [[ $status -eq 2 ]] || fail "exit status $status, expected 2; stderr: $message"
