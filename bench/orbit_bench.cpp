@@ -4,10 +4,10 @@
 ///
 ///   ./build/bench/orbit_bench
 
-#include <chrono>
-#include <ctime>
 
 #include <fmt/format.h>
+
+#include "cpu_time.hpp"
 
 #include "impactkit/orbit.hpp"
 
@@ -15,11 +15,7 @@ namespace {
 
 using namespace impactkit;
 
-double CpuSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+using bench::CpuSeconds;
 
 void Measure(const System& system, const Eigen::VectorXd& seed, int p, int q,
              JacobianMethod method) {

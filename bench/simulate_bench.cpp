@@ -7,12 +7,13 @@
 ///
 ///   ./build/bench/simulate_bench [periods]      (default 10000)
 
-#include <ctime>
 #include <cstdlib>
 #include <functional>
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "cpu_time.hpp"
 
 #include "cvode_impacts.hpp"
 #include "impactkit/recorders.hpp"
@@ -23,11 +24,7 @@ namespace {
 
 using namespace impactkit;
 
-double CpuSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+using bench::CpuSeconds;
 
 struct Timed {
   std::vector<double> times;  ///< impact times

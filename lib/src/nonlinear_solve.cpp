@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "impactkit/model.hpp"
 #include "impactkit/nonlinear_solve.hpp"
 #include "nonlinear_solve_common.hpp"
 
@@ -37,6 +38,14 @@ bool NewtonOptions::IsValid(std::string* error) const {
 std::string SolveSummary::BriefReport() const {
   return fmt::format("{}: max|F| = {:.3g} after {} iterations{}{}", ToString(termination),
                      residual_norm, iterations, message.empty() ? "" : ", ", message);
+}
+
+void ValidateSolveInput(const NewtonOptions& options, const Eigen::VectorXd& x) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  if (x.size() == 0 || !x.allFinite()) {
+    throw InvalidInput("the initial guess must be non-empty and finite");
+  }
 }
 
 /// Decides convergence from max |F| at the returned point: whatever the

@@ -50,11 +50,7 @@ class ResidualCost : public ceres::CostFunction {
 SolveSummary SolveLeastSquares(const Residual& residual, const Jacobian& jacobian,
                                const NewtonOptions& options, Eigen::VectorXd* x) {
   const auto start = std::chrono::steady_clock::now();
-  std::string error;
-  if (!options.IsValid(&error)) throw InvalidInput(error);
-  if (x->size() == 0 || !x->allFinite()) {
-    throw InvalidInput("the initial guess must be non-empty and finite");
-  }
+  ValidateSolveInput(options, *x);
   ceres::Problem problem;
   problem.AddResidualBlock(new ResidualCost(residual, jacobian, static_cast<int>(x->size())),
                            nullptr, x->data());

@@ -6,6 +6,9 @@
 
 namespace impactkit {
 
+/// Throws InvalidInput for invalid options or an empty or non-finite guess.
+void ValidateSolveInput(const NewtonOptions& options, const Eigen::VectorXd& x);
+
 /// Sets residual_norm = max |F(x)| and decides convergence from it alone,
 /// whatever the solver's own norms said; records the elapsed seconds.
 void FinishSolve(const Residual& residual, const NewtonOptions& options, const Eigen::VectorXd& x,

@@ -96,11 +96,7 @@ void RequireSetUp(int flag, const char* what) {
 SolveSummary SolveNewton(const Residual& residual, const Jacobian& jacobian,
                          const NewtonOptions& options, Eigen::VectorXd* x) {
   const auto start = std::chrono::steady_clock::now();
-  std::string error;
-  if (!options.IsValid(&error)) throw InvalidInput(error);
-  if (x->size() == 0 || !x->allFinite()) {
-    throw InvalidInput("the initial guess must be non-empty and finite");
-  }
+  ValidateSolveInput(options, *x);
   Callbacks callbacks{residual, jacobian, {}, {}, {}, {}};
   KinsolSession kinsol(x->size());
   View(kinsol.u) = *x;
