@@ -112,6 +112,23 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     CHECK(r.status == MapStatus::kNoImpact);
     CHECK(r.jacobian.size() == 0);
   }
+  SECTION("a chatter sequence: impacts accumulate at the stop") {
+    // At Ω = 0.2 every period ends in complete chatter (docs/simulation.md):
+    // the map from its first impact follows the geometric sequence until the
+    // impact speed falls below min_speed, and says chatter.
+    const System s = PaperSystem(0.2);
+    const Simulator simulator(s);
+    HybridState state = RestState(s);
+    simulator.Run(state, 100 * s.ForcingPeriod());
+    ImpactRecorder impacts;
+    simulator.Run(state, 101 * s.ForcingPeriod(), impacts);
+    const Impact& first = impacts.Impacts().front();
+    const ImpactMap map(s);
+    const MapResult r = map.Apply(map.ToEta(first.t, first.x, first.v), 200, true);
+    CHECK(r.status == MapStatus::kChatter);
+    CHECK(r.impacts_done > 20);
+    CHECK(r.jacobian.size() == 0);
+  }
   SECTION("bad impact states and p") {
     const ImpactMap map(PaperSystem(0.9));
     Eigen::VectorXd eta(4);
