@@ -34,8 +34,8 @@ class ScratchDir {
     std::random_device random;
     const fs::path base = fs::temp_directory_path();
     for (int attempt = 0; attempt < 100; ++attempt) {
-      path_ = base / ("impactkit-test-io-" + std::to_string(random()) + "-" +
-                      std::to_string(random()));
+      path_ =
+          base / ("impactkit-test-io-" + std::to_string(random()) + "-" + std::to_string(random()));
       if (fs::create_directory(path_)) return;
     }
     throw std::runtime_error("cannot create a scratch directory in " + base.string());
@@ -137,9 +137,7 @@ System FromToml(const std::string& text) {
 
 /// The chain coupling matrix E written out, not computed by the library.
 Eigen::MatrixXd E2() { return (Eigen::MatrixXd(2, 2) << 2, -1, -1, 1).finished(); }
-Eigen::MatrixXd E3() {
-  return (Eigen::MatrixXd(3, 3) << 2, -1, 0, -1, 2, -1, 0, -1, 1).finished();
-}
+Eigen::MatrixXd E3() { return (Eigen::MatrixXd(3, 3) << 2, -1, 0, -1, 2, -1, 0, -1, 1).finished(); }
 
 /// The three-mass system of docs/system-files.md and
 /// examples/systems/three-mass.toml, built directly.
@@ -191,8 +189,8 @@ constexpr const char* kThreeMassJson = R"({
 // be extreme (1e-300), where a fixed-precision format would lose bits.
 
 TEST_CASE("SystemToJson reads back to the same uniform chain", "[io]") {
-  const System chain = UniformChain({3, 1.0 / 3.0, 2.7, 0.1},
-                                    Eigen::Vector3d(0.1, -1.0 / 3.0, 1e-300), 1.0 / 7.0, -0.05, 0.85);
+  const System chain = UniformChain(
+      {3, 1.0 / 3.0, 2.7, 0.1}, Eigen::Vector3d(0.1, -1.0 / 3.0, 1e-300), 1.0 / 7.0, -0.05, 0.85);
   const std::string json = SystemToJson(chain);
   INFO(json);
   // The chain form: m, k, c and n stay changeable by name after reading.
@@ -209,9 +207,8 @@ TEST_CASE("SystemToJson reads back to the same general system", "[io]") {
   damping << 0.15, -1.0 / 30.0, 0.0, -1.0 / 30.0, 0.1, -0.05, 0.0, -0.05, 0.05;
   stiffness << 2.5, -1.5, 0.0, -1.5, 2.5, -1.0, 0.0, -1.0, 1.0;
   // Contact on mass 1 (0-based 0), not the default last mass.
-  const System general = GeneralSystem(mass, damping, stiffness,
-                                       Eigen::Vector3d(0.5, -1.0 / 3.0, 0.25), 1.2, 1.0 / 7.0,
-                                       0.0, 0);
+  const System general = GeneralSystem(
+      mass, damping, stiffness, Eigen::Vector3d(0.5, -1.0 / 3.0, 0.25), 1.2, 1.0 / 7.0, 0.0, 0);
   REQUIRE_FALSE(ComputeModalData(general).proportional);
   const std::string json = SystemToJson(general);
   INFO(json);
@@ -220,8 +217,8 @@ TEST_CASE("SystemToJson reads back to the same general system", "[io]") {
 
   // A uniform chain meeting the stop at another mass than the last has no
   // chain form: it must come back with the same matrices and contact DOF.
-  System chain_elsewhere = UniformChain({2, 1.5, 1.0 / 3.0, 0.1}, Eigen::Vector2d(0.5, 0.25),
-                                        0.9, 0.1, 0.7);
+  System chain_elsewhere =
+      UniformChain({2, 1.5, 1.0 / 3.0, 0.1}, Eigen::Vector2d(0.5, 0.25), 0.9, 0.1, 0.7);
   chain_elsewhere.contact_dof = 0;
   System expected = chain_elsewhere;
   expected.chain.reset();
@@ -245,9 +242,9 @@ TEST_CASE("a TOML and a JSON file of the same system read the same", "[io]") {
     WriteText(dir / "chain.json",
               R"({"chain": {"n": 3, "m": 2, "k": 3.0, "c": 0.05},)"
               R"( "forcing": [0.25, 0, 0.125], "omega": 1.4, "xs": 0.05, "r": 0.5})");
-    const System expected = GeneralSystem(2.0 * Eigen::MatrixXd::Identity(3, 3), 0.05 * E3(),
-                                          3.0 * E3(), Eigen::Vector3d(0.25, 0.0, 0.125), 1.4,
-                                          0.05, 0.5);
+    const System expected =
+        GeneralSystem(2.0 * Eigen::MatrixXd::Identity(3, 3), 0.05 * E3(), 3.0 * E3(),
+                      Eigen::Vector3d(0.25, 0.0, 0.125), 1.4, 0.05, 0.5);
     System toml = ReadSystemFile(dir / "chain.toml");
     const System json = ReadSystemFile(dir / "chain.json");
     CheckSameSystem(json, toml);
@@ -301,14 +298,18 @@ TEST_CASE("every error in a system file is one line naming the file and the fiel
     const char* text;
     std::vector<std::string> expected;  ///< fragments of the message
   };
+  // One case a line or two; clang-format would give each field its own.
+  // clang-format off
   const std::vector<BadFile> cases = {
       // Unknown keys, with what is allowed.
       {"bad.json", R"({"omgea": 1.2})",
-       {"unknown key 'omgea'", "allowed: chain, mass, damping, stiffness, forcing, omega"}},
-      {"bad.json", R"({"chain": {"n": 2, "q": 1}})", {"unknown key 'q' in 'chain'; allowed: n, m, k, c"}},
-      {"bad.toml", "omega = 1.2\nomgea = 1.2\n", {"unknown key 'omgea'"}},
+       {"unknown key \"omgea\"", "allowed: chain, mass, damping, stiffness, forcing, omega"}},
+      {"bad.json", R"({"chain": {"n": 2, "q": 1}})",
+       {"unknown key \"q\" in 'chain'; allowed: n, m, k, c"}},
+      {"bad.toml", "omega = 1.2\nomgea = 1.2\n", {"unknown key \"omgea\""}},
       {"bad.json", "[1, 2]", {"the top level must be an object"}},
-      {"bad.json", R"({"chain": {"n": 2}, "mass": [[1]]})", {"'chain' cannot be combined with mass"}},
+      {"bad.json", R"({"chain": {"n": 2}, "mass": [[1]]})",
+       {"'chain' cannot be combined with mass"}},
       // Wrong lengths and shapes.
       {"bad.json", R"({"forcing": [0.5, 0, 0]})", {"A (forcing) must have N = 2 entries, got 3"}},
       {"bad.toml", "mass = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\nforcing = [0.5, 0]\n",
@@ -319,13 +320,16 @@ TEST_CASE("every error in a system file is one line naming the file and the fiel
        {"K (stiffness matrix) must be 2 x 2"}},
       // Values that are not numbers.
       {"bad.json", R"({"omega": "1.2"})", {"'omega' must be a number, got string \"1.2\""}},
-      {"bad.json", R"({"forcing": [0.5, "x"]})", {"entry 2 of 'forcing' must be a number, got string"}},
+      {"bad.json", R"({"forcing": [0.5, "x"]})",
+       {"entry 2 of 'forcing' must be a number, got string"}},
       {"bad.json", R"({"damping": [[0.2, -0.1], [-0.1, null]]})",
        {"entry 2 of row 2 of 'damping' must be a number, got null"}},
       {"bad.toml", "xs = true\n", {"'xs' must be a number, got boolean"}},
       {"bad.toml", "omega = 1979-05-27\n", {"bad.toml:1:", "dates and times"}},
-      {"bad.json", R"({"chain": {"n": 2.5}})", {"'chain.n' must be a whole number in [1, 10000], got 2.5"}},
-      {"bad.json", R"({"contact_dof": 0})", {"'contact_dof' must be a whole number in [1, 10000], got 0"}},
+      {"bad.json", R"({"chain": {"n": 2.5}})",
+       {"'chain.n' must be a whole number in [1, 1000], got 2.5"}},
+      {"bad.json", R"({"contact_dof": 0})",
+       {"'contact_dof' must be a whole number in [1, 1000], got 0"}},
       // Malformed syntax, with the place.
       {"bad.json", R"({"omega": 1, })", {"invalid JSON", "line 1, column 14"}},
       {"bad.json", "{\n  \"omega\": 1.2\n  \"xs\": 0.1\n}", {"invalid JSON", "line 3"}},
@@ -338,9 +342,11 @@ TEST_CASE("every error in a system file is one line naming the file and the fiel
       {"bad.toml", "omega = nan\n", {"omega (forcing frequency) must be finite"}},
       {"bad.toml", "xs = -inf\n", {"xs (stop position) must be finite"}},
       {"bad.json", R"({"chain": {"m": -1}})", {"m (mass) must be finite and > 0, got -1"}},
-      {"bad.json", R"({"stiffness": [[2, -1], [-0.5, 1]]})", {"K (stiffness matrix) must be symmetric"}},
+      {"bad.json", R"({"stiffness": [[2, -1], [-0.5, 1]]})",
+       {"K (stiffness matrix) must be symmetric"}},
       {"bad.json", R"({"contact_dof": 3})", {"contact DOF must be in [1, 2], got 3"}},
   };
+  // clang-format on
   for (const BadFile& bad : cases) {
     const std::string source = bad.source;
     const SystemFileFormat format =
@@ -350,6 +356,27 @@ TEST_CASE("every error in a system file is one line naming the file and the fiel
         MessageOf<InvalidInput>([&] { ParseSystem(bad.text, format, source); });
     CHECK_THAT(message, StartsWith(source + ":"));
     for (const std::string& fragment : bad.expected) CHECK_THAT(message, Contains(fragment));
+    CHECK(message.find('\n') == std::string::npos);
+  }
+}
+
+// nlohmann reports a number that overflows a double as out_of_range.406, not
+// as a parse_error; it must still come out as InvalidInput naming the file.
+TEST_CASE("a JSON number too large for a double is an InvalidInput naming the file",
+          "[io]") {
+  const std::string message = MessageOf<InvalidInput>(
+      [] { ParseSystem(R"({"omega": 1e400})", SystemFileFormat::kJson, "bad.json"); });
+  CHECK_THAT(message, StartsWith("bad.json:") && Contains("1e400"));
+}
+
+// A key with a line break (legal in a JSON string or a quoted TOML key) is
+// escaped in the message, which stays on one line.
+TEST_CASE("an unknown key with a line break still gives a one-line message", "[io]") {
+  for (const auto& [text, format] : {std::pair{R"({"a\nb": 1})", SystemFileFormat::kJson},
+                                     std::pair{R"("a\nb" = 1)", SystemFileFormat::kToml}}) {
+    INFO(text);
+    const std::string message = MessageOf<InvalidInput>([&] { ParseSystem(text, format, "bad"); });
+    CHECK_THAT(message, Contains("unknown key"));
     CHECK(message.find('\n') == std::string::npos);
   }
 }

@@ -124,6 +124,21 @@ TEST_CASE("first 50 impacts from rest match CVODE with rootfinding", "[simulate]
   }
 }
 
+TEST_CASE("a single mass against the stop (N = 1) sticks and releases", "[simulate]") {
+  // The stuck subsystem of one mass is empty: Fs = A cos Ωt - k xs.
+  const System s = UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 0.3, 0.1,
+                                0.5);
+  struct Releases : Observer {
+    std::vector<double> times;
+    void OnRelease(double, double t) override { times.push_back(t); }
+  } releases;
+  HybridState state = RestState(s);
+  const SimulationSummary summary = Simulator(s).Run(state, 30 * s.ForcingPeriod(), releases);
+  CHECK(summary.status == SimulationStatus::kReachedEnd);
+  REQUIRE(releases.times.size() >= 20);
+  for (double t : releases.times) CHECK_THAT(0.5 * std::cos(0.3 * t) - 0.1, WithinAbs(0.0, 1e-12));
+}
+
 TEST_CASE("Zeno cases end in bounded work", "[simulate]") {
   struct Case {
     double omega, r;

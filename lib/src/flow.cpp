@@ -257,6 +257,16 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
                        const Eigen::VectorXd& constant_force, double omega)
     : dof_(static_cast<int>(mass.rows())), omega_(omega) {
   const Eigen::Index n = dof_;
+  if (n == 0) {
+    // The stuck subsystem of a single mass: nothing moves.
+    system_matrix_.resize(0, 0);
+    basis_.resize(0, 0);
+    inverse_basis_.resize(0, 0);
+    shifted_blocks_.resize(2, 0);
+    steady_forced_.resize(0);
+    steady_constant_.resize(0);
+    return;
+  }
   const Eigen::LLT<Eigen::MatrixXd> mass_factor(mass);
   const Eigen::MatrixXd m_inv_k = mass_factor.solve(stiffness);
   const Eigen::MatrixXd m_inv_c = mass_factor.solve(damping);

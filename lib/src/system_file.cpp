@@ -35,7 +35,7 @@ struct SystemFields {
 
 /// Largest N accepted in a file, as for `n` in SetParameter: a typo such as
 /// n = 1000000 must fail here, not in allocating an N x N matrix.
-constexpr int kMaxDof = 10000;
+constexpr int kMaxDof = 1000;
 
 /// 'name', as fields are named in messages.
 std::string Field(std::string_view name) { return fmt::format("'{}'", name); }
@@ -62,8 +62,10 @@ class FieldReader {
     for (const auto& [key, unused] : value.items()) {
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
       const std::string where = name.empty() ? "" : fmt::format(" in {}", Field(name));
-      throw InvalidInput(fmt::format("{}: unknown key '{}'{}; allowed: {}", source_, key, where,
-                                     fmt::join(allowed, ", ")));
+      // dump() quotes and escapes the key: a key with a line break must not
+      // break the one-line error.
+      throw InvalidInput(fmt::format("{}: unknown key {}{}; allowed: {}", source_, Json(key).dump(),
+                                     where, fmt::join(allowed, ", ")));
     }
   }
 
@@ -215,7 +217,8 @@ System Build(const SystemFields& fields, const System& paper) {
 Json ParseJson(std::string_view text, std::string_view source) {
   try {
     return Json::parse(text);
-  } catch (const Json::parse_error& error) {
+  } catch (const Json::exception& error) {
+    // Syntax errors, and numbers too large for a double (out_of_range.406).
     // what() is "[json.exception.parse_error.101] parse error at line 1, ...":
     // keep the part a user can act on.
     const std::string what = error.what();
