@@ -1,9 +1,13 @@
 #pragma once
 /// \file nonlinear_solve.hpp
-/// Square nonlinear systems F(x) = 0 in R^n with user residual and Jacobian:
-/// Newton–Raphson through SUNDIALS KINSOL, and Levenberg–Marquardt through
-/// Ceres as the robust fallback from poor guesses. Neither library appears
-/// in this header.
+/// Square nonlinear systems F(x) = 0, F: R^n -> R^n, with the user's
+/// residual and Jacobian: Newton–Raphson through SUNDIALS KINSOL, and
+/// Levenberg–Marquardt through Ceres as the robust fallback from poor
+/// guesses. Neither library appears in this header.
+///
+/// Both solvers decide convergence the same way, by the user's tolerance on
+/// max_i |F_i| at the returned point, whatever the library's own tests said;
+/// a point where F is not finite never counts.
 
 #include <functional>
 #include <limits>
@@ -13,46 +17,75 @@
 
 namespace impactkit {
 
-/// Returns false when F cannot be evaluated at x (the impact map loses an
-/// impact, say); the solvers then shorten their step.
+/// Writes F(x) into f, which arrives sized n. Returns false when F cannot be
+/// evaluated at x (the impact map loses an impact, say); the solvers then
+/// shorten their step. A non-finite f counts as false. Exceptions propagate
+/// out of the solve.
 using Residual = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd* f)>;
+/// Writes dF/dx (n x n) into jacobian, which arrives sized n x n. Returns
+/// false when it cannot be evaluated; both solvers then stop (kFailure).
 using Jacobian = std::function<bool(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian)>;
 
 enum class SolveTermination {
-  kConverged,      ///< max |F(x)| <= residual_tolerance at the returned x
-  kNoConvergence,  ///< iterations or step size ran out; x is the last iterate
-  kFailure,        ///< the solver could not proceed (F failed everywhere it tried)
+  /// max |F(x)| <= residual_tolerance at the returned x.
+  kConverged,
+  /// The method ran its course without reaching the tolerance: iterations
+  /// ran out, the step or the line search stalled (a local minimum of |F|,
+  /// or no root), or the iterates diverged. x is the best point found.
+  kNoConvergence,
+  /// The method could not go on: F failed at the guess or wherever the step
+  /// was shortened to, the Jacobian failed or was singular. x is the best
+  /// point found (the guess if F failed there).
+  kFailure,
 };
 
 std::string ToString(SolveTermination termination);
 
 struct NewtonOptions {
-  /// Converged when max |F| is at most this (KINSOL's default stops near 1e-8).
+  /// Converged when max_i |F_i(x)| is at most this (KINSOL's own default,
+  /// cbrt(machine epsilon) ~ 6e-6, is far too loose for orbits).
   double residual_tolerance = 1e-11;
-  /// Stop when a scaled step is below this.
+  /// Stop when the step is this small relative to x: for Newton, KINSOL's
+  /// max_i |Δx_i| / (1 + |x_i|); for Levenberg–Marquardt, Ceres's
+  /// |Δx| <= step_tolerance (|x| + step_tolerance).
   double step_tolerance = 1e-15;
+  /// Newton iterations; Levenberg–Marquardt gets 10 times as many steps
+  /// (it is the fallback from poor guesses, and counts rejected steps).
   int max_iterations = 50;
-  /// Backtracking line search on 0.5 |F|² (KINSOL's KIN_LINESEARCH).
+  /// Newton only: backtracking line search on 0.5 |F|² (KINSOL's
+  /// KIN_LINESEARCH) instead of full steps.
   bool line_search = true;
+
+  /// False, with the reason in *error (if given), when a field is out of range.
   bool IsValid(std::string* error) const;
 };
 
 struct SolveSummary {
   SolveTermination termination = SolveTermination::kFailure;
+  /// The library's own reason for stopping, e.g. "KINSOL KIN_SUCCESS".
   std::string message;
-  int iterations = 0;
-  double residual_norm = std::numeric_limits<double>::infinity();  ///< max |F(x)|
-  double seconds = 0.0;
+  int iterations = 0;            ///< Newton iterations, or LM steps tried
+  int residual_evaluations = 0;  ///< calls of the user's residual
+  int jacobian_evaluations = 0;  ///< calls of the user's Jacobian
+  double residual_norm = std::numeric_limits<double>::infinity();  ///< max |F(x)| at the returned x
+  double seconds = 0.0;          ///< wall time of the solve
+
+  /// One line: termination, max|F|, counts, time and message.
   std::string BriefReport() const;
 };
 
-/// Newton–Raphson through KINSOL (dense direct linear solver, the user's
-/// Jacobian). x holds the guess on entry and the last iterate on exit.
+/// Newton–Raphson through KINSOL: dense direct linear solver, the user's
+/// Jacobian at every iteration, optional line search, tolerances set
+/// explicitly. x holds the guess on entry and the best point found (least
+/// max |F|) on exit.
+/// Throws InvalidInput for invalid options, an empty or non-finite guess, or
+/// callbacks that return the wrong sizes.
 SolveSummary SolveNewton(const Residual& residual, const Jacobian& jacobian,
                          const NewtonOptions& options, Eigen::VectorXd* x);
 
-/// Levenberg–Marquardt on 0.5 |F|² through Ceres; converged only if
-/// max |F| <= residual_tolerance at the end.
+/// Levenberg–Marquardt on 0.5 |F|² through Ceres (dense QR, the user's
+/// Jacobian); it stops as soon as max |F| <= residual_tolerance. x and the
+/// exceptions as for SolveNewton.
 SolveSummary SolveLeastSquares(const Residual& residual, const Jacobian& jacobian,
                                const NewtonOptions& options, Eigen::VectorXd* x);
 
