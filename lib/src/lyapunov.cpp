@@ -1,10 +1,10 @@
 #include "impactkit/lyapunov.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
-
-#include <fmt/format.h>
 
 namespace impactkit {
 
@@ -52,24 +52,24 @@ LyapunovResult ImpactMapLyapunov(const System& system, const Eigen::VectorXd& et
   };
 
   normalise_time();
-  for (int j = 0; j < options.transient_impacts; ++j) {
-    const MapResult image = map.Apply(current, 1, false);
-    if (image.status != MapStatus::kOk) return fail(image, j);
-    current = image.eta;
-    normalise_time();
-  }
-
-  const double start = shifted + current(time_index);
+  // The transient impacts also turn the frame Q towards the growing
+  // subspaces (their logarithms are not counted): without that, the initial
+  // frame's misalignment adds an O(1/n) bias, ~4/n per impact here.
   Eigen::MatrixXd q = Eigen::MatrixXd::Identity(n, n);
   Eigen::VectorXd log_sums = Eigen::VectorXd::Zero(n);
-  for (int j = 0; j < options.impacts; ++j) {
+  double start = 0.0;
+  const int total = options.transient_impacts + options.impacts;
+  for (int j = 0; j < total; ++j) {
+    if (j == options.transient_impacts) {
+      start = shifted + current(time_index);
+      log_sums.setZero();
+    }
     const MapResult image = map.Apply(current, 1, true);
-    if (image.status != MapStatus::kOk) return fail(image, options.transient_impacts + j);
+    if (image.status != MapStatus::kOk) return fail(image, j);
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(image.jacobian * q);
     const Eigen::VectorXd diagonal = qr.matrixQR().diagonal();
     if (!diagonal.allFinite() || (diagonal.array() == 0.0).any()) {
-      result.message = fmt::format("singular or non-finite Jacobian at impact {}",
-                                   options.transient_impacts + j);
+      result.message = fmt::format("singular or non-finite Jacobian at impact {}", j);
       return result;
     }
     // Householder QR leaves signs on diag R; the exponents need |R_ii|, and
@@ -95,8 +95,8 @@ LyapunovResult ImpactMapLyapunov(const System& system, const Eigen::VectorXd& et
   std::sort(result.exponents.begin(), result.exponents.end(), std::greater<>());
   result.largest = result.exponents.front();
   result.valid = true;
-  result.message = fmt::format("{} impacts over time {:.6g}", result.impacts_used,
-                               result.time_span);
+  result.message =
+      fmt::format("{} impacts over time {:.6g}", result.impacts_used, result.time_span);
   return result;
 }
 

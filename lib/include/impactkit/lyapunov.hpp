@@ -3,7 +3,9 @@
 /// Lyapunov exponents of the impact map P_I (impact_map.hpp).
 ///
 /// From an impact state η_0 the map is applied `transient_impacts` times,
-/// then `impacts` more times with its analytic Jacobian J_j = D P_I(η_j).
+/// then `impacts` more times, each with its analytic Jacobian
+/// J_j = D P_I(η_j). The transient impacts align the orthonormal frame but
+/// their logarithms are not counted.
 /// The product J_{n-1} … J_0 is kept orthonormal by QR (Benettin et al.;
 /// Eckmann & Ruelle):
 ///
@@ -21,10 +23,9 @@
 /// lost impact ends the computation with valid = false and the reason in
 /// `message` (never NaN exponents).
 
+#include <Eigen/Dense>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "impactkit/impact_map.hpp"
 #include "impactkit/model.hpp"
