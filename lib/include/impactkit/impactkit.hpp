@@ -13,5 +13,6 @@
 #include "impactkit/orbit.hpp"
 #include "impactkit/periodicity.hpp"
 #include "impactkit/recorders.hpp"
+#include "impactkit/resonance.hpp"
 #include "impactkit/segment.hpp"
 #include "impactkit/simulate.hpp"
