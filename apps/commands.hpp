@@ -16,4 +16,12 @@ void AddSimulateCommand(CLI::App& app);
 /// map, its impacts and multipliers (orbit_command.cpp).
 void AddOrbitCommand(CLI::App& app);
 
+/// `impactkit continue`: a branch of orbits followed in one parameter, its
+/// special points, and the branches born there (continue_command.cpp).
+void AddContinueCommand(CLI::App& app);
+
+/// `impactkit sweep`: a brute-force bifurcation diagram over one named
+/// parameter, with each value's motion classified (sweep_command.cpp).
+void AddSweepCommand(CLI::App& app);
+
 }  // namespace impactkit::cli

@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
       "2 bad input.\nDocs: docs/cli.md (commands), docs/system-files.md (system files).");
   impactkit::cli::AddSimulateCommand(app);
   impactkit::cli::AddOrbitCommand(app);
+  impactkit::cli::AddContinueCommand(app);
+  impactkit::cli::AddSweepCommand(app);
 
   try {
     app.parse(argc, argv);

@@ -90,6 +90,33 @@ Eigen::VectorXd ImpactMap::VectorField(double t, const Eigen::VectorXd& x,
   return f;
 }
 
+Eigen::VectorXd ImpactMap::FlightTransient(const Eigen::VectorXd& eta) const {
+  ValidateEta(eta);
+  const HybridState before = ToState(eta);
+  Eigen::VectorXd v_after = before.v;
+  v_after(system_.contact_dof) *= -system_.restitution;
+  return flow_.Transient(before.t, before.x, v_after);
+}
+
+HybridState ImpactMap::FlightState(const Eigen::VectorXd& eta, double t) const {
+  const Eigen::VectorXd z0 = FlightTransient(eta);
+  HybridState state;
+  state.t = t;
+  flow_.State(eta(TimeIndex()), z0, t, &state.x, &state.v);
+  return state;
+}
+
+Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof) const {
+  const int n = system_.Dof();
+  if (dof < 0 || dof >= n) {
+    throw InvalidInput(fmt::format("coordinate index {} out of range 0..{}", dof, n - 1));
+  }
+  const Eigen::VectorXd z0 = FlightTransient(eta);
+  const PreparedOutput coordinate =
+      flow_.Prepare({Eigen::RowVectorXd::Unit(n, dof), Eigen::RowVectorXd::Zero(n), 0.0, 0.0});
+  return flow_.Output(coordinate, eta(TimeIndex()), z0);
+}
+
 bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next,
                      Eigen::MatrixXd* jacobian, MapStatus* status) const {
   const int n = system_.Dof(), c = system_.contact_dof;
@@ -159,6 +186,31 @@ MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian
     ++result.impacts_done;
   }
   return result;
+}
+
+Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p,
+                                               const ImpactMap& below, const ImpactMap& above,
+                                               double delta) const {
+  const int n = system_.Dof(), c = system_.contact_dof;
+  const double stop_rate = (above.system_.stop - below.system_.stop) / delta;
+  Eigen::VectorXd derivative = Eigen::VectorXd::Zero(2 * n);
+  Eigen::VectorXd at = eta;
+  for (int k = 0; k < p; ++k) {
+    const MapResult step = Apply(at, 1, true);
+    if (step.status != MapStatus::kOk) return {};
+    const double t = step.eta(TimeIndex());
+    const HybridState high = above.FlightState(at, t), low = below.FlightState(at, t);
+    Eigen::VectorXd rate(2 * n);  // ∂y(t)/∂μ at fixed t
+    rate << (high.x - low.x) / delta, (high.v - low.v) / delta;
+    const HybridState arrival = ToState(step.eta);
+    const double dt = -(rate(c) - stop_rate) / arrival.v(c);
+    const Eigen::VectorXd dy = rate + VectorField(t, arrival.x, arrival.v) * dt;
+    Eigen::VectorXd partial(2 * n);
+    partial << WithoutIndex(Eigen::VectorXd(dy.head(n)), c), dt, dy.tail(n);
+    derivative = step.jacobian * derivative + partial;
+    at = step.eta;
+  }
+  return derivative;
 }
 
 Eigen::MatrixXd ImpactMap::FiniteDifferenceJacobian(const Eigen::VectorXd& eta, int p,

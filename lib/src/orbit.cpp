@@ -74,28 +74,38 @@ class FixedPointProblem {
   mutable Eigen::MatrixXd cached_jacobian_;
 };
 
-void Describe(const ImpactMap& map, const OrbitOptions& options, PeriodicOrbit* orbit) {
-  const MapResult image = map.Apply(orbit->eta, options.p, true);
-  orbit->p = options.p;
-  orbit->q = options.q;
-  orbit->omega = map.GetSystem().omega;
-  orbit->jacobian = image.jacobian;
-  orbit->impacts.clear();
-  Eigen::VectorXd at = orbit->eta;
-  const int n = map.GetSystem().Dof(), c = map.GetSystem().contact_dof;
-  for (int k = 0; k < options.p; ++k) {
+}  // namespace
+
+PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q) {
+  const MapResult image = map.Apply(eta, p, true);
+  if (image.status != MapStatus::kOk) {
+    throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
+                                   image.impacts_done, p, ToString(image.status)));
+  }
+  const System& system = map.GetSystem();
+  PeriodicOrbit orbit;
+  orbit.p = p;
+  orbit.q = q;
+  orbit.omega = system.omega;
+  orbit.eta = eta;
+  orbit.jacobian = image.jacobian;
+  Eigen::VectorXd shift = Eigen::VectorXd::Zero(eta.size());
+  shift(map.TimeIndex()) = q * system.ForcingPeriod();
+  orbit.residual = (image.eta - eta - shift).cwiseAbs().maxCoeff();
+  const int n = system.Dof(), c = system.contact_dof;
+  for (int k = 0; k < p; ++k) {
+    const Eigen::VectorXd& at = k == 0 ? eta : image.path[k - 1];
     const double t = at(map.TimeIndex());
-    orbit->impacts.push_back({t, map.GetSystem().Phase(t), at(n + c)});
-    if (k + 1 < options.p) at = image.path[k];
+    orbit.impacts.push_back({t, system.Phase(t), at(n + c)});
   }
   Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(image.jacobian).eigenvalues();
   std::sort(lambda.begin(), lambda.end(),
             [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
-  orbit->multipliers = lambda;
-  orbit->stable = lambda.size() == 0 || std::abs(lambda(0)) < 1.0;
+  orbit.multipliers = lambda;
+  orbit.stable = lambda.size() == 0 || std::abs(lambda(0)) < 1.0;
+  orbit.contacts = MeasureOrbitContacts(map, eta, p);
+  return orbit;
 }
-
-}  // namespace
 
 std::string ToString(JacobianMethod method) {
   return method == JacobianMethod::kAnalytic ? "analytic" : "finite-difference";
@@ -162,9 +172,13 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
                             : OrbitTermination::kNoConvergence;
   summary.message = solve.message;
   summary.residual = solve.residual_norm;
-  orbit->eta = WithPhase(map, eta);
+  eta = WithPhase(map, eta);
+  if (summary.termination == OrbitTermination::kConverged) {
+    *orbit = DescribeOrbit(map, eta, options.p, options.q);
+  } else {
+    orbit->eta = eta;
+  }
   orbit->residual = solve.residual_norm;
-  if (summary.termination == OrbitTermination::kConverged) Describe(map, options, orbit);
   summary.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -71,10 +71,27 @@ class ImpactMap {
   Eigen::MatrixXd FiniteDifferenceJacobian(const Eigen::VectorXd& eta, int p,
                                            double relative_step = 1e-5) const;
 
+  /// ∂P_I^p(η; μ)/∂μ at fixed η, for a scalar parameter μ of which `below`
+  /// and `above` are this map's system at μ - δ₋ and μ + δ₊ (δ₋ + δ₊ =
+  /// `delta`; either may be this map). A plain difference of P_I^p is
+  /// useless near grazing, where the impact time varies like 1/v; here only
+  /// the flights' states at FIXED times are differenced (they are smooth in
+  /// μ), and the impact times follow by the implicit function theorem on
+  /// x_c(t') = xs(μ), as in the analytic Jacobian. Empty if the map fails.
+  Eigen::VectorXd ParameterDerivative(const Eigen::VectorXd& eta, int p, const ImpactMap& below,
+                                      const ImpactMap& above, double delta) const;
+
   /// η of the state just before an impact at time t.
   Eigen::VectorXd ToEta(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
   /// The hybrid state just before the impact described by η.
   HybridState ToState(const Eigen::VectorXd& eta) const;
+  /// x_i(t) in the free flight that follows the impact η (restitution
+  /// applied at τ), as a Signal valid from τ up to the next impact. It
+  /// refers to this map's flow: use it while the map lives.
+  Signal FlightCoordinate(const Eigen::VectorXd& eta, int dof) const;
+  /// The state at time t (>= τ) of the free flight after the impact η,
+  /// ignoring the stop.
+  HybridState FlightState(const Eigen::VectorXd& eta, double t) const;
   /// Index of τ in η (N - 1).
   int TimeIndex() const { return system_.Dof() - 1; }
   const System& GetSystem() const { return system_; }
@@ -86,6 +103,8 @@ class ImpactMap {
   /// One impact and flight; false with `status` set when it fails.
   bool Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::MatrixXd* jacobian,
             MapStatus* status) const;
+  /// The flow's transient coordinates just after the impact η.
+  Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta) const;
   Eigen::VectorXd VectorField(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
 
   System system_;

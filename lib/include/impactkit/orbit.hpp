@@ -20,6 +20,7 @@
 
 #include "impactkit/impact_map.hpp"
 #include "impactkit/nonlinear_solve.hpp"
+#include "impactkit/orbit_contacts.hpp"
 #include "impactkit/periodicity.hpp"
 
 namespace impactkit {
@@ -69,7 +70,13 @@ struct PeriodicOrbit {
   Eigen::VectorXcd multipliers;     ///< eigenvalues of `jacobian`, by decreasing modulus
   bool stable = false;              ///< every |multiplier| < 1
   double residual = 0.0;            ///< max |U(eta)|
+  OrbitContacts contacts;           ///< extent in x_c and the grazing monitors
 };
+
+/// The orbit P(p, q) through the fixed point `eta` of P_I^p: impacts,
+/// Jacobian, multipliers, stability, residual and contacts. Throws
+/// InvalidInput if the map cannot follow p impacts from eta.
+PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q);
 
 struct OrbitSummary {
   OrbitTermination termination = OrbitTermination::kNoConvergence;
