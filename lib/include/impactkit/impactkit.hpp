@@ -7,6 +7,7 @@
 #include "impactkit/flow.hpp"
 #include "impactkit/impact_map.hpp"
 #include "impactkit/lyapunov.hpp"
+#include "impactkit/map_fit.hpp"
 #include "impactkit/modal.hpp"
 #include "impactkit/model.hpp"
 #include "impactkit/nonlinear_solve.hpp"
