@@ -272,19 +272,24 @@ class BranchTracer {
   }
 
   /// Looks for a grazing or sticking point just ahead of the last point;
-  /// if one is found, ends the branch there and returns true.
+  /// if one is found, ends the branch there (with the points that led to
+  /// it) and returns true.
   bool EndAtGrazing(HalfBranch& half) const {
     if (half.points.size() < 2) return false;
     std::optional<SpecialPoint> best;
+    std::vector<BranchPoint> best_path;
     for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
+      std::vector<BranchPoint> path;
       std::optional<SpecialPoint> special =
-          LocateGrazing(half.points[half.points.size() - 2], half.points.back(), monitor);
-      if (special && (!best || special->point.arclength < best->point.arclength)) best = special;
+          LocateGrazing(half.points[half.points.size() - 2], half.points.back(), monitor, &path);
+      if (special && (!best || special->point.arclength < best->point.arclength)) {
+        best = special;
+        best_path = std::move(path);
+      }
     }
     if (!best) return false;
-    if (best->point.arclength != half.points.back().arclength) half.points.push_back(best->point);
+    for (const BranchPoint& point : best_path) Accept(point, &half);
     half.special_points.push_back(*best);
-    if (progress_) progress_(best->point);
     const bool sticking = best->type == SpecialPointType::kSticking;
     half.end = sticking ? BranchEnd::kSticking : BranchEnd::kGrazing;
     half.end_message = best->Describe(problem_.Parameter());
@@ -297,7 +302,7 @@ class BranchTracer {
   /// the newest point along its own tangent (near a vanishing impact the
   /// branch bends fast), halved when they land where the corrector failed.
   std::optional<SpecialPoint> LocateGrazing(const BranchPoint& a, const BranchPoint& b,
-                                            Monitor monitor) const {
+                                            Monitor monitor, std::vector<BranchPoint>* path) const {
     BranchPoint previous = a, best = b;
     std::optional<double> m_prev = LinearMonitor(a, monitor), m_lo = LinearMonitor(b, monitor);
     if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
@@ -305,7 +310,7 @@ class BranchTracer {
     double failed = std::numeric_limits<double>::infinity();  // a step from `best` that failed
     for (int k = 0; k < kMaxLocateIterations && !located(); ++k) {
       double s = *m_lo * (best.arclength - previous.arclength) / (*m_prev - *m_lo);
-      s = std::min(s, 2.0 * options_.max_step);
+      s = std::min(s, options_.max_step);
       if (s >= failed) s = 0.5 * failed;
       if (!(s > kGrazingBracket)) break;
       // Near a vanishing impact the multipliers grow like 1/v and so does
@@ -325,6 +330,7 @@ class BranchTracer {
       best = *trial;
       m_lo = m;
       failed -= s;
+      path->push_back(best);
     }
     // Rounding in the map limits how close the corrector gets (about 1e-10
     // for the clearance): a zero within ten times the tolerance counts.

@@ -1,0 +1,299 @@
+// Continuation (continuation.hpp): located special points checked by
+// independent recomputation — multipliers from a fresh FindOrbit, grazing
+// monitors from CVODE integrations, the N = 1 branch against its closed
+// form, the vanishing-impact end against the non-impacting response.
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include <catch2/catch.hpp>
+
+#include "closed_form_sdof.hpp"
+#include "cvode_impacts.hpp"
+#include "impactkit/continuation.hpp"
+#include "impactkit/orbit.hpp"
+
+using namespace impactkit;
+
+namespace {
+
+PeriodicOrbit Orbit(const System& system, int p, int q) {
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
+  REQUIRE(seed.has_value());
+  OrbitOptions options;
+  options.p = p;
+  options.q = q;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == OrbitTermination::kConverged);
+  return orbit;
+}
+
+ContinuationOptions Options(double lower, double upper, int p, int q,
+                            ContinuationDirection direction = ContinuationDirection::kBoth) {
+  ContinuationOptions options;
+  options.lower = lower;
+  options.upper = upper;
+  options.direction = direction;
+  options.orbit.p = p;
+  options.orbit.q = q;
+  return options;
+}
+
+const SpecialPoint* Find(const Branch& branch, SpecialPointType type, double lo, double hi) {
+  for (const SpecialPoint& s : branch.special_points) {
+    if (s.type == type && s.point.parameter > lo && s.point.parameter < hi) return &s;
+  }
+  return nullptr;
+}
+
+System At(System system, const std::string& name, double value) {
+  SetParameter(system, name, value);
+  return system;
+}
+
+/// The multiplier nearest `target` of the orbit FindOrbit converges to from
+/// the located point (a fresh solve and a fresh Jacobian).
+std::complex<double> RecomputedMultiplier(const System& base, const Branch& branch,
+                                          const SpecialPoint& s, double target) {
+  OrbitOptions options;
+  options.p = branch.p;
+  options.q = branch.q;
+  PeriodicOrbit orbit;
+  const System system = At(base, branch.parameter, s.point.parameter);
+  REQUIRE(FindOrbit(system, s.point.orbit.eta, options, &orbit).termination ==
+          OrbitTermination::kConverged);
+  std::complex<double> best = orbit.multipliers(0);
+  for (const std::complex<double>& m : orbit.multipliers) {
+    if (std::abs(m - target) < std::abs(best - target)) best = m;
+  }
+  return best;
+}
+
+/// The state of the orbit's flight after impact `eta` at time t, by CVODE.
+void CvodeFlight(const System& system, const Eigen::VectorXd& eta, double t, Eigen::VectorXd* x,
+                 Eigen::VectorXd* v) {
+  const HybridState before = ImpactMap(system).ToState(eta);
+  *x = before.x;
+  *v = before.v;
+  (*v)(system.contact_dof) *= -system.restitution;
+  reference::CvodeLinearFlow(system.mass, system.damping, system.stiffness, system.forcing,
+                             Eigen::VectorXd::Zero(system.Dof()), system.omega, before.t, *x, *v,
+                             t);
+}
+
+/// xs - max x_c over the flight after the impact `eta` (which lasts
+/// `duration`), by CVODE: sampled, then golden-section refined.
+double CvodeClearance(const System& system, const Eigen::VectorXd& eta, double duration) {
+  const double t0 = eta(system.Dof() - 1);
+  const int c = system.contact_dof;
+  auto height = [&](double t) {
+    Eigen::VectorXd x, v;
+    CvodeFlight(system, eta, t, &x, &v);
+    return x(c);
+  };
+  const int samples = 400;
+  int best = 1;
+  for (int i = 1; i < samples; ++i) {
+    if (height(t0 + duration * i / samples) > height(t0 + duration * best / samples)) best = i;
+  }
+  double a = t0 + duration * (best - 1) / samples, b = t0 + duration * (best + 1) / samples;
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  for (int k = 0; k < 60; ++k) {
+    const double m1 = b - g * (b - a), m2 = a + g * (b - a);
+    (height(m1) > height(m2) ? b : a) = height(m1) > height(m2) ? m2 : m1;
+  }
+  return system.stop - height(0.5 * (a + b));
+}
+
+/// Consecutive points differ by no more than the largest step allows.
+void CheckNoJumps(const Branch& branch, const ContinuationOptions& options) {
+  const double largest = std::hypot(1.0, options.max_correction) * options.max_step;
+  for (std::size_t i = 1; i < branch.points.size(); ++i) {
+    const BranchPoint &a = branch.points[i - 1], &b = branch.points[i];
+    const double distance = std::hypot((b.orbit.eta - a.orbit.eta).norm(), b.parameter - a.parameter);
+    INFO("points " << i - 1 << ", " << i << " at " << a.parameter << ", " << b.parameter);
+    CHECK(distance <= largest * (1 + 1e-9));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("continuation: the paper's P(1,1) branch ends by grazing near 0.856 and period-doubles "
+          "near 1.61, both confirmed independently", "[continuation]") {
+  const System system = PaperSystem(1.0);
+  const ContinuationOptions options = Options(0.5, 2.0, 1, 1);
+  const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
+  REQUIRE(branch.begin == BranchEnd::kGrazing);
+  REQUIRE(branch.end == BranchEnd::kGrazing);
+  CheckNoJumps(branch, options);
+
+  const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, 1.60, 1.62);
+  REQUIRE(pd != nullptr);
+  CHECK(std::abs(RecomputedMultiplier(system, branch, *pd, -1.0) + 1.0) < 1e-6);
+
+  // The low end: a new contact (clearance 0) near 0.856, by CVODE.
+  const SpecialPoint& graze = branch.special_points.front();
+  REQUIRE(graze.type == SpecialPointType::kGrazing);
+  CHECK(graze.vanishing_impact == -1);
+  CHECK(graze.point.parameter == Approx(0.856).margin(1e-3));
+  const System at = At(system, "omega", graze.point.parameter);
+  CHECK(std::abs(CvodeClearance(at, graze.point.orbit.eta, at.ForcingPeriod())) < 1e-9);
+}
+
+TEST_CASE("continuation: a vanishing impact ends the P(1,2) branch where the non-impacting "
+          "response touches the stop", "[continuation]") {
+  const System system = PaperSystem(2.0);
+  const ContinuationOptions options = Options(1.0, 3.0, 1, 2);
+  const Branch branch = ContinueBranch({system, Orbit(system, 1, 2), {}}, options);
+  REQUIRE(branch.end == BranchEnd::kGrazing);
+  const SpecialPoint& end = branch.special_points.back();
+  REQUIRE(end.vanishing_impact == 0);
+  // The fold where the impacting motion disappears (the paper: Ω ≈ 2.19).
+  const SpecialPoint* fold = Find(branch, SpecialPointType::kFold, 2.1, 2.3);
+  REQUIRE(fold != nullptr);
+  CHECK(std::abs(RecomputedMultiplier(system, branch, *fold, 1.0) - 1.0) < 1e-6);
+
+  // Closed form: |X2(Ω)| = xs for X = (K - Ω²M + iΩC)⁻¹ A, by bisection.
+  auto amplitude = [&](double w) {
+    const Eigen::MatrixXcd dynamic = system.stiffness.cast<std::complex<double>>() -
+                                     w * w * system.mass.cast<std::complex<double>>() +
+                                     std::complex<double>(0, w) * system.damping.cast<std::complex<double>>();
+    const Eigen::VectorXcd x = dynamic.partialPivLu().solve(system.forcing.cast<std::complex<double>>());
+    return std::abs(x(system.contact_dof)) - system.stop;
+  };
+  double lo = 1.9, hi = 2.1;
+  REQUIRE((amplitude(lo) > 0) != (amplitude(hi) > 0));
+  for (int k = 0; k < 100; ++k) ((amplitude(0.5 * (lo + hi)) > 0) == (amplitude(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  CHECK(std::abs(end.point.parameter - lo) < 1e-5);
+
+  // The depth v²/(2|a|) recomputed by CVODE over the flight into the impact.
+  const System at = At(system, "omega", end.point.parameter);
+  const Eigen::VectorXd& eta = end.point.orbit.eta;
+  Eigen::VectorXd x, v;
+  CvodeFlight(at, eta, eta(1) + 2 * at.ForcingPeriod(), &x, &v);
+  const Eigen::VectorXd a = at.mass.inverse() * (at.forcing * std::cos(at.omega * (eta(1) + 2 * at.ForcingPeriod())) -
+                                                 at.damping * v - at.stiffness * x);
+  const int c = at.contact_dof;
+  CHECK(v(c) * v(c) / (2 * std::abs(a(c))) < 1e-9);
+}
+
+TEST_CASE("continuation: N = 1 branch, fold and period doublings match the closed form",
+          "[continuation]") {
+  using testing::SdofParameters;
+  for (const auto& [xs, r, from, to, type] :
+       {std::tuple{0.2, 0.8, 1.5, 3.0, SpecialPointType::kFold},
+        std::tuple{0.1, 0.8, 1.3, 0.6, SpecialPointType::kPeriodDoubling}}) {
+    INFO("xs = " << xs << ", r = " << r);
+    SdofParameters p{1.0, 1.0, 0.1, 0.5, xs, r, from};
+    const System system =
+        UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), from, xs, r);
+    ContinuationOptions options =
+        Options(std::min(from, to), std::max(from, to), 1, 1,
+                to > from ? ContinuationDirection::kIncreasing : ContinuationDirection::kDecreasing);
+    const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
+    CheckNoJumps(branch, options);
+    // Every point is a closed-form solution at its Ω: a jump to another
+    // solution of the hybrid system would show here. (At the fold itself
+    // the closed form's discriminant may round below zero.)
+    const SpecialPoint* fold = Find(branch, SpecialPointType::kFold, 0.0, 10.0);
+    for (const BranchPoint& point : branch.points) {
+      if (fold && std::abs(point.parameter - fold->point.parameter) < 1e-9) continue;
+      p.omega = point.parameter;
+      double nearest = 1e300;
+      for (const testing::SdofP11& o : testing::SdofP11Solutions(p)) {
+        const double phase = std::fmod(point.orbit.eta(0), p.Period());
+        nearest = std::min(nearest, std::hypot(std::remainder(phase - o.tau, p.Period()),
+                                               point.orbit.eta(1) - o.u));
+      }
+      CHECK(nearest < 1e-8);
+    }
+    int located = 0;
+    for (const SpecialPoint& s : branch.special_points) {
+      if (s.type != type) continue;
+      ++located;
+      // The closed-form event, by bisection in Ω around the located one.
+      auto closed_form = [&](double w) {
+        p.omega = w;
+        const auto roots = testing::SdofP11Solutions(p);
+        if (type == SpecialPointType::kFold) return roots.size() == 2 ? 1.0 : -1.0;
+        const testing::SdofP11& o = *std::min_element(roots.begin(), roots.end(), [&](auto& a, auto& b) {
+          return std::abs(a.u - s.point.orbit.eta(1)) < std::abs(b.u - s.point.orbit.eta(1));
+        });
+        return (testing::SdofP11Jacobian(p, o) + Eigen::Matrix2d::Identity()).determinant();
+      };
+      double lo = s.point.parameter - 1e-4, hi = s.point.parameter + 1e-4;
+      REQUIRE((closed_form(lo) > 0) != (closed_form(hi) > 0));
+      for (int k = 0; k < 60; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        ((closed_form(mid) > 0) == (closed_form(lo) > 0) ? lo : hi) = mid;
+      }
+      CHECK(std::abs(s.point.parameter - lo) < 1e-8);
+    }
+    CHECK(located >= 1);
+  }
+}
+
+TEST_CASE("continuation: branch switching onto P(2,2) at the period doubling and onto P(2,1) "
+          "at the grazing", "[continuation]") {
+  const System system = PaperSystem(1.0);
+  const ContinuationOptions options = Options(0.5, 2.0, 1, 1);
+  const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
+  const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, 1.60, 1.62);
+  REQUIRE(pd != nullptr);
+
+  const std::optional<BranchStart> doubled = DoubledBranchStart(system, branch, *pd, options);
+  REQUIRE(doubled.has_value());
+  CHECK(doubled->orbit.p == 2);
+  CHECK(doubled->orbit.residual < 1e-10);
+  ContinuationOptions twice = Options(0.5, 2.0, 2, 2, ContinuationDirection::kIncreasing);
+  const Branch p22 = ContinueBranch(*doubled, twice);
+  // Its own period doubling (the paper: near 1.68).
+  const SpecialPoint* pd2 = Find(p22, SpecialPointType::kPeriodDoubling, 1.67, 1.69);
+  REQUIRE(pd2 != nullptr);
+  CHECK(std::abs(RecomputedMultiplier(system, p22, *pd2, -1.0) + 1.0) < 1e-6);
+
+  // At the grazing a P(2,1) seed converges; its branch ends where an impact
+  // vanishes — at the same grazing, reached from the other side.
+  const SpecialPoint& graze = branch.special_points.front();
+  std::optional<Branch> p21;
+  for (const GrazingSeed& seed : SeedsAtGrazing(system, branch, graze, options)) {
+    PeriodicOrbit orbit;
+    if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination != OrbitTermination::kConverged) {
+      continue;
+    }
+    CHECK(orbit.p == 2);
+    p21 = ContinueBranch({seed.system, orbit, {}}, Options(0.5, 1.0, 2, 1));
+    break;
+  }
+  REQUIRE(p21.has_value());
+  const SpecialPoint& other_side = p21->special_points.back();
+  CHECK(other_side.type == SpecialPointType::kGrazing);
+  CHECK(other_side.vanishing_impact >= 0);
+  CHECK(std::abs(other_side.point.parameter - graze.point.parameter) < 1e-5);
+}
+
+TEST_CASE("continuation: bad input is rejected with a clear error", "[continuation]") {
+  const System system = PaperSystem(1.2);
+  const PeriodicOrbit orbit = Orbit(system, 1, 1);
+  auto in = [](const std::string& name, double lower, double upper) {
+    ContinuationOptions options = Options(lower, upper, 1, 1);
+    options.parameter = name;
+    return options;
+  };
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, in("frequency", 1.0, 1.5)),
+                    Catch::Contains("frequency"));
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, in("n", 1.0, 1.5)),
+                    Catch::Contains("integer"));
+  ContinuationOptions options = Options(1.5, 1.5, 1, 1);
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options), Catch::Contains("lower < upper"));
+  options = Options(1.3, 1.5, 1, 1);
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options), Catch::Contains("outside the bounds"));
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, in("r", 0.5, 1.5)),
+                    Catch::Contains("not valid"));
+  PeriodicOrbit off = orbit;
+  off.eta(1) += 1e-3;
+  CHECK_THROWS_WITH(ContinueBranch({system, off, {}}, Options(1.0, 1.5, 1, 1)),
+                    Catch::Contains("not a P(1,1) orbit"));
+}
