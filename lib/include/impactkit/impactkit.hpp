@@ -3,6 +3,7 @@
 /// Everything of the impactkit numerics library (the io area has its own
 /// headers: system_file.hpp, csv.hpp, output_file.hpp).
 
+#include "impactkit/classify.hpp"
 #include "impactkit/events.hpp"
 #include "impactkit/flow.hpp"
 #include "impactkit/impact_map.hpp"
@@ -17,3 +18,4 @@
 #include "impactkit/resonance.hpp"
 #include "impactkit/segment.hpp"
 #include "impactkit/simulate.hpp"
+#include "impactkit/sweep.hpp"
