@@ -290,6 +290,7 @@ System StartSystem(const ContinueRequest& request) {
   }
   System system = ResolveSystem(request.system);
   GetParameter(system, request.parameter);  // an unknown name fails here, naming the choices
+  MakeOptions(request, OrbitOptions{});     // and bad bounds or steps before any work
   const double lower = std::min(*request.from, *request.to);
   const double upper = std::max(*request.from, *request.to);
   if (request.start && !(*request.start >= lower && *request.start <= upper)) {

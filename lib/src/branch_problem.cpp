@@ -33,9 +33,6 @@ BranchProblem::BranchProblem(const System& base, std::string parameter, int p, i
       q_(q),
       size_(2 * base.Dof() + 1),
       map_options_(map_options) {
-  if (parameter_ == "n") {
-    throw InvalidInput("n (the number of masses) is an integer and cannot be continued");
-  }
   GetParameter(base_, parameter_);  // throws for an unknown name
 }
 

@@ -20,8 +20,7 @@ namespace impactkit::detail {
 
 class BranchProblem {
  public:
-  /// Throws InvalidInput for a parameter the system lacks or that cannot be
-  /// continued (n).
+  /// Throws InvalidInput for a parameter the system lacks.
   BranchProblem(const System& base, std::string parameter, int p, int q,
                 const ImpactMapOptions& map_options);
 

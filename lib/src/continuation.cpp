@@ -415,6 +415,9 @@ bool ContinuationOptions::IsValid(std::string* error) const {
     if (error) *error = std::move(message);
     return false;
   };
+  if (parameter == "n") {
+    return fail("n (the number of masses) is an integer and cannot be continued");
+  }
   if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper)) {
     return fail(fmt::format("the parameter bounds must be finite with lower < upper, got [{}, {}]",
                             lower, upper));

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# `impactkit continue` on the paper's P(1,1) branch from Omega = 1 both ways:
+# the summary names the grazing near 0.856 and the period doubling near
+# 1.613; the JSON has special_points with types and end_reason; the CSV has
+# a header with the parameters and one row per point; --switch-pd writes the
+# P(2,2) branch beside it. A start that does not converge fails with exit 1
+# and a one-line reason.
+#
+#     check_continue.sh IMPACTKIT
+source "$(dirname "$0")/testlib.sh"
+impactkit=$1
+
+"$impactkit" continue --from 0.5 --to 2 --start 1 --switch-pd --out "$work/b.csv" \
+  --json "$work/b.json" >"$work/stdout" || fail "impactkit continue failed: $(cat "$work/stdout")"
+grep -q "grazing at omega = 0.85643" "$work/stdout" || fail "no grazing near 0.856: $(cat "$work/stdout")"
+grep -q "period doubling at omega = 1.61304" "$work/stdout" || fail "no PD near 1.613: $(cat "$work/stdout")"
+json=$(tr -d ' \n' <"$work/b.json")
+for field in '"special_points":[{' '"type":"grazing"' '"type":"period_doubling"' '"end_reason":"grazing"' \
+             '"begin_reason":"grazing"' '"label":"pd1"'; do
+  [[ $json == *"$field"* ]] || fail "JSON lacks $field"
+done
+head -1 "$work/b.csv" | grep -q '^# impactkit continue --param omega' || fail "CSV provenance missing"
+sed -n 2p "$work/b.csv" | grep -q '^omega,arclength,phase1,v1,range_xN,mod1,mod2,mod3,mod4,stable' ||
+  fail "unexpected CSV header: $(sed -n 2p "$work/b.csv")"
+(($(wc -l <"$work/b.csv") > 50)) || fail "too few CSV rows"
+[[ -s "$work/b.pd1.csv" ]] || fail "the period-doubled branch's CSV is missing"
+sed -n 2p "$work/b.pd1.csv" | grep -q '^omega,arclength,phase1,phase2,v1,v2,' || fail "P(2,2) CSV header"
+
+if "$impactkit" continue --from 1 --to 2 --p 3 --q 1 --guess 0.3,1,0.5,0.01 2>"$work/stderr"; then
+  fail "a start that does not converge was accepted"
+else
+  rc=$?
+fi
+((rc == 1)) || fail "exit status $rc, expected 1"
+grep -q "^impactkit: error: no P(3,1) orbit found" "$work/stderr" || fail "unclear error: $(cat "$work/stderr")"
+echo ok
