@@ -24,4 +24,14 @@ void AddContinueCommand(CLI::App& app);
 /// parameter, with each value's motion classified (sweep_command.cpp).
 void AddSweepCommand(CLI::App& app);
 
+/// `impactkit impactmap`, `returnmap` and `lyapunov`: impact phase against
+/// speed, the low-velocity return map (with the Eq. 18 fit) and the impact
+/// map's Lyapunov exponents (maps_command.cpp).
+void AddImpactMapCommand(CLI::App& app);
+void AddReturnMapCommand(CLI::App& app);
+void AddLyapunovCommand(CLI::App& app);
+
+/// `impactkit resonance`: resonance curves without the stop (resonance_command.cpp).
+void AddResonanceCommand(CLI::App& app);
+
 }  // namespace impactkit::cli

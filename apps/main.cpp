@@ -58,6 +58,10 @@ int main(int argc, char** argv) {
   impactkit::cli::AddOrbitCommand(app);
   impactkit::cli::AddContinueCommand(app);
   impactkit::cli::AddSweepCommand(app);
+  impactkit::cli::AddImpactMapCommand(app);
+  impactkit::cli::AddReturnMapCommand(app);
+  impactkit::cli::AddLyapunovCommand(app);
+  impactkit::cli::AddResonanceCommand(app);
 
   try {
     app.parse(argc, argv);
