@@ -1,8 +1,7 @@
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
-
-#include <catch2/catch.hpp>
 
 #include "impactkit/map_fit.hpp"
 #include "impactkit/model.hpp"
