@@ -297,3 +297,26 @@ TEST_CASE("continuation: bad input is rejected with a clear error", "[continuati
   CHECK_THROWS_WITH(ContinueBranch({system, off, {}}, Options(1.0, 1.5, 1, 1)),
                     Catch::Contains("not a P(1,1) orbit"));
 }
+
+TEST_CASE("continuation: any parameter — the branch in r and in xs agrees with FindOrbit at "
+          "the bound", "[continuation]") {
+  const System system = PaperSystem(1.2);
+  const PeriodicOrbit start = Orbit(system, 1, 1);
+  for (const auto& [name, to] : {std::pair{std::string("r"), 0.9}, std::pair{std::string("xs"), 0.15}}) {
+    INFO(name);
+    ContinuationOptions options = Options(GetParameter(system, name), to, 1, 1,
+                                          ContinuationDirection::kIncreasing);
+    options.parameter = name;
+    const Branch branch = ContinueBranch({system, start, {}}, options);
+    REQUIRE(branch.end == BranchEnd::kParameterBound);
+    const BranchPoint& end = branch.points.back();
+    CHECK(end.parameter == to);
+    // An independent solve at the bound from the start orbit's seed.
+    PeriodicOrbit orbit;
+    REQUIRE(FindOrbit(At(system, name, to), start.eta, OrbitOptions{}, &orbit).termination ==
+            OrbitTermination::kConverged);
+    CHECK(std::abs(orbit.impacts[0].velocity - end.orbit.impacts[0].velocity) < 1e-9);
+    CHECK(std::abs(std::remainder(orbit.impacts[0].phase - end.orbit.impacts[0].phase,
+                                  system.ForcingPeriod())) < 1e-9);
+  }
+}
