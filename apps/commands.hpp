@@ -20,6 +20,10 @@ void AddOrbitCommand(CLI::App& app);
 /// special points, and the branches born there (continue_command.cpp).
 void AddContinueCommand(CLI::App& app);
 
+/// `impactkit paper`: the paper's whole study in one run, summarised and
+/// written into one folder (paper_command.cpp).
+void AddPaperCommand(CLI::App& app);
+
 /// `impactkit sweep`: a brute-force bifurcation diagram over one named
 /// parameter, with each value's motion classified (sweep_command.cpp).
 void AddSweepCommand(CLI::App& app);

@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   impactkit::cli::AddSimulateCommand(app);
   impactkit::cli::AddOrbitCommand(app);
   impactkit::cli::AddContinueCommand(app);
+  impactkit::cli::AddPaperCommand(app);
   impactkit::cli::AddSweepCommand(app);
   impactkit::cli::AddImpactMapCommand(app);
   impactkit::cli::AddReturnMapCommand(app);

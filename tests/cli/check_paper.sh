@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The main job in its reduced mode: `impactkit paper --quick` writes every
+# promised file, non-empty, and prints the same special points of the main
+# branches as the library computes directly (paper_points).
+#
+#     check_paper.sh IMPACTKIT PAPER_POINTS
+source "$(dirname "$0")/testlib.sh"
+impactkit=$1
+points=$2
+
+"$impactkit" paper --quick --out "$work/paper" >"$work/stdout" 2>"$work/stderr" ||
+  fail "impactkit paper failed: $(cat "$work/stderr")"
+for file in summary.json fig2-resonance.png fig3-sweep.csv fig3-bifurcation.png branches.png \
+            branch-p11-main.csv branch-p11-pd2.csv branch-p11-graze1.csv branch-p21-main.csv \
+            branch-p21-pd1.csv branch-p12-main.csv branch-p12-pd1.csv; do
+  [[ -s "$work/paper/$file" ]] || fail "missing or empty: $file"
+done
+for section in "modal data:" "resonance:" "orbits (" "branches (" "brute-force diagram" "wrote into"; do
+  grep -q "^$section" "$work/stdout" || fail "the summary lacks '$section'"
+done
+grep -q "omega = 0.6   P(2,1) stable" "$work/stdout" || fail "no stable P(2,1) at 0.6"
+"$points" >"$work/expected" || fail "paper_points failed"
+(($(wc -l <"$work/expected") >= 8)) || fail "too few special points from the library"
+while read -r line; do
+  grep -qF -- "$line" "$work/stdout" || fail "impactkit paper does not print: $line"
+done <"$work/expected"
+json=$(tr -d ' \n' <"$work/paper/summary.json")
+for field in '"modes":[' '"resonance_peaks":[' '"orbits":[' '"branches":[' '"regimes":[' \
+             '"special_points":['; do
+  [[ $json == *"$field"* ]] || fail "summary.json lacks $field"
+done
+grep -q '^\[4/5\] brute-force' "$work/stderr" || fail "no stage display on stderr"
+echo ok
