@@ -4,11 +4,11 @@
 #   X' = s sqrt(d - X) + λ X  (X <= d),   X' = λ X  (X > d),
 # with the diagonal X' = X. A formula, so gnuplot draws it directly.
 #
-#   examples/fig11_sqrt_map.sh [figure folder]
+#   examples/fig11_sqrt_map.sh [impactkit binary (unused: a formula)] [figure folder]
 #
 # Default: ./docs/figures. Needs gnuplot.
 set -euo pipefail
-figures=${1:-./docs/figures}
+figures=${2:-./docs/figures}
 mkdir -p "$figures"
 gnuplot <<GP
 set terminal pngcairo size 700,600 font "Sans,11"
