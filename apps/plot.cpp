@@ -95,6 +95,12 @@ std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& fil
   std::vector<std::string> clauses;
   for (std::size_t i = 0; i < chart.curves.size(); ++i) {
     const Curve& curve = chart.curves[i];
+    if (curve.points) {
+      clauses.push_back(fmt::format(
+          "{} using 1:2 with points pointtype 7 pointsize 0.2 linecolor rgb {} title {}",
+          Quoted(files[i].string()), Quoted(curve.color), Quoted(curve.title)));
+      continue;
+    }
     clauses.push_back(
         fmt::format("{} using 1:2 with lines dashtype {} linewidth {} linecolor rgb {} title {}",
                     Quoted(files[i].string()), curve.dashed ? 2 : 1, curve.dashed ? 1.5 : 2.0,
@@ -163,6 +169,17 @@ void RunGnuplot(const fs::path& script, const fs::path& log) {
   }
 }
 
+/// The settings and plot command of one chart of a multiplot.
+std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& files) {
+  return fmt::format(
+      "set title {}\n"
+      "set xlabel {}\n"
+      "set ylabel {}\n"
+      "{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label),
+      PlotCommand(chart, files));
+}
+
 }  // namespace
 
 void RequireGnuplot() {
@@ -184,6 +201,41 @@ std::string RenderPng(const LineChart& chart) {
   const fs::path log = directory / "gnuplot.log";
   WriteFile(script, Script(chart, image, files));
   RunGnuplot(script, log);
+  std::string png = ReadFile(image);
+  if (png.empty()) throw PlotError("gnuplot produced no image");
+  return png;
+}
+
+std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height) {
+  RequireGnuplot();
+  const TemporaryDirectory directory;
+  const fs::path image = directory / "chart.png", log = directory / "gnuplot.log";
+  std::string script = fmt::format(
+      "set encoding utf8\n"
+      "if (strstrt(GPVAL_TERMINALS, \"pngcairo\") > 0) {{\n"
+      "  set terminal pngcairo size {0},{1} font \"Sans,11\" noenhanced\n"
+      "}} else {{\n"
+      "  set terminal png size {0},{1} noenhanced\n"
+      "}}\n"
+      "set output {2}\n"
+      "set grid\n"
+      "set key top right\n"
+      "set autoscale xfix\n"
+      "set offsets 0, 0, graph 0.05, graph 0.05\n"
+      "set multiplot layout {3},1\n",
+      width, height, Quoted(image.string()), charts.size());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    std::vector<fs::path> files;
+    for (std::size_t i = 0; i < charts[c].curves.size(); ++i) {
+      files.push_back(directory / fmt::format("chart{}-curve{}.dat", c + 1, i + 1));
+      WriteFile(files.back(), CurveData(charts[c].curves[i]));
+    }
+    script += PanelScript(charts[c], files);
+  }
+  script += "unset multiplot\n";
+  const fs::path script_path = directory / "chart.gp";
+  WriteFile(script_path, script);
+  RunGnuplot(script_path, log);
   std::string png = ReadFile(image);
   if (png.empty()) throw PlotError("gnuplot produced no image");
   return png;

@@ -23,6 +23,8 @@ struct Curve {
   std::vector<double> y;
   bool dashed = false;
   std::string color = "#000000";  ///< gnuplot colour, "#rrggbb"
+  /// Draw each (x, y) as a small dot, unjoined (bifurcation diagrams).
+  bool points = false;
 };
 
 /// A constant y across the chart (a stop, a threshold).
@@ -47,5 +49,9 @@ void RequireGnuplot();
 
 /// The chart as PNG bytes. Throws PlotError.
 std::string RenderPng(const LineChart& chart);
+
+/// Several charts stacked top to bottom in one PNG of width x height pixels
+/// (the charts' own sizes are ignored), as PNG bytes. Throws PlotError.
+std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height);
 
 }  // namespace impactkit::cli
