@@ -4,6 +4,7 @@
 /// headers: system_file.hpp, csv.hpp, output_file.hpp).
 
 #include "impactkit/classify.hpp"
+#include "impactkit/continuation.hpp"
 #include "impactkit/events.hpp"
 #include "impactkit/flow.hpp"
 #include "impactkit/impact_map.hpp"
@@ -13,6 +14,7 @@
 #include "impactkit/model.hpp"
 #include "impactkit/nonlinear_solve.hpp"
 #include "impactkit/orbit.hpp"
+#include "impactkit/orbit_contacts.hpp"
 #include "impactkit/periodicity.hpp"
 #include "impactkit/recorders.hpp"
 #include "impactkit/resonance.hpp"
