@@ -158,13 +158,15 @@ std::string Provenance(const SweepRequest& request, const System& system,
   return text;
 }
 
-/// A number as the CSV files write it: shortest round-trip form.
-std::string Number(double value) { return fmt::format("{}", value); }
+/// A number as the CSV files write it: shortest round-trip form; an
+/// undefined value (NaN here) is an empty field — gnuplot and pandas read it
+/// as missing, and no NaN reaches a file.
+std::string Number(double value) { return std::isnan(value) ? "" : fmt::format("{}", value); }
 
 std::string SummaryRow(const SweepPoint& point) {
   const Classification& c = point.classification;
   const MotionPeriod& m = c.period;
-  std::string p = "nan", q = "nan";
+  std::string p, q;  // empty: no period
   if (m.periodic && c.kind != MotionKind::kUnresolved && c.kind != MotionKind::kChaotic) {
     p = c.kind == MotionKind::kSticking ? "inf" : std::to_string(m.p);
     q = std::to_string(m.q);
@@ -370,7 +372,7 @@ void AddSweepCommand(CLI::App& app) {
       ->add_option("--summary", request->summary,
                    "One row per value: param,kind,p,q,range_xN,range_x1,range_xN_min,"
                    "range_x1_min,impacts,v_min,v_max,lyapunov,restarted (range_*: largest and "
-                   "smallest per-period max - min; p = inf when sticking; nan where undefined)")
+                   "smallest per-period max - min; p = inf when sticking; empty where undefined)")
       ->type_name("FILE.csv")
       ->group(output);
   command
