@@ -150,8 +150,10 @@ void AddContinueCommand(CLI::App& app) {
   command->add_option("--to", request->to, "The other bound: the branch first heads there")
       ->required()
       ->group(group);
-  command->add_option("--start", request->start,
-                      "Start value between --from and --to; the branch is then followed both ways")
+  command
+      ->add_option("--start", request->start,
+                   "Start value between --from and --to; the branch is then followed both ways "
+                   "(default: start at --from and head for --to)")
       ->group(group);
   command->add_option("--step", request->step, "Initial arclength step in (eta, parameter)")
       ->capture_default_str()

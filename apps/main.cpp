@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success, 1 the run failed (output, gnuplot, simulation), "
-      "2 bad input.\nDocs: docs/cli.md (commands), docs/system-files.md (system files).");
+      "2 bad input.\nDocs: docs/guide.md (tasks), docs/cli.md (commands), docs/system-files.md "
+      "(system files).");
   impactkit::cli::AddSimulateCommand(app);
   impactkit::cli::AddOrbitCommand(app);
   impactkit::cli::AddContinueCommand(app);

@@ -375,9 +375,12 @@ void AddReturnMapCommand(CLI::App& app) {
       ->group("Map");
   command->add_flag("--fit", request->fit, "Fit Eq. 18 to the return map and report it")
       ->group("Fit");
-  command->add_option("--fit-from", request->fit_from, "Fit only points with v(j) >= this")
+  command
+      ->add_option("--fit-from", request->fit_from,
+                   "Fit only points with v(j) >= this (default: all)")
       ->group("Fit");
-  command->add_option("--fit-to", request->fit_to, "Fit only points with v(j) <= this")
+  command
+      ->add_option("--fit-to", request->fit_to, "Fit only points with v(j) <= this (default: all)")
       ->group("Fit");
   command->add_option("--out", request->out, "Write the pairs as CSV: v_j,v_next")
       ->type_name("FILE.csv")

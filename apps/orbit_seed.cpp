@@ -7,8 +7,15 @@
 namespace impactkit::cli {
 
 void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std::string& group) {
-  command.add_option("--p", options.p, "Impacts per orbit (with --q)")->type_name("P")->group(group);
-  command.add_option("--q", options.q, "Forcing periods per orbit (with --p)")
+  command
+      .add_option(
+          "--p", options.p,
+          "Impacts per orbit (with --q); default: those of the motion a simulation settles on")
+      ->type_name("P")
+      ->group(group);
+  command
+      .add_option("--q", options.q,
+                  "Forcing periods per orbit (with --p); default: from the simulation, as --p")
       ->type_name("Q")
       ->group(group);
   command

@@ -8,7 +8,7 @@
 #     check_runs.sh examples   IMPACTKIT DIR             every system file in DIR runs
 #     check_runs.sh unwritable IMPACTKIT                 an output that cannot be written
 #     check_runs.sh failed-plot IMPACTKIT                gnuplot fails: no file of the set is written
-#     check_runs.sh help       IMPACTKIT                 --help names every option
+#     check_runs.sh help       IMPACTKIT                 every --help explains every option
 source "$(dirname "$0")/testlib.sh"
 check=$1
 impactkit=$2
@@ -124,14 +124,58 @@ run_failed_plot() {
   [[ -z $(ls -A "$work/out") ]] || fail "files left behind: $(ls -A "$work/out")"
 }
 
-run_help() {
-  "$impactkit" --help | grep -q 'simulate' || fail "impactkit --help does not list simulate"
-  "$impactkit" simulate --help >"$work/help"
-  local option
-  for option in --system --set --omega --dof --transient --periods --samples-per-period --x0 \
-    --v0 --chatter --chatter-threshold --series --impacts --plot --json; do
-    grep -q -- "$option\b" "$work/help" || fail "simulate --help does not explain $option"
+# `impactkit COMMAND --help` exits 0, every option line in it has an
+# explanation (on its line, or on the next when the name column is full),
+# and each SPEC is there: `--name` listed; `--name=VALUE` listed with its
+# default VALUE (CLI11's `TYPE=VALUE`); `--name!` marked REQUIRED; `--name~`
+# its explanation says what the default is. (Flags default to off, output
+# files to not written.)
+check_help() {
+  local command=$1 spec name entry
+  shift
+  "$impactkit" "$command" --help >"$work/help" || fail "impactkit $command --help exited non-zero"
+  # CLI11 starts explanations in column 31, or on the next line.
+  awk '
+    pending != "" && /^                              [^ ]/ { pending = ""; next }
+    pending != "" { print pending; bad = 1; pending = "" }
+    /^  --/ && !(substr($0, 30, 1) == " " && substr($0, 31, 1) ~ /[^ ]/) { pending = $1 }
+    END { if (pending != "") { print pending; bad = 1 }; exit bad }
+  ' "$work/help" >"$work/unexplained" || fail "$command --help: no explanation for $(cat "$work/unexplained")"
+  for spec in "$@"; do
+    name=${spec%%[=!~]*}
+    entry=$(grep -A1 -E -- "^  $name( |=|\$)" "$work/help") || fail "$command --help does not list $name"
+    case $spec in
+      *=*) grep -q -E -- "^  $name [^ ]*=${spec#*=}( |\$)" <<<"$entry" ||
+        fail "$command --help: $name does not show its default ${spec#*=}: $entry" ;;
+      *!) grep -q REQUIRED <<<"$entry" || fail "$command --help: $name not marked REQUIRED" ;;
+      *~) grep -q -i default <<<"$entry" || fail "$command --help: $name does not say its default" ;;
+    esac
   done
+}
+
+run_help() {
+  "$impactkit" --help >"$work/help" || fail "impactkit --help exited non-zero"
+  local command
+  for command in simulate orbit continue paper sweep impactmap returnmap lyapunov resonance; do
+    grep -q -E "^  $command +[A-Z]" "$work/help" || fail "impactkit --help does not describe $command"
+  done
+  local system=(--system~ --set --omega~ --dof~)
+  local seed=(--p~ --q~ --guess~ --transient=500 --jacobian=analytic --no-fallback)
+  check_help simulate "${system[@]}" --transient=200 --periods=20 --samples-per-period=200 --x0~ \
+    --v0~ --chatter=accumulation --chatter-threshold~ --series --impacts --plot --json
+  check_help orbit "${system[@]}" "${seed[@]}" --json
+  check_help continue "${system[@]}" "${seed[@]}" --param=omega --from! --to! --start~ \
+    --step=0.01 --min-step=1e-07 --max-step=0.02 --max-points=10000 --switch-pd \
+    --follow-grazing --out --json --plot
+  check_help paper --out=out/paper --quick --threads=0
+  check_help sweep "${system[@]}" --param=omega --from! --to! --steps! --transient=500 \
+    --record=100 --start=previous --direction=up --x0~ --v0~ --threads~ --chunk=100 --warmup=5 \
+    --max-q=64 --out --summary --plot
+  check_help impactmap "${system[@]}" --transient=500 --periods=5000 --out --plot
+  check_help returnmap "${system[@]}" --transient=500 --periods=5000 --bound=0.3 --fit \
+    --fit-from~ --fit-to~ --out --plot --json
+  check_help lyapunov "${system[@]}" --transient=500 --transient-impacts=200 --impacts=2000 --json
+  check_help resonance "${system[@]}" --from=0.1 --to=2.5 --steps=2401 --out --plot
 }
 
 case $check in
