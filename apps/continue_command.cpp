@@ -79,6 +79,17 @@ System StartSystem(const ContinueRequest& request) {
   if (request.start && !(*request.start >= lower && *request.start <= upper)) {
     throw InvalidInput(fmt::format("--start {} is not between --from and --to", *request.start));
   }
+  for (double bound : {lower, upper}) {  // both ends valid before any work
+    System at = system;
+    SetParameter(at, request.parameter, bound);
+    try {
+      Validate(at);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("--{} {} = {} is not valid: {}",
+                                     bound == *request.from ? "from" : "to", request.parameter,
+                                     bound, e.what()));
+    }
+  }
   SetParameter(system, request.parameter, request.start.value_or(*request.from));
   Validate(system);
   return system;
