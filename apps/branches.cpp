@@ -1,11 +1,10 @@
 #include "branches.hpp"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "impactkit/csv.hpp"
 
@@ -32,16 +31,17 @@ double SpecialCode(const Branch& branch, const BranchPoint& point) {
 }
 
 nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) {
-  nlohmann::json j = {{"type", ToString(s.type)},
-                      {"param", s.point.parameter},
-                      {"parameter", parameter},
-                      {"description", s.Describe(parameter)},
-                      {"monitor", s.monitor},
-                      {"eta", std::vector<double>(s.point.orbit.eta.data(),
-                                                  s.point.orbit.eta.data() + s.point.orbit.eta.size())}};
+  nlohmann::json j = {
+      {"type", ToString(s.type)},
+      {"param", s.point.parameter},
+      {"parameter", parameter},
+      {"description", s.Describe(parameter)},
+      {"monitor", s.monitor},
+      {"eta", std::vector<double>(s.point.orbit.eta.data(),
+                                  s.point.orbit.eta.data() + s.point.orbit.eta.size())}};
   if (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking) {
-    j["vanishing_impact"] = s.vanishing_impact < 0 ? nlohmann::json(nullptr)
-                                                   : nlohmann::json(s.vanishing_impact + 1);
+    j["vanishing_impact"] =
+        s.vanishing_impact < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.vanishing_impact + 1);
   } else {
     j["multiplier"] = {s.multiplier.real(), s.multiplier.imag()};
   }
@@ -53,8 +53,8 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
 }
 
 std::vector<TracedBranch> SwitchBranches(const System& system, const TracedBranch& main,
-                                         const ContinuationOptions& options, BranchSwitches switches,
-                                         BranchProgress& progress) {
+                                         const ContinuationOptions& options,
+                                         BranchSwitches switches, BranchProgress& progress) {
   std::vector<TracedBranch> born;
   const std::string& name = options.parameter;
   for (const SpecialPoint& special : main.branch.special_points) {
@@ -70,8 +70,9 @@ std::vector<TracedBranch> SwitchBranches(const System& system, const TracedBranc
       doubled.orbit.q *= 2;
       doubled.direction = ContinuationDirection::kIncreasing;
       const std::string label = fmt::format("pd{}", born.size() + 1);
-      born.push_back({label, "from the " + special.Describe(name),
-                      ContinueBranch(*start, doubled, [&](const BranchPoint& p) { progress(label, p); })});
+      born.push_back(
+          {label, "from the " + special.Describe(name),
+           ContinueBranch(*start, doubled, [&](const BranchPoint& p) { progress(label, p); })});
     }
     if (graze && switches.grazing) {
       for (const GrazingSeed& seed : SeedsAtGrazing(system, main.branch, special, options)) {
@@ -94,7 +95,6 @@ std::vector<TracedBranch> SwitchBranches(const System& system, const TracedBranc
   return born;
 }
 
-
 }  // namespace
 
 BranchProgress::BranchProgress(std::string parameter)
@@ -114,10 +114,9 @@ void BranchProgress::operator()(const std::string& label, const BranchPoint& poi
              point.parameter);
 }
 
-
 std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbit& start,
-                                        const ContinuationOptions& options,
-                                        BranchSwitches switches, BranchProgress& progress) {
+                                        const ContinuationOptions& options, BranchSwitches switches,
+                                        BranchProgress& progress) {
   std::vector<TracedBranch> branches;
   branches.push_back({"main", "from the start",
                       ContinueBranch({system, start, {}}, options,
@@ -153,23 +152,27 @@ std::string BranchPath(const std::string& path, const std::string& label) {
   if (label == "main") return path;
   const std::size_t dot = path.rfind('.');
   const bool has_extension = dot != std::string::npos && path.find('/', dot) == std::string::npos;
-  return has_extension ? path.substr(0, dot) + "." + label + path.substr(dot)
-                       : path + "." + label;
+  return has_extension ? path.substr(0, dot) + "." + label + path.substr(dot) : path + "." + label;
 }
 
 nlohmann::json BranchJson(const TracedBranch& traced) {
   const Branch& b = traced.branch;
-  nlohmann::json j = {{"label", traced.label},       {"origin", traced.origin},
-                      {"p", b.p},                    {"q", b.q},
-                      {"points", b.points.size()},   {"end_reason", ToString(b.end)},
-                      {"end_message", b.end_message}, {"seconds", b.seconds}};
+  nlohmann::json j = {{"label", traced.label},
+                      {"origin", traced.origin},
+                      {"p", b.p},
+                      {"q", b.q},
+                      {"points", b.points.size()},
+                      {"end_reason", ToString(b.end)},
+                      {"end_message", b.end_message},
+                      {"seconds", b.seconds}};
   if (b.begin) {
     j["begin_reason"] = ToString(*b.begin);
     j["begin_message"] = b.begin_message;
   }
   j["param_range"] = {b.points.front().parameter, b.points.back().parameter};
   j["special_points"] = nlohmann::json::array();
-  for (const SpecialPoint& s : b.special_points) j["special_points"].push_back(SpecialJson(s, b.parameter));
+  for (const SpecialPoint& s : b.special_points)
+    j["special_points"].push_back(SpecialJson(s, b.parameter));
   return j;
 }
 
@@ -189,7 +192,8 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
       std::size_t from = 0;
       while (from + 1 < b.points.size()) {
         std::size_t to = from + 1;
-        while (to + 1 < b.points.size() && b.points[to].orbit.stable == b.points[from].orbit.stable) ++to;
+        while (to + 1 < b.points.size() && b.points[to].orbit.stable == b.points[from].orbit.stable)
+          ++to;
         Curve curve;
         curve.color = color;
         curve.dashed = !b.points[from].orbit.stable;
@@ -197,7 +201,8 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
           curve.x.push_back(b.points[n].parameter);
           curve.y.push_back(b.points[n].orbit.impacts[i].velocity);
         }
-        if (from == 0 && i == 0) curve.title = fmt::format("P({},{}) {}", b.p, b.q, branches[k].label);
+        if (from == 0 && i == 0)
+          curve.title = fmt::format("P({},{}) {}", b.p, b.q, branches[k].label);
         chart.curves.push_back(std::move(curve));
         from = to;
       }

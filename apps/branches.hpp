@@ -5,10 +5,9 @@
 /// drawn — shared by `impactkit continue` and `impactkit paper`.
 
 #include <chrono>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "impactkit/continuation.hpp"
 #include "plot.hpp"
@@ -51,8 +50,8 @@ struct BranchSwitches {
 /// The branch through `start` ("main"), then the branches born at its
 /// special points as `switches` asks ("pd1", "graze2", ...).
 std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbit& start,
-                                        const ContinuationOptions& options,
-                                        BranchSwitches switches, BranchProgress& progress);
+                                        const ContinuationOptions& options, BranchSwitches switches,
+                                        BranchProgress& progress);
 
 /// One row per point (columns: docs/cli.md, `impactkit continue`).
 void WriteBranchCsv(const std::string& path, const std::string& provenance, const Branch& branch);

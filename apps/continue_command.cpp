@@ -2,25 +2,24 @@
 /// one parameter, its special points, and optionally the branches that
 /// start at them (impactkit/continuation.hpp does the work).
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
+#include "branches.hpp"
 #include "commands.hpp"
 #include "impactkit/continuation.hpp"
 #include "impactkit/csv.hpp"
 #include "impactkit/output_file.hpp"
 #include "impactkit/system_file.hpp"
 #include "orbit_seed.hpp"
-#include "branches.hpp"
 #include "plot.hpp"
 #include "system_options.hpp"
 
@@ -44,7 +43,7 @@ ContinuationOptions MakeOptions(const ContinueRequest& request, const OrbitOptio
   options.parameter = request.parameter;
   options.lower = std::min(*request.from, *request.to);
   options.upper = std::max(*request.from, *request.to);
-  options.direction = request.start ? ContinuationDirection::kBoth
+  options.direction = request.start                 ? ContinuationDirection::kBoth
                       : *request.to > *request.from ? ContinuationDirection::kIncreasing
                                                     : ContinuationDirection::kDecreasing;
   options.initial_step = request.step;
@@ -96,9 +95,8 @@ System StartSystem(const ContinueRequest& request) {
 }
 
 std::string Provenance(const ContinueRequest& request, const System& system) {
-  return fmt::format("continue --param {} --from {} --to {}{} {}", request.parameter,
-                     *request.from, *request.to,
-                     request.start ? fmt::format(" --start {}", *request.start) : "",
+  return fmt::format("continue --param {} --from {} --to {}{} {}", request.parameter, *request.from,
+                     *request.to, request.start ? fmt::format(" --start {}", *request.start) : "",
                      ParameterList(system));
 }
 
@@ -152,7 +150,8 @@ void AddContinueCommand(CLI::App& app) {
       "(or --start, then followed both ways) as `impactkit orbit` finds it.");
   AddSystemOptions(*command, request->system);
   const std::string group = "Continuation";
-  command->add_option("--param", request->parameter, "Parameter to vary: omega, xs, r, A1.., m, k, c")
+  command
+      ->add_option("--param", request->parameter, "Parameter to vary: omega, xs, r, A1.., m, k, c")
       ->capture_default_str()
       ->group(group);
   command->add_option("--from", request->from, "Start value (and one bound) of the parameter")
@@ -178,28 +177,33 @@ void AddContinueCommand(CLI::App& app) {
   command->add_option("--max-points", request->max_points, "Points per direction at most")
       ->capture_default_str()
       ->group(group);
-  command->add_flag("--switch-pd", request->switch_period_doubling,
-                    "At each period doubling, also follow the period-doubled branch P(2p,2q)")
+  command
+      ->add_flag("--switch-pd", request->switch_period_doubling,
+                 "At each period doubling, also follow the period-doubled branch P(2p,2q)")
       ->group(group);
-  command->add_flag("--follow-grazing", request->follow_grazing,
-                    "At a grazing end, also follow the orbit with one impact more or fewer, "
-                    "where one is found")
+  command
+      ->add_flag("--follow-grazing", request->follow_grazing,
+                 "At a grazing end, also follow the orbit with one impact more or fewer, "
+                 "where one is found")
       ->group(group);
   AddOrbitSeedOptions(*command, request->seed, "Start orbit");
-  command->add_option("--out", request->out,
-                      "CSV, one row per point: parameter, arclength, phase1.., v1.., range_xN, "
-                      "mod1.. (multiplier moduli), stable, clearance, depth, special (0 none, "
-                      "1 fold, 2 period doubling, 3 Neimark-Sacker, 4 grazing, 5 sticking); "
-                      "other branches go to FILE.<label>.csv")
+  command
+      ->add_option("--out", request->out,
+                   "CSV, one row per point: parameter, arclength, phase1.., v1.., range_xN, "
+                   "mod1.. (multiplier moduli), stable, clearance, depth, special (0 none, "
+                   "1 fold, 2 period doubling, 3 Neimark-Sacker, 4 grazing, 5 sticking); "
+                   "other branches go to FILE.<label>.csv")
       ->type_name("FILE.csv")
       ->group("Output");
-  command->add_option("--json", request->json,
-                      "JSON: special_points [{type, param, ...}], end_reason, and every branch")
+  command
+      ->add_option("--json", request->json,
+                   "JSON: special_points [{type, param, ...}], end_reason, and every branch")
       ->type_name("FILE.json")
       ->group("Output");
-  command->add_option("--plot", request->plot,
-                      "PNG: impact velocities against the parameter, stable solid, unstable "
-                      "dashed, special points marked (needs gnuplot)")
+  command
+      ->add_option("--plot", request->plot,
+                   "PNG: impact velocities against the parameter, stable solid, unstable "
+                   "dashed, special points marked (needs gnuplot)")
       ->type_name("FILE.png")
       ->group("Output");
   command->callback([request] { RunContinue(*request); });

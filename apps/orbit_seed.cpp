@@ -1,8 +1,8 @@
 #include "orbit_seed.hpp"
 
-#include <stdexcept>
-
 #include <fmt/format.h>
+
+#include <stdexcept>
 
 namespace impactkit::cli {
 
@@ -38,8 +38,9 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
       ->check(CLI::IsMember({"analytic", "fd"}))
       ->capture_default_str()
       ->group(group);
-  command.add_flag("--no-fallback", options.no_fallback,
-                   "Do not try Levenberg-Marquardt when Newton fails")
+  command
+      .add_flag("--no-fallback", options.no_fallback,
+                "Do not try Levenberg-Marquardt when Newton fails")
       ->group(group);
 }
 
@@ -71,8 +72,8 @@ OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
     options.p = *request.p;
     options.q = *request.q;
   }
-  options.jacobian = request.jacobian == "fd" ? JacobianMethod::kFiniteDifference
-                                              : JacobianMethod::kAnalytic;
+  options.jacobian =
+      request.jacobian == "fd" ? JacobianMethod::kFiniteDifference : JacobianMethod::kAnalytic;
   options.least_squares_fallback = !request.no_fallback;
   return options;
 }
@@ -84,8 +85,8 @@ PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
   PeriodicOrbit orbit;
   const OrbitSummary result = FindOrbit(system, eta, *options, &orbit);
   if (result.termination != OrbitTermination::kConverged) {
-    throw std::runtime_error(fmt::format("no P({},{}) orbit found: {}", options->p, options->q,
-                                         result.BriefReport()));
+    throw std::runtime_error(
+        fmt::format("no P({},{}) orbit found: {}", options->p, options->q, result.BriefReport()));
   }
   if (summary) *summary = result;
   return orbit;

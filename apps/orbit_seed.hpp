@@ -3,12 +3,11 @@
 /// The flags that choose a starting orbit, shared by `orbit` and
 /// `continue`: p and q, and either a guess or a steady simulation.
 
+#include <CLI/CLI.hpp>
+#include <Eigen/Dense>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <Eigen/Dense>
 
 #include "impactkit/orbit.hpp"
 

@@ -3,6 +3,7 @@
 /// continued branches with every located special point, and the brute-force
 /// diagram's regimes — printed, and written (CSV, JSON, PNG) into one folder.
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,12 +11,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
 #include <vector>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "branches.hpp"
 #include "commands.hpp"
@@ -40,8 +39,8 @@ struct PaperRequest {
 
 /// Resolution of the run: the paper's, or a quick one for tests.
 struct Resolution {
-  int transient;      ///< forcing periods before an orbit is seeded
-  int sweep_values;   ///< Fig. 3 sweep
+  int transient;     ///< forcing periods before an orbit is seeded
+  int sweep_values;  ///< Fig. 3 sweep
   int sweep_transient;
   int sweep_record;
   int max_q;  ///< longest period the sweep's classification looks for
@@ -124,7 +123,8 @@ nlohmann::json OrbitStage(const System& paper, const Resolution& resolution) {
       options.p = static_cast<int>(seed->motion.p);
       options.q = seed->motion.q;
       PeriodicOrbit orbit;
-      if (FindOrbit(system, seed->eta, options, &orbit).termination == OrbitTermination::kConverged) {
+      if (FindOrbit(system, seed->eta, options, &orbit).termination ==
+          OrbitTermination::kConverged) {
         std::vector<double> v;
         for (const OrbitImpact& i : orbit.impacts) v.push_back(i.velocity);
         line = fmt::format("P({},{}) {}, max |multiplier| {:.4f}, impact speeds {:.6f}", orbit.p,
@@ -175,7 +175,8 @@ nlohmann::json BranchStage(const System& paper, const Resolution& resolution,
       continue;
     }
     BranchProgress progress("omega");
-    std::vector<TracedBranch> branches = TraceBranches(system, start, options, plan.switches, progress);
+    std::vector<TracedBranch> branches =
+        TraceBranches(system, start, options, plan.switches, progress);
     for (TracedBranch& b : branches) {
       b.label = plan.name + "-" + b.label;
       PrintBranch(b);
@@ -194,9 +195,12 @@ nlohmann::json BranchStage(const System& paper, const Resolution& resolution,
 /// sticking ones (P(inf,q) whatever the impacts before the chatter ends).
 std::string RegimeKey(const Classification& c) {
   switch (c.kind) {
-    case MotionKind::kPeriodic: return fmt::format("P({},{})", c.period.p, c.period.q);
-    case MotionKind::kSticking: return fmt::format("P(inf,{})", c.period.q);
-    default: return ToString(c.kind);
+    case MotionKind::kPeriodic:
+      return fmt::format("P({},{})", c.period.p, c.period.q);
+    case MotionKind::kSticking:
+      return fmt::format("P(inf,{})", c.period.q);
+    default:
+      return ToString(c.kind);
   }
 }
 
@@ -323,7 +327,8 @@ void RunPaper(const PaperRequest& request) {
   summary["seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   WriteFile(out, "summary.json", summary.dump(2) + "\n", &written);
-  fmt::print("wrote into {}: {}\n", std::filesystem::absolute(out).string(), fmt::join(written, ", "));
+  fmt::print("wrote into {}: {}\n", std::filesystem::absolute(out).string(),
+             fmt::join(written, ", "));
   fmt::print("time:         {:.1f} s\n", summary["seconds"].get<double>());
 }
 

@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 
 #include "cpu_time.hpp"
-
 #include "impactkit/continuation.hpp"
 
 namespace {
@@ -70,9 +69,10 @@ int main() {
   fmt::print("| job | points | special points | CPU seconds |\n|---|---|---|---|\n");
   fmt::print("| ContinueBranch, Ω 0.856 (grazing) to 1.62 (PD located) | {} | {} | {:.4f} |\n",
              branch.points.size(), branch.special_points.size(), continuation);
-  fmt::print("| FindOrbit (FD Jacobian) at the same Ω values, no location | {} ({} failed) | 0 | "
-             "{:.4f} |\n",
-             branch.points.size(), failures, peer);
+  fmt::print(
+      "| FindOrbit (FD Jacobian) at the same Ω values, no location | {} ({} failed) | 0 | "
+      "{:.4f} |\n",
+      branch.points.size(), failures, peer);
   for (const SpecialPoint& s : branch.special_points) fmt::print("  {}\n", s.Describe("omega"));
   return 0;
 }

@@ -4,11 +4,10 @@
 // form, the vanishing-impact end against the non-impacting response.
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
 #include <numbers>
-
-#include <catch2/catch.hpp>
 
 #include "closed_form_sdof.hpp"
 #include "cvode_impacts.hpp"
@@ -26,7 +25,8 @@ PeriodicOrbit Orbit(const System& system, int p, int q) {
   options.p = p;
   options.q = q;
   PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == OrbitTermination::kConverged);
+  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination ==
+          OrbitTermination::kConverged);
   return orbit;
 }
 
@@ -112,7 +112,8 @@ void CheckNoJumps(const Branch& branch, const ContinuationOptions& options) {
   const double largest = std::hypot(1.0, options.max_correction) * options.max_step;
   for (std::size_t i = 1; i < branch.points.size(); ++i) {
     const BranchPoint &a = branch.points[i - 1], &b = branch.points[i];
-    const double distance = std::hypot((b.orbit.eta - a.orbit.eta).norm(), b.parameter - a.parameter);
+    const double distance =
+        std::hypot((b.orbit.eta - a.orbit.eta).norm(), b.parameter - a.parameter);
     INFO("points " << i - 1 << ", " << i << " at " << a.parameter << ", " << b.parameter);
     CHECK(distance <= largest * (1 + 1e-9));
   }
@@ -120,8 +121,10 @@ void CheckNoJumps(const Branch& branch, const ContinuationOptions& options) {
 
 }  // namespace
 
-TEST_CASE("continuation: the paper's P(1,1) branch ends by grazing near 0.856 and period-doubles "
-          "near 1.61, both confirmed independently", "[continuation]") {
+TEST_CASE(
+    "continuation: the paper's P(1,1) branch ends by grazing near 0.856 and period-doubles "
+    "near 1.61, both confirmed independently",
+    "[continuation]") {
   const System system = PaperSystem(1.0);
   const ContinuationOptions options = Options(0.5, 2.0, 1, 1);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
@@ -142,8 +145,10 @@ TEST_CASE("continuation: the paper's P(1,1) branch ends by grazing near 0.856 an
   CHECK(std::abs(CvodeClearance(at, graze.point.orbit.eta, at.ForcingPeriod())) < 1e-9);
 }
 
-TEST_CASE("continuation: a vanishing impact ends the P(1,2) branch where the non-impacting "
-          "response touches the stop", "[continuation]") {
+TEST_CASE(
+    "continuation: a vanishing impact ends the P(1,2) branch where the non-impacting "
+    "response touches the stop",
+    "[continuation]") {
   const System system = PaperSystem(2.0);
   const ContinuationOptions options = Options(1.0, 3.0, 1, 2);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 2), {}}, options);
@@ -157,15 +162,18 @@ TEST_CASE("continuation: a vanishing impact ends the P(1,2) branch where the non
 
   // Closed form: |X2(Ω)| = xs for X = (K - Ω²M + iΩC)⁻¹ A, by bisection.
   auto amplitude = [&](double w) {
-    const Eigen::MatrixXcd dynamic = system.stiffness.cast<std::complex<double>>() -
-                                     w * w * system.mass.cast<std::complex<double>>() +
-                                     std::complex<double>(0, w) * system.damping.cast<std::complex<double>>();
-    const Eigen::VectorXcd x = dynamic.partialPivLu().solve(system.forcing.cast<std::complex<double>>());
+    const Eigen::MatrixXcd dynamic =
+        system.stiffness.cast<std::complex<double>>() -
+        w * w * system.mass.cast<std::complex<double>>() +
+        std::complex<double>(0, w) * system.damping.cast<std::complex<double>>();
+    const Eigen::VectorXcd x =
+        dynamic.partialPivLu().solve(system.forcing.cast<std::complex<double>>());
     return std::abs(x(system.contact_dof)) - system.stop;
   };
   double lo = 1.9, hi = 2.1;
   REQUIRE((amplitude(lo) > 0) != (amplitude(hi) > 0));
-  for (int k = 0; k < 100; ++k) ((amplitude(0.5 * (lo + hi)) > 0) == (amplitude(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  for (int k = 0; k < 100; ++k)
+    ((amplitude(0.5 * (lo + hi)) > 0) == (amplitude(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
   CHECK(std::abs(end.point.parameter - lo) < 1e-5);
 
   // The depth v²/(2|a|) recomputed by CVODE over the flight into the impact.
@@ -173,8 +181,9 @@ TEST_CASE("continuation: a vanishing impact ends the P(1,2) branch where the non
   const Eigen::VectorXd& eta = end.point.orbit.eta;
   Eigen::VectorXd x, v;
   CvodeFlight(at, eta, eta(1) + 2 * at.ForcingPeriod(), &x, &v);
-  const Eigen::VectorXd a = at.mass.inverse() * (at.forcing * std::cos(at.omega * (eta(1) + 2 * at.ForcingPeriod())) -
-                                                 at.damping * v - at.stiffness * x);
+  const Eigen::VectorXd a =
+      at.mass.inverse() * (at.forcing * std::cos(at.omega * (eta(1) + 2 * at.ForcingPeriod())) -
+                           at.damping * v - at.stiffness * x);
   const int c = at.contact_dof;
   CHECK(v(c) * v(c) / (2 * std::abs(a(c))) < 1e-9);
 }
@@ -189,9 +198,9 @@ TEST_CASE("continuation: N = 1 branch, fold and period doublings match the close
     SdofParameters p{1.0, 1.0, 0.1, 0.5, xs, r, from};
     const System system =
         UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), from, xs, r);
-    ContinuationOptions options =
-        Options(std::min(from, to), std::max(from, to), 1, 1,
-                to > from ? ContinuationDirection::kIncreasing : ContinuationDirection::kDecreasing);
+    ContinuationOptions options = Options(
+        std::min(from, to), std::max(from, to), 1, 1,
+        to > from ? ContinuationDirection::kIncreasing : ContinuationDirection::kDecreasing);
     const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
     CheckNoJumps(branch, options);
     // Every point is a closed-form solution at its Ω: a jump to another
@@ -218,9 +227,10 @@ TEST_CASE("continuation: N = 1 branch, fold and period doublings match the close
         p.omega = w;
         const auto roots = testing::SdofP11Solutions(p);
         if (type == SpecialPointType::kFold) return roots.size() == 2 ? 1.0 : -1.0;
-        const testing::SdofP11& o = *std::min_element(roots.begin(), roots.end(), [&](auto& a, auto& b) {
-          return std::abs(a.u - s.point.orbit.eta(1)) < std::abs(b.u - s.point.orbit.eta(1));
-        });
+        const testing::SdofP11& o =
+            *std::min_element(roots.begin(), roots.end(), [&](auto& a, auto& b) {
+              return std::abs(a.u - s.point.orbit.eta(1)) < std::abs(b.u - s.point.orbit.eta(1));
+            });
         return (testing::SdofP11Jacobian(p, o) + Eigen::Matrix2d::Identity()).determinant();
       };
       double lo = s.point.parameter - 1e-4, hi = s.point.parameter + 1e-4;
@@ -235,8 +245,10 @@ TEST_CASE("continuation: N = 1 branch, fold and period doublings match the close
   }
 }
 
-TEST_CASE("continuation: branch switching onto P(2,2) at the period doubling and onto P(2,1) "
-          "at the grazing", "[continuation]") {
+TEST_CASE(
+    "continuation: branch switching onto P(2,2) at the period doubling and onto P(2,1) "
+    "at the grazing",
+    "[continuation]") {
   const System system = PaperSystem(1.0);
   const ContinuationOptions options = Options(0.5, 2.0, 1, 1);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
@@ -260,7 +272,8 @@ TEST_CASE("continuation: branch switching onto P(2,2) at the period doubling and
   std::optional<Branch> p21;
   for (const GrazingSeed& seed : SeedsAtGrazing(system, branch, graze, options)) {
     PeriodicOrbit orbit;
-    if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination != OrbitTermination::kConverged) {
+    if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
+        OrbitTermination::kConverged) {
       continue;
     }
     CHECK(orbit.p == 2);
@@ -289,7 +302,8 @@ TEST_CASE("continuation: bad input is rejected with a clear error", "[continuati
   ContinuationOptions options = Options(1.5, 1.5, 1, 1);
   CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options), Catch::Contains("lower < upper"));
   options = Options(1.3, 1.5, 1, 1);
-  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options), Catch::Contains("outside the bounds"));
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options),
+                    Catch::Contains("outside the bounds"));
   CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, in("r", 0.5, 1.5)),
                     Catch::Contains("not valid"));
   PeriodicOrbit off = orbit;
@@ -298,14 +312,17 @@ TEST_CASE("continuation: bad input is rejected with a clear error", "[continuati
                     Catch::Contains("not a P(1,1) orbit"));
 }
 
-TEST_CASE("continuation: any parameter — the branch in r and in xs agrees with FindOrbit at "
-          "the bound", "[continuation]") {
+TEST_CASE(
+    "continuation: any parameter — the branch in r and in xs agrees with FindOrbit at "
+    "the bound",
+    "[continuation]") {
   const System system = PaperSystem(1.2);
   const PeriodicOrbit start = Orbit(system, 1, 1);
-  for (const auto& [name, to] : {std::pair{std::string("r"), 0.9}, std::pair{std::string("xs"), 0.15}}) {
+  for (const auto& [name, to] :
+       {std::pair{std::string("r"), 0.9}, std::pair{std::string("xs"), 0.15}}) {
     INFO(name);
-    ContinuationOptions options = Options(GetParameter(system, name), to, 1, 1,
-                                          ContinuationDirection::kIncreasing);
+    ContinuationOptions options =
+        Options(GetParameter(system, name), to, 1, 1, ContinuationDirection::kIncreasing);
     options.parameter = name;
     const Branch branch = ContinueBranch({system, start, {}}, options);
     REQUIRE(branch.end == BranchEnd::kParameterBound);

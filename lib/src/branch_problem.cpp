@@ -1,9 +1,9 @@
 #include "branch_problem.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "impactkit/orbit.hpp"
 

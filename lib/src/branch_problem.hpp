@@ -4,13 +4,12 @@
 /// family, as a function of X = (η, μ), with the bordered corrector and the
 /// tangent that pseudo-arclength continuation needs (continuation.hpp).
 
+#include <Eigen/Dense>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "impactkit/continuation.hpp"
 #include "impactkit/impact_map.hpp"

@@ -40,8 +40,8 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
   if (!tangent) return std::nullopt;
   BranchStart start;
   start.system = doubled.SystemAt(BranchProblem::Mu(*x));
-  start.orbit = DescribeOrbit(*doubled.MapAt(BranchProblem::Mu(*x)), BranchProblem::Eta(*x),
-                              2 * p, 2 * q);
+  start.orbit =
+      DescribeOrbit(*doubled.MapAt(BranchProblem::Mu(*x)), BranchProblem::Eta(*x), 2 * p, 2 * q);
   start.direction = *tangent;
   return start;
 }
@@ -74,11 +74,10 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
     double value, slope, curvature;
     map->FlightCoordinate(from, system.contact_dof)
         .ValueSlopeCurvature(contacts.clearance_time, &value, &slope, &curvature);
-    const auto before = std::find_if(branch.points.rbegin(), branch.points.rend(),
-                                     [&](const BranchPoint& b) {
-                                       return b.parameter != point.parameter &&
-                                              b.orbit.contacts.clearance;
-                                     });
+    const auto before =
+        std::find_if(branch.points.rbegin(), branch.points.rend(), [&](const BranchPoint& b) {
+          return b.parameter != point.parameter && b.orbit.contacts.clearance;
+        });
     double rate = 1.0;  // clearance per unit parameter
     if (before != branch.points.rend()) {
       rate = std::abs(*before->orbit.contacts.clearance / (before->parameter - point.parameter));

@@ -1,11 +1,11 @@
 #include "impactkit/continuation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "branch_problem.hpp"
 
@@ -101,7 +101,8 @@ class BranchTracer {
       Accept(*next, &half);
       if (beyond) {
         half.end = BranchEnd::kParameterBound;
-        half.end_message = fmt::format("reached {} = {:.10g}", problem_.Parameter(), next->parameter);
+        half.end_message =
+            fmt::format("reached {} = {:.10g}", problem_.Parameter(), next->parameter);
         return half;
       }
       if (GrazingAhead(half, step) && EndAtGrazing(half)) return half;
@@ -235,9 +236,11 @@ class BranchTracer {
       default:
         special.monitor = point.neimark_sacker_test;
         special.multiplier = closest([](std::complex<double> l) {
-          return l.imag() > 0 ? std::abs(std::abs(l) - 1.0) : std::numeric_limits<double>::infinity();
+          return l.imag() > 0 ? std::abs(std::abs(l) - 1.0)
+                              : std::numeric_limits<double>::infinity();
         });
-        if (!(special.multiplier.imag() > 0) || std::abs(std::abs(special.multiplier) - 1.0) > 1e-4) {
+        if (!(special.multiplier.imag() > 0) ||
+            std::abs(std::abs(special.multiplier) - 1.0) > 1e-4) {
           return std::nullopt;
         }
     }
@@ -358,7 +361,8 @@ void Require(bool condition, const std::string& message) {
 /// The start as an oriented branch point.
 BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
                        const ContinuationOptions& options, double sense) {
-  const Eigen::VectorXd x = BranchProblem::Join(start.orbit.eta, GetParameter(start.system, options.parameter));
+  const Eigen::VectorXd x =
+      BranchProblem::Join(start.orbit.eta, GetParameter(start.system, options.parameter));
   Eigen::VectorXd previous = start.direction;
   std::optional<BranchPoint> point = problem.Describe(x, previous);
   Require(point.has_value(), "the start orbit's impact map fails: not an orbit to continue");
@@ -373,22 +377,32 @@ BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
 
 std::string ToString(SpecialPointType type) {
   switch (type) {
-    case SpecialPointType::kFold: return "fold";
-    case SpecialPointType::kPeriodDoubling: return "period_doubling";
-    case SpecialPointType::kNeimarkSacker: return "neimark_sacker";
-    case SpecialPointType::kGrazing: return "grazing";
-    case SpecialPointType::kSticking: return "sticking";
+    case SpecialPointType::kFold:
+      return "fold";
+    case SpecialPointType::kPeriodDoubling:
+      return "period_doubling";
+    case SpecialPointType::kNeimarkSacker:
+      return "neimark_sacker";
+    case SpecialPointType::kGrazing:
+      return "grazing";
+    case SpecialPointType::kSticking:
+      return "sticking";
   }
   return "unknown";
 }
 
 std::string ToString(BranchEnd end) {
   switch (end) {
-    case BranchEnd::kParameterBound: return "parameter_bound";
-    case BranchEnd::kGrazing: return "grazing";
-    case BranchEnd::kSticking: return "sticking";
-    case BranchEnd::kMaxPoints: return "max_points";
-    case BranchEnd::kCorrectorFailed: return "corrector_failed";
+    case BranchEnd::kParameterBound:
+      return "parameter_bound";
+    case BranchEnd::kGrazing:
+      return "grazing";
+    case BranchEnd::kSticking:
+      return "sticking";
+    case BranchEnd::kMaxPoints:
+      return "max_points";
+    case BranchEnd::kCorrectorFailed:
+      return "corrector_failed";
   }
   return "unknown";
 }
@@ -452,12 +466,13 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
     try {
       problem.SystemAt(bound);
     } catch (const InvalidInput& e) {
-      throw InvalidInput(fmt::format("the bound {} = {} is not valid: {}", options.parameter,
-                                     bound, e.what()));
+      throw InvalidInput(
+          fmt::format("the bound {} = {} is not valid: {}", options.parameter, bound, e.what()));
     }
   }
   const ImpactMap* map = problem.MapAt(mu);
-  const double residual = DescribeOrbit(*map, start.orbit.eta, options.orbit.p, options.orbit.q).residual;
+  const double residual =
+      DescribeOrbit(*map, start.orbit.eta, options.orbit.p, options.orbit.q).residual;
   Require(residual <= 1e3 * options.orbit.newton.residual_tolerance,
           fmt::format("the start is not a P({},{}) orbit: residual {:.2e}", options.orbit.p,
                       options.orbit.q, residual));

@@ -1,8 +1,8 @@
 #include "impactkit/impact_map.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "impactkit/events.hpp"
 #include "subsystem.hpp"
@@ -12,17 +12,22 @@ namespace impactkit {
 
 std::string ToString(MapStatus status) {
   switch (status) {
-    case MapStatus::kOk: return "ok";
-    case MapStatus::kNoImpact: return "lost impact (no further impact)";
-    case MapStatus::kGrazing: return "grazing impact (speed ~ 0)";
-    case MapStatus::kChatter: return "chatter (impacts accumulate at the stop)";
+    case MapStatus::kOk:
+      return "ok";
+    case MapStatus::kNoImpact:
+      return "lost impact (no further impact)";
+    case MapStatus::kGrazing:
+      return "grazing impact (speed ~ 0)";
+    case MapStatus::kChatter:
+      return "chatter (impacts accumulate at the stop)";
   }
   return "unknown";
 }
 
 bool ImpactMapOptions::IsValid(std::string* error) const {
   if (!(max_flight_periods > 0 && std::isfinite(max_flight_periods))) {
-    if (error) *error = fmt::format("max_flight_periods must be finite and > 0, got {}", max_flight_periods);
+    if (error)
+      *error = fmt::format("max_flight_periods must be finite and > 0, got {}", max_flight_periods);
     return false;
   }
   if (!(min_speed >= 0 && std::isfinite(min_speed))) {
@@ -68,9 +73,9 @@ HybridState ImpactMap::ToState(const Eigen::VectorXd& eta) const {
 void ImpactMap::ValidateEta(const Eigen::VectorXd& eta) const {
   const int n = system_.Dof();
   if (eta.size() != 2 * n) {
-    throw InvalidInput(fmt::format(
-        "an impact state eta = (x without x{}, t, v1..v{}) has {} entries, got {}",
-        system_.contact_dof + 1, n, 2 * n, eta.size()));
+    throw InvalidInput(
+        fmt::format("an impact state eta = (x without x{}, t, v1..v{}) has {} entries, got {}",
+                    system_.contact_dof + 1, n, 2 * n, eta.size()));
   }
   if (!eta.allFinite()) throw InvalidInput("the impact state has a NaN or infinite entry");
   const double speed = eta(n + system_.contact_dof);
@@ -85,8 +90,8 @@ Eigen::VectorXd ImpactMap::VectorField(double t, const Eigen::VectorXd& x,
                                        const Eigen::VectorXd& v) const {
   const int n = system_.Dof();
   Eigen::VectorXd f(2 * n);
-  f << v, inverse_mass_ * (system_.forcing * std::cos(system_.omega * t) -
-                           system_.damping * v - system_.stiffness * x);
+  f << v, inverse_mass_ * (system_.forcing * std::cos(system_.omega * t) - system_.damping * v -
+                           system_.stiffness * x);
   return f;
 }
 
@@ -117,8 +122,8 @@ Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof) const {
   return flow_.Output(coordinate, eta(TimeIndex()), z0);
 }
 
-bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next,
-                     Eigen::MatrixXd* jacobian, MapStatus* status) const {
+bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::MatrixXd* jacobian,
+                     MapStatus* status) const {
   const int n = system_.Dof(), c = system_.contact_dof;
   const HybridState before = ToState(eta);
   const double t = before.t;
@@ -128,8 +133,8 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next,
   const Eigen::VectorXd z0 = flow_.Transient(t, before.x, v_after);
   const Signal gap = flow_.Output(gap_, t, z0);
   const EventOptions events{1e-13, time_scale_};
-  const auto te = FirstUpcrossing(
-      gap, t, t + options_.max_flight_periods * system_.ForcingPeriod(), events);
+  const auto te =
+      FirstUpcrossing(gap, t, t + options_.max_flight_periods * system_.ForcingPeriod(), events);
   if (!te) {
     *status = MapStatus::kNoImpact;
     return false;
@@ -219,7 +224,8 @@ Eigen::MatrixXd ImpactMap::FiniteDifferenceJacobian(const Eigen::VectorXd& eta, 
   Eigen::MatrixXd jacobian(dim, dim);
   for (Eigen::Index j = 0; j < dim; ++j) {
     // τ is an absolute time: its natural scale is the forcing period, not |τ|.
-    const double scale = j == TimeIndex() ? system_.ForcingPeriod() : std::max(1.0, std::abs(eta(j)));
+    const double scale =
+        j == TimeIndex() ? system_.ForcingPeriod() : std::max(1.0, std::abs(eta(j)));
     const double h = relative_step * scale;
     Eigen::VectorXd plus = eta, minus = eta;
     plus(j) += h;

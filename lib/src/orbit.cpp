@@ -1,10 +1,10 @@
 #include "impactkit/orbit.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "impactkit/periodicity.hpp"
 #include "impactkit/recorders.hpp"
@@ -113,9 +113,12 @@ std::string ToString(JacobianMethod method) {
 
 std::string ToString(OrbitTermination termination) {
   switch (termination) {
-    case OrbitTermination::kConverged: return "converged";
-    case OrbitTermination::kNoConvergence: return "no convergence";
-    case OrbitTermination::kMapFailed: return "map failed at the seed";
+    case OrbitTermination::kConverged:
+      return "converged";
+    case OrbitTermination::kNoConvergence:
+      return "no convergence";
+    case OrbitTermination::kMapFailed:
+      return "map failed at the seed";
   }
   return "unknown";
 }
@@ -179,15 +182,14 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
     orbit->eta = eta;
   }
   orbit->residual = solve.residual_norm;
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 
 std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient, int max_q) {
   if (transient < 0 || max_q < 1) {
-    throw InvalidInput(fmt::format("transient must be >= 0 and max_q >= 1, got {} and {}",
-                                   transient, max_q));
+    throw InvalidInput(
+        fmt::format("transient must be >= 0 and max_q >= 1, got {} and {}", transient, max_q));
   }
   const Simulator simulator(system);
   const double period = system.ForcingPeriod();

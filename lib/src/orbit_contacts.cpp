@@ -1,10 +1,10 @@
 #include "impactkit/orbit_contacts.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "impactkit/events.hpp"
 

@@ -9,7 +9,9 @@
 
 int main() {
   using namespace impactkit;
-  struct Plan { double start, lower, upper; };
+  struct Plan {
+    double start, lower, upper;
+  };
   for (const Plan& plan : {Plan{1.0, 0.5, 2.0}, Plan{0.6, 0.4, 1.0}, Plan{2.0, 1.0, 3.0}}) {
     const System system = PaperSystem(plan.start);
     const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 200);

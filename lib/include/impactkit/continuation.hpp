@@ -31,13 +31,12 @@
 /// branch side — the monitor is extrapolated linearly in s and its zero
 /// located by safeguarded secant steps — and the branch stops there.
 
+#include <Eigen/Dense>
 #include <complex>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "impactkit/model.hpp"
 #include "impactkit/orbit.hpp"
@@ -75,12 +74,12 @@ struct ContinuationOptions {
 /// One corrected point of a branch.
 struct BranchPoint {
   double parameter = 0.0;
-  double arclength = 0.0;  ///< from the start point, signed by direction
-  PeriodicOrbit orbit;     ///< at this parameter value
-  double fold_test = 0.0;              ///< det(D P - I)
-  double period_doubling_test = 0.0;   ///< det(D P + I)
-  double neimark_sacker_test = 0.0;    ///< Π_{i<j} (λ_i λ_j - 1)
-  Eigen::VectorXd tangent;             ///< unit tangent (η, μ) here
+  double arclength = 0.0;             ///< from the start point, signed by direction
+  PeriodicOrbit orbit;                ///< at this parameter value
+  double fold_test = 0.0;             ///< det(D P - I)
+  double period_doubling_test = 0.0;  ///< det(D P + I)
+  double neimark_sacker_test = 0.0;   ///< Π_{i<j} (λ_i λ_j - 1)
+  Eigen::VectorXd tangent;            ///< unit tangent (η, μ) here
 };
 
 enum class SpecialPointType { kFold, kPeriodDoubling, kNeimarkSacker, kGrazing, kSticking };
@@ -171,7 +170,6 @@ struct GrazingSeed {
 };
 std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& branch,
                                         const SpecialPoint& graze,
-                                        const ContinuationOptions& options,
-                                        double offset = 1e-3);
+                                        const ContinuationOptions& options, double offset = 1e-3);
 
 }  // namespace impactkit

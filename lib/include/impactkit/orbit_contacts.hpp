@@ -17,9 +17,8 @@
 ///    (grazing); with a > 0 it is pressed into the stop and the impacts
 ///    accumulate (sticking onset).
 
-#include <optional>
-
 #include <Eigen/Dense>
+#include <optional>
 
 #include "impactkit/impact_map.hpp"
 
@@ -35,7 +34,7 @@ struct OrbitContacts {
   int clearance_flight = 0;     ///< the impact (index) whose flight holds it
   /// v² / (2|a|) of the slowest impact (the one with the least depth).
   double slowest_depth = 0.0;
-  int slowest_impact = 0;      ///< its index among the orbit's p impacts
+  int slowest_impact = 0;        ///< its index among the orbit's p impacts
   bool slowest_pressed = false;  ///< a > 0 there: pressed into the stop
   double Range() const { return contact_max - contact_min; }
 };
