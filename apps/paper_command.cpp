@@ -25,6 +25,7 @@
 #include "impactkit/resonance.hpp"
 #include "impactkit/sweep.hpp"
 #include "impactkit/system_file.hpp"
+#include "orbit_seed.hpp"
 #include "plot.hpp"
 #include "system_options.hpp"
 
@@ -161,19 +162,15 @@ nlohmann::json BranchStage(const System& paper, const Resolution& resolution,
   for (const BranchPlan& plan : plans) {
     System system = paper;
     system.omega = plan.start;
-    const std::optional<OrbitSeed> seed = SeedFromSimulation(system, resolution.transient);
-    if (!seed || !seed->motion.periodic) continue;
+    // The start as `impactkit orbit` finds it; a failure ends the job with
+    // its reason rather than leave a branch out of the summary.
+    OrbitSeedOptions seed;
+    seed.transient = resolution.transient;
     ContinuationOptions options;
+    const PeriodicOrbit start = FindStartOrbit(system, seed, &options.orbit);
     options.lower = plan.lower;
     options.upper = plan.upper;
     options.direction = ContinuationDirection::kBoth;
-    options.orbit.p = static_cast<int>(seed->motion.p);
-    options.orbit.q = seed->motion.q;
-    PeriodicOrbit start;
-    if (FindOrbit(system, seed->eta, options.orbit, &start).termination !=
-        OrbitTermination::kConverged) {
-      continue;
-    }
     BranchProgress progress("omega");
     std::vector<TracedBranch> branches =
         TraceBranches(system, start, options, plan.switches, progress);
