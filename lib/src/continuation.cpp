@@ -54,6 +54,23 @@ double MonitorLength(double linear, Monitor monitor) {
   return monitor == Monitor::kClearance ? linear : linear * linear;
 }
 
+/// Why a branch may stop short of a located grazing: "; an impact vanishes
+/// just beyond (depth 2.2e-09, not located to 1e-10)" when a monitor is
+/// small, else nothing.
+std::string NearContact(const BranchPoint& point) {
+  const OrbitContacts& c = point.orbit.contacts;
+  if (c.slowest_depth < 1e-6) {
+    return fmt::format("; impact {} vanishes just beyond (depth {:.1e}, not located to {:.0e})",
+                       c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
+  }
+  if (c.clearance && *c.clearance < 1e-6) {
+    return fmt::format(
+        "; a new contact is born just beyond (clearance {:.1e}, not located to {:.0e})",
+        *c.clearance, kGrazingTolerance);
+  }
+  return "";
+}
+
 /// Traces one direction of a branch from an oriented start point.
 class BranchTracer {
  public:
@@ -85,8 +102,8 @@ class BranchTracer {
         if (EndAtGrazing(half)) return half;
         half.end = BranchEnd::kCorrectorFailed;
         half.end_message = fmt::format(
-            "the corrector did not converge with the smallest step {:g} at {} = {:.10g}",
-            options_.min_step, problem_.Parameter(), from.parameter);
+            "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}",
+            options_.min_step, problem_.Parameter(), from.parameter, NearContact(from));
         return half;
       }
       const bool beyond = next->parameter < options_.lower || next->parameter > options_.upper;
