@@ -27,6 +27,7 @@
 #include "impactkit/system_file.hpp"
 #include "orbit_seed.hpp"
 #include "plot.hpp"
+#include "sweep_chart.hpp"
 #include "system_options.hpp"
 
 namespace impactkit::cli {
@@ -231,30 +232,6 @@ void PrintRegimes(const nlohmann::json& regimes) {
   if (short_runs > 0) fmt::print("  (and {} windows of one or two values)\n", short_runs);
 }
 
-LineChart SweepPanel(const SweepResult& sweep, bool velocities) {
-  LineChart chart;
-  chart.x_label = "omega";
-  chart.y_label = velocities ? "impact velocity" : "max - min x2 per period";
-  chart.title = velocities ? "Fig. 3(b)" : "Fig. 3(a)";
-  Curve c;
-  c.points = true;
-  for (const SweepPoint& p : sweep.points) {
-    if (velocities) {
-      for (const SweepImpact& i : p.impacts) {
-        c.x.push_back(p.value);
-        c.y.push_back(i.velocity);
-      }
-    } else {
-      for (double r : p.range_contact) {
-        c.x.push_back(p.value);
-        c.y.push_back(r);
-      }
-    }
-  }
-  chart.curves.push_back(std::move(c));
-  return chart;
-}
-
 nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int threads,
                           const std::filesystem::path& out, std::vector<std::string>* written) {
   SweepOptions options;
@@ -289,8 +266,7 @@ nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int
   csv.Commit();
   written->push_back("fig3-sweep.csv");
   WriteFile(out, "fig3-bifurcation.png",
-            RenderStackedPng({SweepPanel(sweep, false), SweepPanel(sweep, true)}, 1000, 900),
-            written);
+            RenderStackedPng(SweepCharts(paper, options, sweep), 1000, 900), written);
   return regimes;
 }
 

@@ -1,6 +1,7 @@
 #include "plot.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,8 +15,6 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
-
-#include <fmt/format.h>
 
 extern char** environ;  // POSIX: the environment gnuplot inherits
 
@@ -114,8 +113,8 @@ std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& fil
   return fmt::format("plot {}\n", fmt::join(clauses, ", \\\n     "));
 }
 
-std::string Script(const LineChart& chart, const fs::path& output,
-                   const std::vector<fs::path>& files) {
+/// The settings every chart shares: terminal, output, grid, key placement.
+std::string Preamble(int width, int height, const fs::path& output, std::string_view key) {
   // pngcairo draws antialiased lines and real dashes; the gd-based png
   // terminal is the fallback that every gnuplot build has.
   return fmt::format(
@@ -126,16 +125,11 @@ std::string Script(const LineChart& chart, const fs::path& output,
       "  set terminal png size {0},{1} noenhanced\n"
       "}}\n"
       "set output {2}\n"
-      "set title {3}\n"
-      "set xlabel {4}\n"
-      "set ylabel {5}\n"
       "set grid\n"
-      "set key outside bottom center horizontal\n"
+      "set key {3}\n"
       "set autoscale xfix\n"
-      "set offsets 0, 0, graph 0.05, graph 0.05\n"
-      "{6}",
-      chart.width, chart.height, Quoted(output.string()), Quoted(chart.title),
-      Quoted(chart.x_label), Quoted(chart.y_label), PlotCommand(chart, files));
+      "set offsets 0, 0, graph 0.05, graph 0.05\n",
+      width, height, Quoted(output.string()), key);
 }
 
 /// gnuplot's first complaint, as the reason in our one-line error.
@@ -176,8 +170,7 @@ std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& fil
       "set xlabel {}\n"
       "set ylabel {}\n"
       "{}",
-      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label),
-      PlotCommand(chart, files));
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), PlotCommand(chart, files));
 }
 
 }  // namespace
@@ -190,40 +183,17 @@ void RequireGnuplot() {
 }
 
 std::string RenderPng(const LineChart& chart) {
-  RequireGnuplot();
-  const TemporaryDirectory directory;
-  std::vector<fs::path> files;
-  for (std::size_t i = 0; i < chart.curves.size(); ++i) {
-    files.push_back(directory / fmt::format("curve{}.dat", i + 1));
-    WriteFile(files.back(), CurveData(chart.curves[i]));
-  }
-  const fs::path script = directory / "chart.gp", image = directory / "chart.png";
-  const fs::path log = directory / "gnuplot.log";
-  WriteFile(script, Script(chart, image, files));
-  RunGnuplot(script, log);
-  std::string png = ReadFile(image);
-  if (png.empty()) throw PlotError("gnuplot produced no image");
-  return png;
+  return RenderStackedPng({chart}, chart.width, chart.height);
 }
 
 std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height) {
   RequireGnuplot();
   const TemporaryDirectory directory;
   const fs::path image = directory / "chart.png", log = directory / "gnuplot.log";
-  std::string script = fmt::format(
-      "set encoding utf8\n"
-      "if (strstrt(GPVAL_TERMINALS, \"pngcairo\") > 0) {{\n"
-      "  set terminal pngcairo size {0},{1} font \"Sans,11\" noenhanced\n"
-      "}} else {{\n"
-      "  set terminal png size {0},{1} noenhanced\n"
-      "}}\n"
-      "set output {2}\n"
-      "set grid\n"
-      "set key top right\n"
-      "set autoscale xfix\n"
-      "set offsets 0, 0, graph 0.05, graph 0.05\n"
-      "set multiplot layout {3},1\n",
-      width, height, Quoted(image.string()), charts.size());
+  const bool single = charts.size() == 1;
+  std::string script =
+      Preamble(width, height, image, single ? "outside bottom center horizontal" : "top right");
+  if (!single) script += fmt::format("set multiplot layout {},1\n", charts.size());
   for (std::size_t c = 0; c < charts.size(); ++c) {
     std::vector<fs::path> files;
     for (std::size_t i = 0; i < charts[c].curves.size(); ++i) {
@@ -232,7 +202,7 @@ std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, in
     }
     script += PanelScript(charts[c], files);
   }
-  script += "unset multiplot\n";
+  if (!single) script += "unset multiplot\n";
   const fs::path script_path = directory / "chart.gp";
   WriteFile(script_path, script);
   RunGnuplot(script_path, log);

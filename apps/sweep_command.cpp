@@ -19,6 +19,7 @@
 #include "impactkit/output_file.hpp"
 #include "impactkit/sweep.hpp"
 #include "plot.hpp"
+#include "sweep_chart.hpp"
 #include "system_options.hpp"
 
 namespace impactkit::cli {
@@ -191,34 +192,6 @@ std::string SummaryRow(const SweepPoint& point) {
                      Number(v_max), Number(lyapunov), point.restarted ? 1 : 0);
 }
 
-/// Fig. 3: (a) per-period max - min of the contact mass, (b) impact speeds.
-std::vector<LineChart> Figure3(const System& system, const SweepOptions& options,
-                               const SweepResult& result) {
-  const int c = system.contact_dof + 1;
-  LineChart ranges, speeds;
-  ranges.title = fmt::format("impactkit sweep: max - min of x{} in each recorded period", c);
-  ranges.x_label = options.parameter;
-  ranges.y_label = fmt::format("max - min x{}", c);
-  speeds.title = fmt::format("impact velocity v{}(t-)", c);
-  speeds.x_label = options.parameter;
-  speeds.y_label = "impact velocity";
-  Curve range_points{fmt::format("x{}", c), {}, {}, false, "#1f77b4", true};
-  Curve speed_points{"impacts", {}, {}, false, "#000000", true};
-  for (const SweepPoint& point : result.points) {
-    for (double r : point.range_contact) {
-      range_points.x.push_back(point.value);
-      range_points.y.push_back(r);
-    }
-    for (const SweepImpact& i : point.impacts) {
-      speed_points.x.push_back(point.value);
-      speed_points.y.push_back(i.velocity);
-    }
-  }
-  ranges.curves.push_back(std::move(range_points));
-  speeds.curves.push_back(std::move(speed_points));
-  return {ranges, speeds};
-}
-
 void RunSweepCommand(const SweepRequest& request) {
   const System system = ResolveSystem(request.system);
   const SweepOptions options = OptionsOf(request, system);
@@ -266,7 +239,7 @@ void RunSweepCommand(const SweepRequest& request) {
     for (const SweepPoint& point : result.points) summary->Write(SummaryRow(point));
   }
   std::string png;
-  if (plot) png = RenderStackedPng(Figure3(system, options, result), 1000, 900);
+  if (plot) png = RenderStackedPng(SweepCharts(system, options, result), 1000, 900);
   // Committed last: a failure above leaves no partial set of files.
   if (out) {
     out->Commit();
