@@ -108,10 +108,19 @@ class BranchTracer {
       }
       const bool beyond = next->parameter < options_.lower || next->parameter > options_.upper;
       if (beyond) {
+        const double bound = next->parameter > options_.upper ? options_.upper : options_.lower;
         next = OnBound(from, *next);
-        if (!next) {
+        if (!next && step > options_.min_step) {
           step = std::max(step / 2.0, options_.min_step);
           continue;
+        }
+        if (!next) {
+          half.end = BranchEnd::kCorrectorFailed;
+          half.end_message = fmt::format(
+              "no orbit found on the bound {} = {:.10g} next to {:.10g}, even with the smallest "
+              "step",
+              problem_.Parameter(), bound, from.parameter);
+          return half;
         }
       }
       if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
@@ -222,7 +231,9 @@ class BranchTracer {
         side = +1;
       }
     }
-    if (!best) return std::nullopt;
+    // No trial converged (rare: the corrector fails between two good
+    // points): the nearer end stands in, its test value saying how near.
+    if (!best) best = std::abs(a.*test) < std::abs(b.*test) ? a : b;
     return Classify(*best, type);
   }
 
