@@ -1,0 +1,178 @@
+// Bit-level fingerprints of the simulator, the impact map, orbits and a
+// continued branch. The expected values were recorded before the layout
+// change that made the stop a component of its own (the simulator and the
+// impact map then shared one impact law, vector field and stuck subsystem);
+// the refactor had to leave every bit unchanged. A deliberate change of the
+// numerics changes these: record the new values (the test prints them) and
+// say why in the commit.
+
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <cstring>
+
+#include "impactkit/continuation.hpp"
+#include "impactkit/orbit.hpp"
+#include "impactkit/recorders.hpp"
+#include "impactkit/simulate.hpp"
+
+using namespace impactkit;
+
+namespace {
+
+/// FNV-1a over the bit patterns of the doubles fed to it.
+class BitHash {
+ public:
+  void Add(double value) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int byte = 0; byte < 8; ++byte) {
+      hash_ ^= (bits >> (8 * byte)) & 0xffu;
+      hash_ *= 0x100000001b3ull;
+    }
+  }
+  template <typename Derived>
+  void Add(const Eigen::DenseBase<Derived>& values) {
+    for (Eigen::Index i = 0; i < values.size(); ++i) Add(values(i));
+  }
+  void Add(const Eigen::VectorXcd& values) {
+    for (const auto& z : values) {
+      Add(z.real());
+      Add(z.imag());
+    }
+  }
+  std::uint64_t Value() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+/// An observer hashing every impact, chatter end and release.
+class HashingObserver : public Observer {
+ public:
+  void OnImpact(const Impact& impact) override {
+    hash.Add(impact.t);
+    hash.Add(impact.velocity);
+    hash.Add(impact.x);
+    hash.Add(impact.v);
+  }
+  void OnChatter(double t_first, double t_end) override {
+    hash.Add(t_first);
+    hash.Add(t_end);
+  }
+  void OnRelease(double t_begin, double t_release) override {
+    hash.Add(t_begin);
+    hash.Add(t_release);
+  }
+  BitHash hash;
+};
+
+/// Hash of 10^4 impacts (or t_end) from rest, with the final state and the
+/// summary's stuck time.
+std::uint64_t SimulationHash(const System& system, double t_end) {
+  HashingObserver observer;
+  HybridState state = RestState(system);
+  SimulationOptions options;
+  options.max_events = 10'000;
+  const SimulationSummary summary = Simulate(system, options, state, t_end, observer);
+  observer.hash.Add(state.t);
+  observer.hash.Add(state.x);
+  observer.hash.Add(state.v);
+  observer.hash.Add(summary.stuck_time);
+  return observer.hash.Value();
+}
+
+/// A general 3-DOF system: full mass matrix, non-proportional damping, the
+/// stop on the middle mass.
+System GeneralThreeDof(double omega) {
+  Eigen::Matrix3d m, k, c;
+  m << 1.2, 0.1, 0, 0.1, 0.8, 0.05, 0, 0.05, 1.5;
+  k << 3.0, -1.2, 0, -1.2, 2.5, -0.9, 0, -0.9, 1.4;
+  c << 0.2, -0.05, 0, -0.05, 0.1, 0, 0, 0, 0.3;
+  return GeneralSystem(m, c, k, Eigen::Vector3d(0.6, -0.2, 0.3), omega, 0.15, 0.6, 1);
+}
+
+std::uint64_t OrbitHash(const System& system, int p, int q) {
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
+  REQUIRE(seed.has_value());
+  OrbitOptions options;
+  options.p = p;
+  options.q = q;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination ==
+          OrbitTermination::kConverged);
+  BitHash hash;
+  hash.Add(orbit.eta);
+  hash.Add(orbit.jacobian);
+  hash.Add(orbit.multipliers);
+  hash.Add(orbit.residual);
+  hash.Add(orbit.contacts.contact_min);
+  hash.Add(orbit.contacts.clearance.value_or(-1.0));
+  hash.Add(orbit.contacts.slowest_depth);
+  return hash.Value();
+}
+
+}  // namespace
+
+TEST_CASE("Simulations are bit-identical to the recorded fingerprints", "[fingerprint]") {
+  struct Case {
+    System system;
+    std::uint64_t expected;
+  };
+  const Case cases[] = {
+      {PaperSystem(0.2), 0xf200ec093f382020ull},      // chatter and sticking every period
+      {PaperSystem(0.6), 0xb859461dca5bb559ull},      // P(2,1)
+      {PaperSystem(1.4), 0xf3539fcefc9f20bdull},      // P(1,1)
+      {PaperSystem(1.75), 0x037066d4407f7291ull},     // chaotic
+      {GeneralThreeDof(0.5), 0x19cba023331eb6d0ull},  // general matrices, stop on mass 2
+      {GeneralThreeDof(1.1), 0x519a9e0c79d1e751ull},
+  };
+  for (const Case& c : cases) {
+    const std::uint64_t hash = SimulationHash(c.system, 1e5);
+    INFO("simulation omega = " << c.system.omega << " dof " << c.system.Dof() << ": 0x" << std::hex
+                               << hash);
+    CHECK(hash == c.expected);
+  }
+}
+
+TEST_CASE("Orbits are bit-identical to the recorded fingerprints", "[fingerprint]") {
+  struct Case {
+    double omega;
+    int p, q;
+    std::uint64_t expected;
+  };
+  const Case cases[] = {{0.6, 2, 1, 0xdd4b1bd740741c02ull},
+                        {0.9, 1, 1, 0xe689c899f2c2514full},
+                        {1.4, 1, 1, 0xe7a5ecc73b6982d3ull},
+                        {1.7, 4, 4, 0xe4943276223a571dull},
+                        {2.0, 1, 2, 0x4db4bd5b8561aef6ull}};
+  for (const Case& c : cases) {
+    const std::uint64_t hash = OrbitHash(PaperSystem(c.omega), c.p, c.q);
+    INFO("orbit omega = " << c.omega << ": 0x" << std::hex << hash);
+    CHECK(hash == c.expected);
+  }
+}
+
+TEST_CASE("A continued branch is bit-identical to the recorded fingerprint", "[fingerprint]") {
+  const System system = PaperSystem(1.4);
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
+  REQUIRE(seed.has_value());
+  ContinuationOptions options;
+  options.lower = 0.8;
+  options.upper = 1.7;
+  options.direction = ContinuationDirection::kBoth;
+  BranchStart start{system, {}, {}};
+  REQUIRE(FindOrbit(system, seed->eta, options.orbit, &start.orbit).termination ==
+          OrbitTermination::kConverged);
+  const Branch branch = ContinueBranch(start, options);
+  BitHash hash;
+  for (const BranchPoint& point : branch.points) {
+    hash.Add(point.parameter);
+    hash.Add(point.orbit.eta);
+  }
+  for (const SpecialPoint& special : branch.special_points) {
+    hash.Add(special.point.parameter);
+    hash.Add(special.monitor);
+  }
+  INFO("branch: " << branch.points.size() << " points, 0x" << std::hex << hash.Value());
+  CHECK(hash.Value() == 0x9e47a694497fe5b6ull);
+}
