@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "impactkit/csv.hpp"
+#include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
 namespace {

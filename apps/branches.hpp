@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/continuation.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "plot.hpp"
 
 namespace impactkit::cli {

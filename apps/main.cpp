@@ -15,7 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.hpp"
-#include "impactkit/model.hpp"
+#include "impactkit/model/system.hpp"
 #include "system_options.hpp"
 
 namespace {

@@ -11,9 +11,9 @@
 
 #include "commands.hpp"
 #include "orbit_seed.hpp"
-#include "impactkit/orbit.hpp"
-#include "impactkit/output_file.hpp"
-#include "impactkit/system_file.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/system_file.hpp"
 #include "system_options.hpp"
 
 namespace impactkit::cli {

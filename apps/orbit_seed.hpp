@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/orbit.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit::cli {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "impactkit/segment.hpp"
+#include "impactkit/dynamics/segment.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <string>
 
-#include "impactkit/simulate.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 namespace impactkit::cli {
 

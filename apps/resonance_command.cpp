@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "impactkit/csv.hpp"
-#include "impactkit/output_file.hpp"
-#include "impactkit/resonance.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/analysis/resonance.hpp"
 #include "plot.hpp"
 #include "system_options.hpp"
 

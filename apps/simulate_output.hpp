@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "impactkit/csv.hpp"
-#include "impactkit/output_file.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_file.hpp"
 #include "simulate_run.hpp"
 
 namespace impactkit::cli {

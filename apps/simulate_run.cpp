@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "impactkit/output_file.hpp"
+#include "impactkit/io/output_file.hpp"
 #include "plot.hpp"
 #include "progress.hpp"
 #include "simulate_output.hpp"

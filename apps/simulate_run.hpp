@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/periodicity.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/analysis/periodicity.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 #include "system_options.hpp"
 
 namespace impactkit::cli {

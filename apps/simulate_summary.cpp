@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "impactkit/system_file.hpp"
+#include "impactkit/io/system_file.hpp"
 
 namespace impactkit::cli {
 namespace {

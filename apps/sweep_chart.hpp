@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "impactkit/sweep.hpp"
+#include "impactkit/analysis/sweep.hpp"
 #include "plot.hpp"
 
 namespace impactkit::cli {

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "impactkit/csv.hpp"
-#include "impactkit/output_file.hpp"
-#include "impactkit/sweep.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/analysis/sweep.hpp"
 #include "plot.hpp"
 #include "sweep_chart.hpp"
 #include "system_options.hpp"

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "impactkit/system_file.hpp"
+#include "impactkit/io/system_file.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "impactkit/model.hpp"
+#include "impactkit/model/system.hpp"
 
 namespace impactkit::cli {
 

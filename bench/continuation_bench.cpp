@@ -9,7 +9,8 @@
 #include <fmt/format.h>
 
 #include "cpu_time.hpp"
-#include "impactkit/continuation.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/continuation/continuation.hpp"
 
 namespace {
 

@@ -9,7 +9,8 @@
 
 #include "cpu_time.hpp"
 
-#include "impactkit/orbit.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace {
 

@@ -16,8 +16,8 @@
 #include "cpu_time.hpp"
 
 #include "cvode_impacts.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 #include "odeint_impacts.hpp"
 
 namespace {

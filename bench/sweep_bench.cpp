@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "cpu_time.hpp"
-#include "impactkit/sweep.hpp"
+#include "impactkit/analysis/sweep.hpp"
 #include "odeint_impacts.hpp"
 
 namespace {

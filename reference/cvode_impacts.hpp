@@ -18,7 +18,7 @@
 
 #include <Eigen/Dense>
 
-#include "impactkit/model.hpp"
+#include "impactkit/model/system.hpp"
 #include "reference_run.hpp"
 
 namespace impactkit::reference {

@@ -11,8 +11,9 @@
 
 #include "closed_form_sdof.hpp"
 #include "cvode_impacts.hpp"
-#include "impactkit/continuation.hpp"
-#include "impactkit/orbit.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using namespace impactkit;
 

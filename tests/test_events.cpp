@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "impactkit/events.hpp"
-#include "impactkit/flow.hpp"
+#include "impactkit/dynamics/events.hpp"
+#include "impactkit/dynamics/flow.hpp"
 
 using Catch::Matchers::WithinAbs;
 using namespace impactkit;

@@ -10,10 +10,11 @@
 #include <cstdint>
 #include <cstring>
 
-#include "impactkit/continuation.hpp"
-#include "impactkit/orbit.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using namespace impactkit;
 

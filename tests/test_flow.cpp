@@ -5,8 +5,8 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "cvode_impacts.hpp"
-#include "impactkit/flow.hpp"
-#include "impactkit/model.hpp"
+#include "impactkit/dynamics/flow.hpp"
+#include "impactkit/model/system.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

@@ -3,9 +3,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "impactkit/impact_map.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using Catch::Matchers::WithinAbs;
 using namespace impactkit;

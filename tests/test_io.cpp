@@ -14,10 +14,10 @@
 
 #include <catch2/catch.hpp>
 
-#include "impactkit/csv.hpp"
-#include "impactkit/modal.hpp"
-#include "impactkit/output_file.hpp"
-#include "impactkit/system_file.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/model/modal.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/system_file.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;

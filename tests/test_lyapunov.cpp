@@ -3,10 +3,11 @@
 #include <cmath>
 #include <functional>
 
-#include "impactkit/lyapunov.hpp"
-#include "impactkit/orbit.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/analysis/lyapunov.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <random>
 
-#include "impactkit/map_fit.hpp"
-#include "impactkit/model.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/analysis/map_fit.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "impactkit/modal.hpp"
-#include "impactkit/model.hpp"
+#include "impactkit/model/modal.hpp"
+#include "impactkit/model/system.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

@@ -13,8 +13,8 @@
 #define IMPACTKIT_TEST_HAS_UNISTD 1
 #endif
 
-#include "impactkit/model.hpp"
-#include "impactkit/nonlinear_solve.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/solvers/nonlinear_solve.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

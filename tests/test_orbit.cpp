@@ -2,7 +2,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "impactkit/orbit.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

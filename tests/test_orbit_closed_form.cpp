@@ -20,8 +20,8 @@
 #include <catch2/catch.hpp>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "impactkit/impact_map.hpp"
-#include "impactkit/orbit.hpp"
+#include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using namespace impactkit;
 

@@ -13,7 +13,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "closed_form_sdof.hpp"
-#include "impactkit/impact_map.hpp"
+#include "impactkit/orbits/impact_map.hpp"
 
 using namespace impactkit;
 using testing::SdofP11;

@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "impactkit/periodicity.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/analysis/periodicity.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using namespace impactkit;
 

@@ -2,8 +2,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using Catch::Matchers::WithinAbs;
 using namespace impactkit;

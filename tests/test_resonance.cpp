@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "impactkit/recorders.hpp"
-#include "impactkit/resonance.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/analysis/resonance.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;

@@ -3,11 +3,12 @@
 #include <cmath>
 #include <complex>
 
-#include "impactkit/classify.hpp"
-#include "impactkit/orbit.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
-#include "impactkit/sweep.hpp"
+#include "impactkit/analysis/classify.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/analysis/sweep.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

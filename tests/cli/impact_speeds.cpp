@@ -11,8 +11,8 @@
 
 #include <fmt/format.h>
 
-#include "impactkit/recorders.hpp"
-#include "impactkit/simulate.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 4) {

@@ -5,7 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "impactkit/continuation.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/continuation/continuation.hpp"
 
 int main() {
   using namespace impactkit;

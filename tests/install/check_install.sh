@@ -13,7 +13,7 @@ prefix=$work/prefix
 
 "$cmake" --install "$build" --config "$config" --prefix "$prefix" >"$work/install.log" 2>&1 ||
   fail "cmake --install $build failed: $(cat "$work/install.log")"
-for file in include/impactkit/impactkit.hpp include/impactkit/system_file.hpp; do
+for file in include/impactkit/impactkit.hpp include/impactkit/io/system_file.hpp include/impactkit/core/errors.hpp; do
   [[ -f $prefix/$file ]] || fail "not installed: $file"
 done
 package_config=$(find "$prefix" -name impactkitConfig.cmake -print -quit)

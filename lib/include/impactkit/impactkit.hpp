@@ -1,23 +1,27 @@
 #pragma once
 /// \file impactkit.hpp
-/// Everything of the impactkit numerics library (the io area has its own
-/// headers: system_file.hpp, csv.hpp, output_file.hpp).
+/// Everything of the impactkit numerics library, area by area from the
+/// bottom layer up (docs/architecture.md). The io area (system files, CSV
+/// and JSON output) is its own target, impactkit::io, with its own headers.
 
-#include "impactkit/classify.hpp"
-#include "impactkit/continuation.hpp"
-#include "impactkit/events.hpp"
-#include "impactkit/flow.hpp"
-#include "impactkit/impact_map.hpp"
-#include "impactkit/lyapunov.hpp"
-#include "impactkit/map_fit.hpp"
-#include "impactkit/modal.hpp"
-#include "impactkit/model.hpp"
-#include "impactkit/nonlinear_solve.hpp"
-#include "impactkit/orbit.hpp"
-#include "impactkit/orbit_contacts.hpp"
-#include "impactkit/periodicity.hpp"
-#include "impactkit/recorders.hpp"
-#include "impactkit/resonance.hpp"
-#include "impactkit/segment.hpp"
-#include "impactkit/simulate.hpp"
-#include "impactkit/sweep.hpp"
+#include "impactkit/core/errors.hpp"
+#include "impactkit/solvers/nonlinear_solve.hpp"
+#include "impactkit/dynamics/events.hpp"
+#include "impactkit/dynamics/flow.hpp"
+#include "impactkit/dynamics/segment.hpp"
+#include "impactkit/model/modal.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/orbits/orbit_contacts.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/analysis/classify.hpp"
+#include "impactkit/analysis/lyapunov.hpp"
+#include "impactkit/analysis/map_fit.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/analysis/periodicity.hpp"
+#include "impactkit/analysis/resonance.hpp"
+#include "impactkit/analysis/steady_window.hpp"
+#include "impactkit/analysis/sweep.hpp"

@@ -11,9 +11,10 @@
 #include <exception>
 #include <optional>
 
-#include "impactkit/model.hpp"
-#include "impactkit/orbit.hpp"
-#include "impactkit/system_file.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/io/system_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace impactkit;

@@ -1,0 +1,175 @@
+#pragma once
+/// \file continuation.hpp
+/// Pseudo-arclength continuation of periodic orbits P(p, q) in one named
+/// parameter μ (any of ParameterNames: omega, xs, r, A1…, m, k, c).
+///
+/// The unknowns are X = (η, μ), size 2N + 1, on the curve
+///
+///     U(η, μ) = P_I^p(η; μ) - η - q T(μ) e_τ = 0.
+///
+/// From a point X_k with unit tangent t_k (the null vector of
+/// [U_η U_μ], oriented to continue the previous one), the predictor is
+/// X_k + s t_k and the corrector solves, by KINSOL Newton, the bordered
+/// system
+///
+///     U(X) = 0,   t_k · (X - X_k) = s,
+///
+/// whose Jacobian [U_η U_μ; t_kᵀ] stays regular through folds, so the
+/// branch turns round them. U_η is the impact map's analytic Jacobian;
+/// U_μ is a central difference in μ (the map has no closed-form parameter
+/// derivative here; Newton needs only an approximate one).
+///
+/// Along the branch, test functions are evaluated at every point and each
+/// sign change is located by the Illinois method on s (each trial point
+/// corrected onto the branch):
+///   fold             det(D P_I^p - I)          (a multiplier through +1)
+///   period doubling  det(D P_I^p + I)          (a multiplier through -1)
+///   Neimark–Sacker   Π_{i<j} (λ_i λ_j - 1)    (a complex pair through |λ| = 1;
+///                    its real-pair zeros, neutral saddles, are discarded)
+/// Grazing and sticking onset (orbit_contacts.hpp) end the branch: past them
+/// the orbit would pass through the stop, so they are approached from the
+/// branch side — the monitor is extrapolated linearly in s and its zero
+/// located by safeguarded secant steps — and the branch stops there.
+
+#include <Eigen/Dense>
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "impactkit/model/system.hpp"
+#include "impactkit/orbits/orbit.hpp"
+
+namespace impactkit {
+
+enum class ContinuationDirection { kIncreasing, kDecreasing, kBoth };
+
+struct ContinuationOptions {
+  std::string parameter = "omega";
+  /// The branch stays within [lower, upper] (it ends on reaching a bound).
+  double lower = 0.0;
+  double upper = 0.0;
+  /// Initial sense of μ from the start; kBoth follows the branch both ways.
+  ContinuationDirection direction = ContinuationDirection::kIncreasing;
+  /// Arclength steps in (η, μ) space: start, floor and ceiling.
+  double initial_step = 0.01;
+  double min_step = 1e-7;
+  double max_step = 0.02;
+  int max_points = 10000;  ///< per direction
+  /// Newton iterations allowed to the corrector before the step is halved.
+  int corrector_iterations = 8;
+  /// A corrected point may lie at most this fraction of the step from its
+  /// prediction; farther means the corrector jumped (to another branch).
+  double max_correction = 0.5;
+  /// Locate fold, period doubling and Neimark–Sacker points (grazing and
+  /// sticking are always watched: they end the branch).
+  bool locate_bifurcations = true;
+  /// p, q, tolerances and the map's options. The analytic Jacobian is used
+  /// whatever orbit.jacobian says (the finite-difference one costs 4N maps).
+  OrbitOptions orbit;
+  bool IsValid(std::string* error) const;
+};
+
+/// One corrected point of a branch.
+struct BranchPoint {
+  double parameter = 0.0;
+  double arclength = 0.0;             ///< from the start point, signed by direction
+  PeriodicOrbit orbit;                ///< at this parameter value
+  double fold_test = 0.0;             ///< det(D P - I)
+  double period_doubling_test = 0.0;  ///< det(D P + I)
+  double neimark_sacker_test = 0.0;   ///< Π_{i<j} (λ_i λ_j - 1)
+  Eigen::VectorXd tangent;            ///< unit tangent (η, μ) here
+};
+
+enum class SpecialPointType { kFold, kPeriodDoubling, kNeimarkSacker, kGrazing, kSticking };
+
+/// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking".
+std::string ToString(SpecialPointType type);
+
+struct SpecialPoint {
+  SpecialPointType type = SpecialPointType::kFold;
+  BranchPoint point;  ///< the located point
+  /// The critical multiplier (fold, period doubling, Neimark–Sacker), and
+  /// for a period doubling the real eigenvector of D P for it.
+  std::complex<double> multiplier{0.0, 0.0};
+  Eigen::VectorXd eigenvector;
+  /// The monitor at the located point: the test function, or for grazing
+  /// and sticking the clearance or depth of orbit_contacts.hpp.
+  double monitor = 0.0;
+  /// Grazing/sticking: which impact vanishes (-1 for a new contact).
+  int vanishing_impact = -1;
+  /// One line: "period doubling at omega = 1.6123 (multiplier -1.000000)".
+  std::string Describe(const std::string& parameter) const;
+};
+
+enum class BranchEnd {
+  kParameterBound,   ///< reached lower or upper
+  kGrazing,          ///< ended at a grazing point (special point)
+  kSticking,         ///< ended at sticking onset (special point)
+  kMaxPoints,        ///< max_points reached
+  kCorrectorFailed,  ///< no convergence even with the smallest step
+};
+
+/// "parameter_bound", "grazing", "sticking", "max_points", "corrector_failed".
+std::string ToString(BranchEnd end);
+
+struct Branch {
+  std::string parameter;
+  int p = 0;
+  int q = 0;
+  /// In order along the branch; with kBoth, from the decreasing end to the
+  /// increasing end.
+  std::vector<BranchPoint> points;
+  std::vector<SpecialPoint> special_points;  ///< in order along the branch
+  BranchEnd end = BranchEnd::kMaxPoints;     ///< why the last point is the last
+  std::string end_message;
+  /// With kBoth: why the first point is the first.
+  std::optional<BranchEnd> begin;
+  std::string begin_message;
+  double seconds = 0.0;
+};
+
+/// Called after each accepted point (progress display).
+using ContinuationProgress = std::function<void(const BranchPoint&)>;
+
+/// Where a branch starts: a converged orbit of `system` (whose parameter
+/// value is the start), and optionally the initial direction in (η, μ)
+/// (size 2N + 1; otherwise from options.direction).
+struct BranchStart {
+  System system;
+  PeriodicOrbit orbit;
+  Eigen::VectorXd direction;
+};
+
+/// Follows the branch through `start`. Throws InvalidInput for bad
+/// options, a parameter name the system lacks, bounds not valid for the
+/// system or not holding the start, or a start that is not an orbit (its
+/// residual above 1e3 times the tolerance).
+Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
+                      const ContinuationProgress& progress = {});
+
+/// A first point on the P(2p, 2q) branch born at the period doubling `pd`
+/// of `branch`, displaced from it by `offset` (arclength) along the flip
+/// eigenvector, with the direction leading away from the period doubling.
+/// Empty if the corrector does not converge to a genuinely doubled orbit.
+std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch& branch,
+                                              const SpecialPoint& pd,
+                                              const ContinuationOptions& options,
+                                              double offset = 1e-3);
+
+/// Seeds at the grazing (or sticking) point `graze` of `branch` for the
+/// orbit with one impact more (a new contact) or one fewer (a vanishing
+/// impact), at the parameter `offset` to either side of it: which side
+/// such an orbit lives on depends on the grazing. Not yet orbits: refine
+/// each with FindOrbit (p and q in `orbit`). None when p would drop to 0.
+struct GrazingSeed {
+  System system;       ///< at the seed's parameter value
+  OrbitOptions orbit;  ///< p ± 1, q
+  Eigen::VectorXd eta;
+};
+std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& branch,
+                                        const SpecialPoint& graze,
+                                        const ContinuationOptions& options, double offset = 1e-3);
+
+}  // namespace impactkit

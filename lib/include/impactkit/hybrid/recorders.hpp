@@ -1,0 +1,132 @@
+#pragma once
+/// \file recorders.hpp
+/// Observers that record what users ask of a simulation. Each records
+/// everything it is shown: run the transient without them.
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "impactkit/hybrid/simulator.hpp"
+
+namespace impactkit {
+
+/// Forwards every call to several observers, in order.
+class ObserverList : public Observer {
+ public:
+  void Add(Observer& observer) { observers_.push_back(&observer); }
+  void OnSegment(const Segment& segment) override;
+  void OnImpact(const Impact& impact) override;
+  void OnChatter(double t_first, double t_end) override;
+  void OnRelease(double t_begin, double t_release) override;
+  bool ShouldStop() const override;
+
+ private:
+  std::vector<Observer*> observers_;
+};
+
+/// One sample of the motion.
+struct Sample {
+  double t = 0.0;
+  Eigen::VectorXd x;
+  Eigen::VectorXd v;
+  bool stuck = false;
+};
+
+/// Samples at t = t_first + k dt (k = 0, 1, ...) that fall inside segments.
+class TimeSeriesRecorder : public Observer {
+ public:
+  TimeSeriesRecorder(double t_first, double dt);
+  void OnSegment(const Segment& segment) override;
+  const std::vector<Sample>& Samples() const { return samples_; }
+
+ private:
+  double t_first_;
+  double dt_;
+  long next_ = 0;
+  std::vector<Sample> samples_;
+};
+
+/// Every impact.
+class ImpactRecorder : public Observer {
+ public:
+  void OnImpact(const Impact& impact) override { impacts_.push_back(impact); }
+  const std::vector<Impact>& Impacts() const { return impacts_; }
+
+ private:
+  std::vector<Impact> impacts_;
+};
+
+/// The state once per forcing period, at t = k T (forcing phase 0).
+class StroboscopicRecorder : public Observer {
+ public:
+  explicit StroboscopicRecorder(double period) : sampler_(0.0, period) {}
+  void OnSegment(const Segment& segment) override { sampler_.OnSegment(segment); }
+  const std::vector<Sample>& Points() const { return sampler_.Samples(); }
+
+ private:
+  TimeSeriesRecorder sampler_;
+};
+
+/// Max and min of every x_i over one forcing period [k T, (k+1) T).
+struct PeriodExtrema {
+  long period = 0;  ///< k
+  Eigen::VectorXd max;
+  Eigen::VectorXd min;
+};
+
+/// Exact per-period extrema of every x_i: in each segment the interior
+/// extrema are the zeros of v_i, found like events (events.hpp).
+class ExtremaRecorder : public Observer {
+ public:
+  explicit ExtremaRecorder(double period) : period_(period) {}
+  void OnSegment(const Segment& segment) override;
+  /// Periods seen whole (the first and last may be partial and are left out).
+  std::vector<PeriodExtrema> CompletePeriods() const;
+
+ private:
+  void Include(long period, int i, double value);
+  double period_;
+  int max_dof_ = 0;
+  double first_time_ = 0.0;
+  double last_time_ = 0.0;
+  bool any_ = false;
+  std::vector<PeriodExtrema> periods_;
+};
+
+/// The times at which chatter sequences ended at the stop (what
+/// DetectPeriod needs to call a motion sticking).
+class ChatterRecorder : public Observer {
+ public:
+  void OnChatter(double t_first, double t_end) override {
+    (void)t_first;
+    end_times_.push_back(t_end);
+  }
+  const std::vector<double>& EndTimes() const { return end_times_; }
+
+ private:
+  std::vector<double> end_times_;
+};
+
+/// An interval during which the contact mass is at the stop (after chatter).
+struct StickingInterval {
+  double begin = 0.0;
+  double end = 0.0;
+};
+
+/// Sticking intervals, from the impact that starts a completed chatter
+/// sequence (its accumulated tail is simulated as held at the stop) or the
+/// impact with r = 0, to release. An interval still open at the end of the
+/// run ends there. TotalTime() equals SimulationSummary::stuck_time.
+class StickingRecorder : public Observer {
+ public:
+  void OnSegment(const Segment& segment) override;
+  const std::vector<StickingInterval>& Intervals() const { return intervals_; }
+  double TotalTime() const;
+
+ private:
+  std::vector<StickingInterval> intervals_;
+  bool open_ = false;
+};
+
+}  // namespace impactkit

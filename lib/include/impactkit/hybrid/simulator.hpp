@@ -1,0 +1,166 @@
+#pragma once
+/// \file simulate.hpp
+/// The exact hybrid simulator.
+///
+/// Between events the motion is linear and harmonically forced, so it is
+/// known in closed form (flow.hpp); the simulator only has to find events.
+/// One step of Simulate(), with y = (x, v) and c the contact DOF:
+///
+///     if free:
+///       F  <- closed-form flight from (t, y)
+///       te <- first time in (t, t_end] where g = x_c - xs reaches 0 from
+///             below (events.hpp: a bound on |g''| makes a skipped pair of
+///             crossings impossible; te refined to ~1e-13)
+///       observer.OnSegment(F on [t, min(te, t_end)])
+///       no te: t <- t_end, stop
+///       y- <- F(te);  v_c(te+) <- -r v_c(te-);  observer.OnImpact(...)
+///       if chatter is predicted to accumulate (Budd & Dux: after impact speed
+///           u = r v and acceleration a > 0 towards the stop, the remaining
+///           impacts end at t* = te + 2u / (a (1 - r))) and t* - te is small
+///           on the system's time scale, or (threshold method) the last
+///           inter-impact time is below the threshold:
+///         jump: the other masses follow the stuck subsystem to t*,
+///               x_c = xs, v_c = 0; observer.OnChatter(te, t*)
+///       if v_c = 0 at the stop: stuck if the contact force Fs > 0 there
+///     if stuck:
+///       S  <- closed-form stuck subsystem from (t, y without c)
+///       tr <- first time where Fs reaches 0 from above
+///       observer.OnSegment(S on [t, min(tr, t_end)])
+///       no tr: t <- t_end, stop;  else free, observer.OnRelease(tr)
+///
+/// On return the state is the hybrid state at t_end (or where the run
+/// stopped, with the reason in the summary).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "impactkit/dynamics/flow.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/dynamics/segment.hpp"
+
+namespace impactkit {
+
+/// How chatter (an accumulating sequence of impacts) is ended.
+enum class ChatterMethod {
+  /// Predict the accumulation time of the geometric impact sequence from the
+  /// local acceleration and jump to it (Budd & Dux 1994). Default.
+  kAccumulation,
+  /// The paper's rule (Cusumano & Bai 1993): stick once the interval between
+  /// two impacts falls below `chatter_threshold`.
+  kThreshold,
+};
+
+std::string ToString(ChatterMethod method);
+
+struct SimulationOptions {
+  ChatterMethod chatter = ChatterMethod::kAccumulation;
+  /// kAccumulation: jump once the predicted remaining chatter time is below
+  /// this fraction of the system's shortest time scale (min of 2π/Ω and
+  /// 2π/ω_max). Smaller is more faithful and slower.
+  double chatter_span = 1e-4;
+  /// kThreshold: inter-impact interval (time units) below which the mass
+  /// is taken to stick.
+  double chatter_threshold = 1e-4;
+  /// Event times are refined until the bracket is below this (time units).
+  double event_time_tolerance = 1e-13;
+  /// Guard against pathological inputs: the run stops (status kEventLimit)
+  /// after this many events.
+  std::int64_t max_events = 200'000'000;
+
+  bool IsValid(std::string* error) const;
+};
+
+/// Why Simulate() returned.
+enum class SimulationStatus {
+  kReachedEnd,   ///< the state is at t_end
+  kEventLimit,   ///< max_events reached; the state is at the last event
+  kStopped,      ///< an observer asked to stop; the state is where it asked
+  kStalled,      ///< events kept repeating at one instant; the state is there
+};
+
+std::string ToString(SimulationStatus status);
+
+struct SimulationSummary {
+  SimulationStatus status = SimulationStatus::kReachedEnd;
+  std::int64_t impacts = 0;        ///< impacts with the stop
+  std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
+  std::int64_t releases = 0;       ///< ends of sticking
+  /// Total time held at the stop, including the accumulated tails of
+  /// completed chatter sequences.
+  double stuck_time = 0.0;
+  double elapsed_seconds = 0.0;
+  std::string BriefReport() const;
+};
+
+/// An impact of the contact mass with the stop.
+struct Impact {
+  double t = 0.0;
+  double phase = 0.0;     ///< t mod 2π/Ω, in [0, T)
+  double velocity = 0.0;  ///< v_c(t-) > 0, the speed just before impact
+  Eigen::VectorXd x;      ///< positions at impact (x_c = xs)
+  Eigen::VectorXd v;      ///< velocities just before impact
+};
+
+/// Receives what the simulator finds; every method has an empty default.
+/// A segment is valid only during the call.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  /// A piece of exact motion on [segment.Begin(), segment.End()].
+  virtual void OnSegment(const Segment& segment) { (void)segment; }
+  virtual void OnImpact(const Impact& impact) { (void)impact; }
+  /// A chatter sequence beginning with the impact at t_first was ended at
+  /// its accumulation point t_end (x_c = xs, v_c = 0 there).
+  virtual void OnChatter(double t_first, double t_end) {
+    (void)t_first;
+    (void)t_end;
+  }
+  /// The contact mass leaves the stop after sticking since t_begin.
+  virtual void OnRelease(double t_begin, double t_release) {
+    (void)t_begin;
+    (void)t_release;
+  }
+  /// Return true to stop the run after the current event.
+  virtual bool ShouldStop() const { return false; }
+};
+
+/// The simulator for one system: the free flow and the stuck subsystem are
+/// decomposed once, then any number of runs reuse them.
+class Simulator {
+ public:
+  /// Throws InvalidInput for an invalid system or options.
+  Simulator(const System& system, const SimulationOptions& options = {});
+  ~Simulator();
+  Simulator(Simulator&&) noexcept;
+  Simulator& operator=(Simulator&&) noexcept;
+
+  /// Advances `state` to t_end (>= state.t), reporting to `observer`.
+  /// Throws InvalidInput for an invalid state.
+  SimulationSummary Run(HybridState& state, double t_end, Observer& observer) const;
+  SimulationSummary Run(HybridState& state, double t_end) const;
+
+  const System& GetSystem() const;
+  const SimulationOptions& Options() const;
+  /// The free-flight flow (all N DOF).
+  const LinearFlow& FreeFlow() const;
+  /// The contact force Fs that would hold the contact mass at the stop, for
+  /// a state with x_c = xs, v_c = 0 (positive: pushed into the stop).
+  double ContactForce(const HybridState& state) const;
+
+  struct Impl;  ///< opaque: the decomposed flows
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Advances `state` to t_end (> state.t), reporting to `observer`.
+/// Throws InvalidInput for an invalid system, state or options.
+SimulationSummary Simulate(const System& system, const SimulationOptions& options,
+                           HybridState& state, double t_end, Observer& observer);
+
+/// Same, without an observer.
+SimulationSummary Simulate(const System& system, const SimulationOptions& options,
+                           HybridState& state, double t_end);
+
+}  // namespace impactkit

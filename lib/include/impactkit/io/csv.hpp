@@ -1,0 +1,49 @@
+#pragma once
+/// \file csv.hpp
+/// Numeric tables for plotting tools and scripts:
+///
+///     # impactkit simulate omega=1.4 xs=0.1 ...      (provenance, one line)
+///     t,x1,x2,v1,v2,stuck                            (header)
+///     897.59992760, ...                              (rows)
+///
+/// Numbers are written in the shortest form that reads back to the same
+/// double, so a table loses nothing of what the simulator computed. The file
+/// appears only on Commit() (output_file.hpp).
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "impactkit/io/output_file.hpp"
+
+namespace impactkit {
+
+class CsvWriter {
+ public:
+  /// `provenance` is what produced the table, written after "# impactkit ";
+  /// `columns` are the header names. Throws OutputError if the file cannot
+  /// be created, std::invalid_argument for a provenance with a line break
+  /// or no columns.
+  CsvWriter(const std::filesystem::path& path, std::string_view provenance,
+            const std::vector<std::string>& columns);
+
+  /// One row: exactly as many values as there are columns (else
+  /// std::invalid_argument). Throws OutputError if writing fails.
+  void WriteRow(std::span<const double> values);
+  /// Writes what is buffered and moves the file into place.
+  void Commit();
+
+  std::size_t Columns() const { return columns_; }
+  const std::filesystem::path& Path() const { return file_.Path(); }
+
+ private:
+  void Flush();
+
+  AtomicOutputFile file_;
+  std::size_t columns_;
+  std::string buffer_;  ///< rows not yet written: one write per ~64 KiB, not per row
+};
+
+}  // namespace impactkit

@@ -1,0 +1,95 @@
+#pragma once
+/// \file orbit.hpp
+/// Periodic impacting orbits P(p, q) — p impacts in q forcing periods — as
+/// fixed points of the impact map (impact_map.hpp):
+///
+///     U(η) = P_I^p(η) - η - q T e_τ = 0,
+///
+/// solved by Newton–Raphson through KINSOL with the analytic (or the paper's
+/// finite-difference) Jacobian, falling back on Levenberg–Marquardt through
+/// Ceres from poor seeds. Stability: the eigenvalues of D P_I^p at the fixed
+/// point (the multipliers); the orbit is stable when all lie inside the unit
+/// circle. Unstable orbits are found as readily as stable ones.
+
+#include <complex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/solvers/nonlinear_solve.hpp"
+#include "impactkit/orbits/orbit_contacts.hpp"
+
+namespace impactkit {
+
+enum class JacobianMethod {
+  kAnalytic,          ///< saltation matrices and flow sensitivities (default)
+  kFiniteDifference,  ///< central differences of the map (the paper's method)
+};
+
+std::string ToString(JacobianMethod method);
+
+struct OrbitOptions {
+  int p = 1;  ///< impacts per orbit (>= 1)
+  int q = 1;  ///< forcing periods per orbit (>= 1)
+  JacobianMethod jacobian = JacobianMethod::kAnalytic;
+  /// Tolerances of the Newton solve; residual_tolerance is max |U| at the
+  /// solution (default 1e-11).
+  NewtonOptions newton;
+  /// Try Levenberg–Marquardt (Ceres) when Newton does not converge.
+  bool least_squares_fallback = true;
+  ImpactMapOptions map;
+  bool IsValid(std::string* error) const;
+};
+
+enum class OrbitTermination {
+  kConverged,      ///< the orbit fields are valid
+  kNoConvergence,  ///< neither solver reached the tolerance; the orbit holds the best point
+  kMapFailed,      ///< the map failed at the seed itself (lost impact, grazing, chatter)
+};
+
+std::string ToString(OrbitTermination termination);
+
+/// One impact of the orbit.
+struct OrbitImpact {
+  double t = 0.0;
+  double phase = 0.0;     ///< t mod T, in [0, T)
+  double velocity = 0.0;  ///< impact speed v_c(t-)
+};
+
+struct PeriodicOrbit {
+  int p = 0;
+  int q = 0;
+  double omega = 0.0;
+  Eigen::VectorXd eta;              ///< the fixed point, τ in [0, T)
+  std::vector<OrbitImpact> impacts; ///< the p impacts from eta on, in time order
+  Eigen::MatrixXd jacobian;         ///< D P_I^p at eta
+  Eigen::VectorXcd multipliers;     ///< eigenvalues of `jacobian`, by decreasing modulus
+  bool stable = false;              ///< every |multiplier| < 1
+  double residual = 0.0;            ///< max |U(eta)|
+  OrbitContacts contacts;           ///< extent in x_c and the grazing monitors
+};
+
+/// The orbit P(p, q) through the fixed point `eta` of P_I^p: impacts,
+/// Jacobian, multipliers, stability, residual and contacts. Throws
+/// InvalidInput if the map cannot follow p impacts from eta.
+PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q);
+
+struct OrbitSummary {
+  OrbitTermination termination = OrbitTermination::kNoConvergence;
+  std::string message;
+  int iterations = 0;          ///< Newton iterations (plus LM iterations if used)
+  bool used_fallback = false;  ///< Levenberg–Marquardt was needed
+  double residual = 0.0;       ///< max |U| at the returned point
+  double seconds = 0.0;
+  std::string BriefReport() const;
+};
+
+/// Solves U(η) = 0 from `guess` (an impact state: v_c > 0). Throws
+/// InvalidInput for bad options, system or guess.
+OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
+                       const OrbitOptions& options, PeriodicOrbit* orbit);
+
+}  // namespace impactkit

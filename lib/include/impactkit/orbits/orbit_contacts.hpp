@@ -1,0 +1,48 @@
+#pragma once
+/// \file orbit_contacts.hpp
+/// How near a periodic orbit is to changing its sequence of impacts — the
+/// monitors that end smooth continuation (DESIGN.md §5) — and its extent in
+/// the contact coordinate x_c.
+///
+/// Two events end a P(p, q) branch, each watched by a quantity that is
+/// positive on the branch, smooth along it and zero at the event:
+///  - a new contact: the highest interior maximum of x_c in a free flight
+///    rises to the stop; its clearance xs - max is the monitor;
+///  - a vanishing impact: the slowest impact's speed v goes to 0. Its
+///    monitor is the depth v² / (2|a|), a = x_c'' on arrival — how far the
+///    parabola through the impact would reach past the stop. v itself goes
+///    like the square root of the distance to the event (a grazing is a
+///    square-root singularity of the impact map); v²/(2|a|) goes linearly,
+///    so a secant step locates its zero. With a < 0 the mass turns back
+///    (grazing); with a > 0 it is pressed into the stop and the impacts
+///    accumulate (sticking onset).
+
+#include <Eigen/Dense>
+#include <optional>
+
+#include "impactkit/orbits/impact_map.hpp"
+
+namespace impactkit {
+
+struct OrbitContacts {
+  double contact_min = 0.0;  ///< least x_c over the orbit
+  double contact_max = 0.0;  ///< greatest x_c over the orbit (xs: the impacts)
+  /// xs - the highest interior maximum of x_c over the flights; empty when
+  /// no flight has an interior maximum.
+  std::optional<double> clearance;
+  double clearance_time = 0.0;  ///< when the highest interior maximum occurs
+  int clearance_flight = 0;     ///< the impact (index) whose flight holds it
+  /// v² / (2|a|) of the slowest impact (the one with the least depth).
+  double slowest_depth = 0.0;
+  int slowest_impact = 0;        ///< its index among the orbit's p impacts
+  bool slowest_pressed = false;  ///< a > 0 there: pressed into the stop
+  double Range() const { return contact_max - contact_min; }
+};
+
+/// The contacts of the orbit through the impact state `eta` (p impacts):
+/// the interior extrema of x_c in each flight are the zeros of v_c, found by
+/// the certified search of events.hpp. Throws InvalidInput if the map
+/// cannot follow p impacts from eta.
+OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& eta, int p);
+
+}  // namespace impactkit

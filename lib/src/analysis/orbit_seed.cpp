@@ -1,0 +1,28 @@
+#include "impactkit/analysis/orbit_seed.hpp"
+
+#include <fmt/format.h>
+
+#include "impactkit/analysis/steady_window.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/impact_map.hpp"
+
+namespace impactkit {
+
+std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient, int max_q) {
+  if (transient < 0 || max_q < 1) {
+    throw InvalidInput(
+        fmt::format("transient must be >= 0 and max_q >= 1, got {} and {}", transient, max_q));
+  }
+  const Simulator simulator(system);
+  const double period = system.ForcingPeriod();
+  HybridState state = RestState(system);
+  simulator.Run(state, transient * period);
+  SteadyWindowRecorder window(period);
+  simulator.Run(state, (transient + 2 * max_q + 1) * period, window);
+  if (window.Impacts().empty()) return std::nullopt;
+  const Impact& last = window.Impacts().back();
+  return OrbitSeed{window.Period(PeriodOptions{max_q, 1e-6}),
+                   ImpactMap(system).ToEta(last.t, last.x, last.v)};
+}
+
+}  // namespace impactkit

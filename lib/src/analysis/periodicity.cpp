@@ -1,0 +1,65 @@
+#include "impactkit/analysis/periodicity.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace impactkit {
+namespace {
+
+double Distance(const Sample& a, const Sample& b) {
+  return std::max((a.x - b.x).cwiseAbs().maxCoeff(), (a.v - b.v).cwiseAbs().maxCoeff());
+}
+
+double Scale(const std::vector<Sample>& strobe) {
+  double scale = 1e-3;
+  for (const Sample& s : strobe) {
+    scale = std::max({scale, s.x.cwiseAbs().maxCoeff(), s.v.cwiseAbs().maxCoeff()});
+  }
+  return scale;
+}
+
+/// Largest relative distance between points q periods apart.
+double Mismatch(const std::vector<Sample>& strobe, int q, double scale) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k + q < strobe.size(); ++k) {
+    worst = std::max(worst, Distance(strobe[k + q], strobe[k]) / scale);
+  }
+  return worst;
+}
+
+long CountIn(const std::vector<double>& times, double begin, double end) {
+  return std::count_if(times.begin(), times.end(),
+                       [&](double t) { return t >= begin && t < end; });
+}
+
+}  // namespace
+
+std::string MotionPeriod::ToString() const {
+  if (!periodic) return fmt::format("no period up to q = {}", searched_q);
+  return sticking ? fmt::format("P(inf,{})", q) : fmt::format("P({},{})", p, q);
+}
+
+MotionPeriod DetectPeriod(const std::vector<Sample>& strobe, const std::vector<double>& impact_times,
+                          const std::vector<double>& chatter_end_times,
+                          const PeriodOptions& options) {
+  MotionPeriod result;
+  if (strobe.size() < 3) return result;
+  const double scale = Scale(strobe);
+  result.searched_q = std::min<int>(options.max_q, static_cast<int>((strobe.size() - 1) / 2));
+  for (int q = 1; q <= result.searched_q; ++q) {
+    const double mismatch = Mismatch(strobe, q, scale);
+    if (mismatch > options.tolerance) continue;
+    const double end = strobe.back().t, begin = strobe[strobe.size() - 1 - q].t;
+    result.periodic = true;
+    result.q = q;
+    result.p = CountIn(impact_times, begin, end);
+    result.sticking = CountIn(chatter_end_times, begin, end) > 0;
+    result.mismatch = mismatch;
+    return result;
+  }
+  return result;
+}
+
+}  // namespace impactkit

@@ -1,0 +1,288 @@
+#include "impactkit/analysis/sweep.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "impactkit/hybrid/recorders.hpp"
+
+namespace impactkit {
+namespace {
+
+/// `system` with the swept parameter set to `value`, validated.
+System SystemAt(const System& base, const std::string& name, double value) {
+  System system = base;
+  SetParameter(system, name, value);
+  try {
+    Validate(system);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("sweep of {} at {}: {}", name, value, error.what()));
+  }
+  return system;
+}
+
+bool Fits(const System& system, const HybridState& state) {
+  if (state.x.size() != system.Dof() || state.v.size() != system.Dof()) return false;
+  try {
+    ValidateState(system, state);
+  } catch (const InvalidInput&) {
+    return false;
+  }
+  return true;
+}
+
+/// Everything that all chunks share, read-only.
+struct SweepPlan {
+  const SweepOptions& options;
+  std::vector<double> values;
+  std::vector<System> systems;  ///< one per value
+  int chunk_size = 1;
+  int chunks = 1;
+};
+
+HybridState FixedState(const SweepPlan& plan, int k) {
+  HybridState state =
+      plan.options.fixed_state ? *plan.options.fixed_state : RestState(plan.systems[k]);
+  state.t = 0.0;
+  return state;
+}
+
+class ValueRun {
+ public:
+  ValueRun(const System& system, const SweepOptions& options)
+      : simulator_(system, options.simulation), period_(system.ForcingPeriod()) {}
+
+  /// Advances to period `k` (t = k T); false if the simulator stopped early.
+  bool RunTo(HybridState& state, int k, Observer* observer) {
+    const double t_end = static_cast<double>(k) * period_;
+    if (!(t_end > state.t)) return true;
+    const SimulationSummary summary =
+        observer ? simulator_.Run(state, t_end, *observer) : simulator_.Run(state, t_end);
+    events_ += summary.impacts + summary.chatter_jumps + summary.releases;
+    status_ = summary.status;
+    return status_ == SimulationStatus::kReachedEnd;
+  }
+
+  double Period() const { return period_; }
+  std::int64_t Events() const { return events_; }
+  SimulationStatus Status() const { return status_; }
+
+ private:
+  Simulator simulator_;
+  double period_;
+  std::int64_t events_ = 0;
+  SimulationStatus status_ = SimulationStatus::kReachedEnd;
+};
+
+/// Per-period max - min of x_i.
+std::vector<double> Ranges(const std::vector<PeriodExtrema>& periods, int i) {
+  std::vector<double> ranges;
+  ranges.reserve(periods.size());
+  for (const PeriodExtrema& e : periods) ranges.push_back(e.max(i) - e.min(i));
+  return ranges;
+}
+
+/// One value from `state` (time reset to 0); `state` ends where the run
+/// ended. False if the simulator stopped early.
+bool RunValue(const System& system, const SweepOptions& options, HybridState& state,
+              SweepPoint* point) {
+  ValueRun run(system, options);
+  const int transient = options.transient_periods;
+  const int end = transient + options.recorded_periods;
+  const int window = std::max(options.recorded_periods, 2 * options.classify.period.max_q + 1);
+  const int first_classified = std::max(0, end - window);
+  state.t = 0.0;
+
+  ImpactRecorder impacts;
+  StroboscopicRecorder strobe(run.Period());
+  ChatterRecorder chatter;
+  ExtremaRecorder extrema(run.Period());
+  ObserverList classified;
+  classified.Add(impacts);
+  classified.Add(strobe);
+  classified.Add(chatter);
+  ObserverList recorded = classified;
+  recorded.Add(extrema);
+
+  const bool reached = run.RunTo(state, first_classified, nullptr) &&
+                       run.RunTo(state, transient, &classified) && run.RunTo(state, end, &recorded);
+  point->status = run.Status();
+  point->events = run.Events();
+  const double t_record = static_cast<double>(transient) * run.Period();
+  for (const Impact& i : impacts.Impacts()) {
+    if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity});
+  }
+  const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
+  point->range_contact = Ranges(periods, system.contact_dof);
+  point->range_first = Ranges(periods, 0);
+  if (reached) {
+    point->classification = ClassifyMotion(system, strobe.Points(), impacts.Impacts(),
+                                           chatter.EndTimes(), options.classify);
+  }
+  return reached;
+}
+
+/// Values [begin, end) of the sweep, in order, into `points`.
+void RunChunk(const SweepPlan& plan, int chunk, std::vector<SweepPoint>& points,
+              const std::function<void()>& value_done) {
+  const SweepOptions& options = plan.options;
+  const int begin = chunk * plan.chunk_size;
+  const int end = std::min<int>(begin + plan.chunk_size, static_cast<int>(plan.values.size()));
+  const bool previous = options.start == SweepStart::kPrevious;
+  HybridState state;
+  bool have_state = false;
+  if (previous && begin > 0) {
+    // The warm-up: transients only, from the fixed state, on the way to `begin`.
+    for (int k = std::max(0, begin - options.warmup_values); k < begin; ++k) {
+      if (!have_state || !Fits(plan.systems[k], state)) state = FixedState(plan, k);
+      ValueRun run(plan.systems[k], options);
+      state.t = 0.0;
+      have_state = run.RunTo(state, options.transient_periods, nullptr);
+    }
+  }
+  for (int k = begin; k < end; ++k) {
+    SweepPoint& point = points[k];
+    point.value = plan.values[k];
+    if (!previous || !have_state || !Fits(plan.systems[k], state)) {
+      point.restarted = previous && k > 0;
+      state = FixedState(plan, k);
+    }
+    have_state = RunValue(plan.systems[k], options, state, &point);
+    value_done();
+  }
+}
+
+}  // namespace
+
+std::string ToString(SweepStart start) {
+  return start == SweepStart::kPrevious ? "previous" : "fixed";
+}
+
+std::string ToString(SweepDirection direction) {
+  return direction == SweepDirection::kUp ? "up" : "down";
+}
+
+bool SweepOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (steps < 1) return fail(fmt::format("steps must be >= 1, got {}", steps));
+  if (!std::isfinite(from) || !std::isfinite(to)) {
+    return fail(fmt::format("from and to must be finite, got {} and {}", from, to));
+  }
+  if (steps > 1 && from == to) {
+    return fail(
+        fmt::format("from and to are both {}: {} steps need a range (or steps = 1)", from, steps));
+  }
+  if (transient_periods < 0) {
+    return fail(fmt::format("transient periods must be >= 0, got {}", transient_periods));
+  }
+  if (recorded_periods < 1) {
+    return fail(fmt::format("recorded periods must be >= 1, got {}", recorded_periods));
+  }
+  if (threads < 1) return fail(fmt::format("threads must be >= 1, got {}", threads));
+  if (chunk_values < 0) return fail(fmt::format("chunk_values must be >= 0, got {}", chunk_values));
+  if (warmup_values < 0) {
+    return fail(fmt::format("warmup_values must be >= 0, got {}", warmup_values));
+  }
+  return classify.IsValid(error) && simulation.IsValid(error);
+}
+
+std::string SweepResult::BriefReport() const {
+  std::map<MotionKind, int> counts;
+  int restarted = 0, stopped = 0;
+  for (const SweepPoint& p : points) {
+    ++counts[p.classification.kind];
+    restarted += p.restarted;
+    stopped += p.status != SimulationStatus::kReachedEnd;
+  }
+  std::string kinds;
+  for (const auto& [kind, count] : counts) {
+    kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ", count, ToString(kind));
+  }
+  std::string text =
+      fmt::format("{} values in {} chunks, {:.2f} s: {}", points.size(), chunks, seconds, kinds);
+  if (restarted > 0) text += fmt::format("; {} restarted from the fixed state", restarted);
+  if (stopped > 0) text += fmt::format("; {} runs stopped early", stopped);
+  return text;
+}
+
+std::vector<double> SweepValues(const SweepOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  const double low = std::min(options.from, options.to), high = std::max(options.from, options.to);
+  std::vector<double> values(options.steps);
+  if (options.steps == 1) {
+    values[0] = options.from;
+    return values;
+  }
+  // std::lerp is exact at both ends and monotonic in between.
+  for (int k = 0; k < options.steps; ++k) {
+    values[k] = std::lerp(low, high, static_cast<double>(k) / (options.steps - 1));
+  }
+  if (options.direction == SweepDirection::kDown) std::reverse(values.begin(), values.end());
+  return values;
+}
+
+SweepResult RunSweep(const System& system, const SweepOptions& options,
+                     const SweepProgress& progress) {
+  const auto start_time = std::chrono::steady_clock::now();
+  SweepPlan plan{options, SweepValues(options), {}};
+  GetParameter(system, options.parameter);  // throws for an unknown name
+  plan.systems.reserve(plan.values.size());
+  for (double value : plan.values) {
+    plan.systems.push_back(SystemAt(system, options.parameter, value));
+    if (options.fixed_state) {
+      HybridState fixed = *options.fixed_state;
+      fixed.t = 0.0;
+      ValidateState(plan.systems.back(), fixed);
+    }
+  }
+  const int total = static_cast<int>(plan.values.size());
+  plan.chunk_size = options.chunk_values == 0 ? total : std::min(options.chunk_values, total);
+  plan.chunks = (total + plan.chunk_size - 1) / plan.chunk_size;
+
+  SweepResult result;
+  result.points.resize(total);
+  result.chunks = plan.chunks;
+  std::mutex mutex;
+  int done = 0;
+  auto value_done = [&] {
+    if (!progress) return;
+    const std::lock_guard<std::mutex> lock(mutex);
+    progress(++done, total);
+  };
+  std::atomic<int> next_chunk{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  auto worker = [&] {
+    for (int chunk = next_chunk++; chunk < plan.chunks && !failed; chunk = next_chunk++) {
+      try {
+        RunChunk(plan, chunk, result.points, value_done);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  const int threads = std::min(options.threads, plan.chunks);
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return result;
+}
+
+}  // namespace impactkit

@@ -1,0 +1,539 @@
+#include "impactkit/continuation/continuation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "continuation/branch_problem.hpp"
+
+namespace impactkit {
+namespace {
+
+using detail::BranchProblem;
+
+/// Illinois and secant iterations of the locators.
+constexpr int kMaxLocateIterations = 80;
+/// A grazing or sticking point counts as located when its monitor (a
+/// length: clearance or depth) is below this; the search stops when the
+/// bracket is narrower than kGrazingBracket (arclength).
+constexpr double kGrazingTolerance = 1e-10;
+constexpr double kGrazingBracket = 1e-13;
+
+Eigen::VectorXd PointX(const BranchPoint& point) {
+  return BranchProblem::Join(point.orbit.eta, point.parameter);
+}
+
+/// One traced direction of a branch.
+struct HalfBranch {
+  std::vector<BranchPoint> points;
+  std::vector<SpecialPoint> special_points;
+  BranchEnd end = BranchEnd::kMaxPoints;
+  std::string end_message;
+};
+
+/// A grazing monitor of a point: positive on the branch, zero at the event.
+enum class Monitor { kClearance, kDepth };
+
+/// The monitor in the form that varies linearly in arclength near its zero,
+/// so that secant steps converge fast: the clearance itself, and the
+/// square root of the depth (the slowest impact's speed goes to zero
+/// linearly along a branch: Nordmark's normal form has the fixed point's
+/// penetration quadratic in the distance to grazing).
+std::optional<double> LinearMonitor(const BranchPoint& point, Monitor monitor) {
+  const OrbitContacts& c = point.orbit.contacts;
+  if (monitor == Monitor::kClearance) return c.clearance;
+  if (!std::isfinite(c.slowest_depth)) return std::nullopt;
+  return std::sqrt(c.slowest_depth);
+}
+
+/// The monitor as reported (a length) from its linear form.
+double MonitorLength(double linear, Monitor monitor) {
+  return monitor == Monitor::kClearance ? linear : linear * linear;
+}
+
+/// Why a branch may stop short of a located grazing: "; an impact vanishes
+/// just beyond (depth 2.2e-09, not located to 1e-10)" when a monitor is
+/// small, else nothing.
+std::string NearContact(const BranchPoint& point) {
+  const OrbitContacts& c = point.orbit.contacts;
+  if (c.slowest_depth < 1e-6) {
+    return fmt::format("; impact {} vanishes just beyond (depth {:.1e}, not located to {:.0e})",
+                       c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
+  }
+  if (c.clearance && *c.clearance < 1e-6) {
+    return fmt::format(
+        "; a new contact is born just beyond (clearance {:.1e}, not located to {:.0e})",
+        *c.clearance, kGrazingTolerance);
+  }
+  return "";
+}
+
+/// Traces one direction of a branch from an oriented start point.
+class BranchTracer {
+ public:
+  BranchTracer(const BranchProblem& problem, const ContinuationOptions& options,
+               const ContinuationProgress& progress)
+      : problem_(problem), options_(options), progress_(progress) {
+    newton_ = options.orbit.newton;
+    newton_.max_iterations = options.corrector_iterations;
+  }
+
+  HalfBranch Trace(const BranchPoint& start) {
+    HalfBranch half;
+    half.points.push_back(start);
+    double step = options_.initial_step;
+    while (true) {
+      if (static_cast<int>(half.points.size()) >= options_.max_points) {
+        half.end = BranchEnd::kMaxPoints;
+        half.end_message = fmt::format("{} points reached", options_.max_points);
+        return half;
+      }
+      const BranchPoint from = half.points.back();
+      int iterations = 0;
+      std::optional<BranchPoint> next = Advance(from, step, &iterations);
+      if (!next) {
+        if (step > options_.min_step) {
+          step = std::max(step / 2.0, options_.min_step);
+          continue;
+        }
+        if (EndAtGrazing(half)) return half;
+        half.end = BranchEnd::kCorrectorFailed;
+        half.end_message = fmt::format(
+            "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}",
+            options_.min_step, problem_.Parameter(), from.parameter, NearContact(from));
+        return half;
+      }
+      const bool beyond = next->parameter < options_.lower || next->parameter > options_.upper;
+      if (beyond) {
+        const double bound = next->parameter > options_.upper ? options_.upper : options_.lower;
+        next = OnBound(from, *next);
+        if (!next && step > options_.min_step) {
+          step = std::max(step / 2.0, options_.min_step);
+          continue;
+        }
+        if (!next) {
+          half.end = BranchEnd::kCorrectorFailed;
+          half.end_message = fmt::format(
+              "no orbit found on the bound {} = {:.10g} next to {:.10g}, even with the smallest "
+              "step",
+              problem_.Parameter(), bound, from.parameter);
+          return half;
+        }
+      }
+      if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
+      Accept(*next, &half);
+      if (beyond) {
+        half.end = BranchEnd::kParameterBound;
+        half.end_message =
+            fmt::format("reached {} = {:.10g}", problem_.Parameter(), next->parameter);
+        return half;
+      }
+      if (GrazingAhead(half, step) && EndAtGrazing(half)) return half;
+      if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
+      if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
+    }
+  }
+
+ private:
+  /// The corrected point at arclength s along from's tangent (on the
+  /// hyperplane t · (X - X_from) = s), or empty if the corrector fails or
+  /// jumps farther than max_correction * s from the prediction.
+  std::optional<BranchPoint> Advance(const BranchPoint& from, double s, int* iterations,
+                                     double tolerance_scale = 1.0) const {
+    const Eigen::VectorXd x0 = PointX(from);
+    const Eigen::VectorXd& t = from.tangent;
+    const Eigen::VectorXd guess = x0 + s * t;
+    NewtonOptions newton = newton_;
+    newton.residual_tolerance *= tolerance_scale;
+    const std::optional<Eigen::VectorXd> x =
+        problem_.Correct(guess, t, t.dot(x0) + s, newton, iterations);
+    if (!x || (*x - guess).norm() > options_.max_correction * std::abs(s)) return std::nullopt;
+    std::optional<BranchPoint> point = problem_.Describe(*x, t);
+    if (point) point->arclength = from.arclength + s;
+    return point;
+  }
+
+  /// The point of the branch on the parameter bound crossed between `from`
+  /// and `beyond`.
+  std::optional<BranchPoint> OnBound(const BranchPoint& from, const BranchPoint& beyond) const {
+    const double bound = beyond.parameter > options_.upper ? options_.upper : options_.lower;
+    const double w = (bound - from.parameter) / (beyond.parameter - from.parameter);
+    const Eigen::VectorXd x0 = PointX(from);
+    const Eigen::VectorXd guess = x0 + w * (PointX(beyond) - x0);
+    int iterations = 0;
+    const Eigen::VectorXd e_mu = Eigen::VectorXd::Unit(problem_.Size(), problem_.Size() - 1);
+    const std::optional<Eigen::VectorXd> x =
+        problem_.Correct(guess, e_mu, bound, newton_, &iterations);
+    if (!x) return std::nullopt;
+    std::optional<BranchPoint> point = problem_.Describe(*x, from.tangent);
+    if (point) point->arclength = from.arclength + from.tangent.dot(*x - x0);
+    return point;
+  }
+
+  void Accept(const BranchPoint& point, HalfBranch* half) const {
+    half->points.push_back(point);
+    if (progress_) progress_(point);
+  }
+
+  /// Locates each test function's sign change between consecutive points
+  /// and inserts the located points before `b`.
+  void LocateBifurcations(const BranchPoint& a, const BranchPoint& b, HalfBranch* half) const {
+    struct Test {
+      SpecialPointType type;
+      double BranchPoint::*value;
+    };
+    const Test tests[] = {{SpecialPointType::kFold, &BranchPoint::fold_test},
+                          {SpecialPointType::kPeriodDoubling, &BranchPoint::period_doubling_test},
+                          {SpecialPointType::kNeimarkSacker, &BranchPoint::neimark_sacker_test}};
+    std::vector<SpecialPoint> found;
+    for (const Test& test : tests) {
+      if ((a.*test.value > 0) == (b.*test.value > 0)) continue;
+      std::optional<SpecialPoint> special = LocateZero(a, b, test.type, test.value);
+      if (special) found.push_back(*special);
+    }
+    std::sort(found.begin(), found.end(), [](const SpecialPoint& x, const SpecialPoint& y) {
+      return x.point.arclength < y.point.arclength;
+    });
+    for (const SpecialPoint& special : found) {
+      half->points.push_back(special.point);
+      half->special_points.push_back(special);
+    }
+  }
+
+  /// The Illinois method on s for the zero of one test function between a
+  /// (s = 0) and b, each trial corrected onto the branch from a.
+  std::optional<SpecialPoint> LocateZero(const BranchPoint& a, const BranchPoint& b,
+                                         SpecialPointType type, double BranchPoint::*test) const {
+    double lo = 0.0, hi = b.arclength - a.arclength;
+    double f_lo = a.*test, f_hi = b.*test;
+    std::optional<BranchPoint> best;
+    int side = 0;
+    for (int k = 0; k < kMaxLocateIterations && hi - lo > 1e-14 * std::abs(hi); ++k) {
+      const double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+      int iterations = 0;
+      std::optional<BranchPoint> trial = Advance(a, s, &iterations);
+      if (!trial) break;
+      const double f = (*trial).*test;
+      if (!best || std::abs(f) < std::abs((*best).*test)) best = trial;
+      if (f == 0.0) break;
+      if ((f > 0) == (f_lo > 0)) {
+        lo = s;
+        f_lo = f;
+        if (side == -1) f_hi /= 2.0;
+        side = -1;
+      } else {
+        hi = s;
+        f_hi = f;
+        if (side == +1) f_lo /= 2.0;
+        side = +1;
+      }
+    }
+    // No trial converged (rare: the corrector fails between two good
+    // points): the nearer end stands in, its test value saying how near.
+    if (!best) best = std::abs(a.*test) < std::abs(b.*test) ? a : b;
+    return Classify(*best, type);
+  }
+
+  /// The special point of a located zero, with its critical multiplier;
+  /// empty for a neutral saddle (a real pair with product 1).
+  static std::optional<SpecialPoint> Classify(const BranchPoint& point, SpecialPointType type) {
+    SpecialPoint special;
+    special.type = type;
+    special.point = point;
+    const Eigen::VectorXcd& lambda = point.orbit.multipliers;
+    auto closest = [&](auto distance) {
+      Eigen::Index best = 0;
+      for (Eigen::Index i = 1; i < lambda.size(); ++i) {
+        if (distance(lambda(i)) < distance(lambda(best))) best = i;
+      }
+      return lambda(best);
+    };
+    switch (type) {
+      case SpecialPointType::kFold:
+        special.monitor = point.fold_test;
+        special.multiplier = closest([](std::complex<double> l) { return std::abs(l - 1.0); });
+        break;
+      case SpecialPointType::kPeriodDoubling:
+        special.monitor = point.period_doubling_test;
+        special.multiplier = closest([](std::complex<double> l) { return std::abs(l + 1.0); });
+        special.eigenvector = FlipEigenvector(point.orbit.jacobian);
+        break;
+      default:
+        special.monitor = point.neimark_sacker_test;
+        special.multiplier = closest([](std::complex<double> l) {
+          return l.imag() > 0 ? std::abs(std::abs(l) - 1.0)
+                              : std::numeric_limits<double>::infinity();
+        });
+        if (!(special.multiplier.imag() > 0) ||
+            std::abs(std::abs(special.multiplier) - 1.0) > 1e-4) {
+          return std::nullopt;
+        }
+    }
+    return special;
+  }
+
+  /// The real eigenvector of D P for its eigenvalue nearest -1, unit length.
+  static Eigen::VectorXd FlipEigenvector(const Eigen::MatrixXd& jacobian) {
+    const Eigen::EigenSolver<Eigen::MatrixXd> solver(jacobian);
+    Eigen::Index best = 0;
+    for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i) {
+      if (std::abs(solver.eigenvalues()(i) + 1.0) < std::abs(solver.eigenvalues()(best) + 1.0)) {
+        best = i;
+      }
+    }
+    return solver.eigenvectors().col(best).real().normalized();
+  }
+
+  /// True when a grazing monitor, extrapolated linearly in arclength from
+  /// the last two points, reaches zero within the next step.
+  bool GrazingAhead(const HalfBranch& half, double step) const {
+    if (half.points.size() < 2) return false;
+    const BranchPoint& a = half.points[half.points.size() - 2];
+    const BranchPoint& b = half.points.back();
+    for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
+      const std::optional<double> ma = LinearMonitor(a, monitor), mb = LinearMonitor(b, monitor);
+      if (!ma || !mb || !(*mb < *ma)) continue;
+      const double ds = b.arclength - a.arclength;
+      if (*mb * ds / (*ma - *mb) < step) return true;
+    }
+    return false;
+  }
+
+  /// Looks for a grazing or sticking point just ahead of the last point;
+  /// if one is found, ends the branch there (with the points that led to
+  /// it) and returns true.
+  bool EndAtGrazing(HalfBranch& half) const {
+    if (half.points.size() < 2) return false;
+    std::optional<SpecialPoint> best;
+    std::vector<BranchPoint> best_path;
+    for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
+      std::vector<BranchPoint> path;
+      std::optional<SpecialPoint> special =
+          LocateGrazing(half.points[half.points.size() - 2], half.points.back(), monitor, &path);
+      if (special && (!best || special->point.arclength < best->point.arclength)) {
+        best = special;
+        best_path = std::move(path);
+      }
+    }
+    if (!best) return false;
+    for (const BranchPoint& point : best_path) Accept(point, &half);
+    half.special_points.push_back(*best);
+    const bool sticking = best->type == SpecialPointType::kSticking;
+    half.end = sticking ? BranchEnd::kSticking : BranchEnd::kGrazing;
+    half.end_message = best->Describe(problem_.Parameter());
+    return true;
+  }
+
+  /// The zero of `monitor` beyond b, approached from the branch side: past
+  /// it the orbit does not exist, so the far side is only known to fail.
+  /// Secant steps on the monitor from the last two valid points, each from
+  /// the newest point along its own tangent (near a vanishing impact the
+  /// branch bends fast), halved when they land where the corrector failed.
+  std::optional<SpecialPoint> LocateGrazing(const BranchPoint& a, const BranchPoint& b,
+                                            Monitor monitor, std::vector<BranchPoint>* path) const {
+    BranchPoint previous = a, best = b;
+    std::optional<double> m_prev = LinearMonitor(a, monitor), m_lo = LinearMonitor(b, monitor);
+    if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
+    auto located = [&] { return MonitorLength(*m_lo, monitor) <= kGrazingTolerance; };
+    double failed = std::numeric_limits<double>::infinity();  // a step from `best` that failed
+    for (int k = 0; k < kMaxLocateIterations && !located(); ++k) {
+      double s = *m_lo * (best.arclength - previous.arclength) / (*m_prev - *m_lo);
+      s = std::min(s, options_.max_step);
+      if (s >= failed) s = 0.5 * failed;
+      if (!(s > kGrazingBracket)) break;
+      // Near a vanishing impact the multipliers grow like 1/v and so does
+      // the rounding in U (the impact time's): ask Newton for what the
+      // conditioning allows.
+      const double conditioning = std::abs(best.orbit.multipliers(0));
+      int iterations = 0;
+      const std::optional<BranchPoint> trial =
+          Advance(best, s, &iterations, std::max(1.0, 1e-4 * conditioning));
+      const std::optional<double> m = trial ? LinearMonitor(*trial, monitor) : std::nullopt;
+      if (!m || !(*m < *m_lo)) {  // failed, or the monitor jumped
+        failed = s;
+        continue;
+      }
+      previous = best;
+      m_prev = m_lo;
+      best = *trial;
+      m_lo = m;
+      failed -= s;
+      path->push_back(best);
+    }
+    // Rounding in the map limits how close the corrector gets (about 1e-10
+    // for the clearance): a zero within ten times the tolerance counts.
+    if (!(MonitorLength(*m_lo, monitor) <= 10 * kGrazingTolerance)) return std::nullopt;
+    SpecialPoint special;
+    special.point = best;
+    special.monitor = MonitorLength(*m_lo, monitor);
+    const OrbitContacts& contacts = best.orbit.contacts;
+    const bool pressed = monitor == Monitor::kDepth && contacts.slowest_pressed;
+    special.type = pressed ? SpecialPointType::kSticking : SpecialPointType::kGrazing;
+    special.vanishing_impact = monitor == Monitor::kDepth ? contacts.slowest_impact : -1;
+    return special;
+  }
+
+  const BranchProblem& problem_;
+  const ContinuationOptions& options_;
+  const ContinuationProgress& progress_;
+  NewtonOptions newton_;
+};
+
+void Require(bool condition, const std::string& message) {
+  if (!condition) throw InvalidInput(message);
+}
+
+/// The start as an oriented branch point.
+BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
+                       const ContinuationOptions& options, double sense) {
+  const Eigen::VectorXd x =
+      BranchProblem::Join(start.orbit.eta, GetParameter(start.system, options.parameter));
+  Eigen::VectorXd previous = start.direction;
+  std::optional<BranchPoint> point = problem.Describe(x, previous);
+  Require(point.has_value(), "the start orbit's impact map fails: not an orbit to continue");
+  if (previous.size() == 0 && point->tangent(problem.Size() - 1) * sense < 0) {
+    point->tangent = -point->tangent;
+  }
+  if (previous.size() != 0 && sense < 0) point->tangent = -point->tangent;
+  return *point;
+}
+
+}  // namespace
+
+std::string ToString(SpecialPointType type) {
+  switch (type) {
+    case SpecialPointType::kFold:
+      return "fold";
+    case SpecialPointType::kPeriodDoubling:
+      return "period_doubling";
+    case SpecialPointType::kNeimarkSacker:
+      return "neimark_sacker";
+    case SpecialPointType::kGrazing:
+      return "grazing";
+    case SpecialPointType::kSticking:
+      return "sticking";
+  }
+  return "unknown";
+}
+
+std::string ToString(BranchEnd end) {
+  switch (end) {
+    case BranchEnd::kParameterBound:
+      return "parameter_bound";
+    case BranchEnd::kGrazing:
+      return "grazing";
+    case BranchEnd::kSticking:
+      return "sticking";
+    case BranchEnd::kMaxPoints:
+      return "max_points";
+    case BranchEnd::kCorrectorFailed:
+      return "corrector_failed";
+  }
+  return "unknown";
+}
+
+std::string SpecialPoint::Describe(const std::string& parameter) const {
+  std::string name = ToString(type);
+  std::replace(name.begin(), name.end(), '_', ' ');
+  const std::string where = fmt::format("{} at {} = {:.10g}", name, parameter, point.parameter);
+  switch (type) {
+    case SpecialPointType::kGrazing:
+    case SpecialPointType::kSticking:
+      return vanishing_impact < 0
+                 ? fmt::format("{} (a new contact; clearance {:.1e})", where, monitor)
+                 : fmt::format("{} (impact {} vanishes; depth {:.1e})", where, vanishing_impact + 1,
+                               monitor);
+    default:
+      return fmt::format("{} (multiplier {:.9f}{:+.9f}i)", where, multiplier.real(),
+                         multiplier.imag());
+  }
+}
+
+bool ContinuationOptions::IsValid(std::string* error) const {
+  auto fail = [&](std::string message) {
+    if (error) *error = std::move(message);
+    return false;
+  };
+  if (parameter == "n") {
+    return fail("n (the number of masses) is an integer and cannot be continued");
+  }
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper)) {
+    return fail(fmt::format("the parameter bounds must be finite with lower < upper, got [{}, {}]",
+                            lower, upper));
+  }
+  if (!(min_step > 0 && min_step <= initial_step && initial_step <= max_step &&
+        std::isfinite(max_step))) {
+    return fail(fmt::format("steps must satisfy 0 < min <= initial <= max, got {}, {}, {}",
+                            min_step, initial_step, max_step));
+  }
+  if (max_points < 2) return fail(fmt::format("max_points must be >= 2, got {}", max_points));
+  if (corrector_iterations < 1) {
+    return fail(fmt::format("corrector_iterations must be >= 1, got {}", corrector_iterations));
+  }
+  if (!(max_correction > 0 && max_correction <= 1)) {
+    return fail(fmt::format("max_correction must be in (0, 1], got {}", max_correction));
+  }
+  return orbit.IsValid(error);
+}
+
+Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
+                      const ContinuationProgress& progress) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  std::string error;
+  Require(options.IsValid(&error), error);
+  const BranchProblem problem(start.system, options.parameter, options.orbit.p, options.orbit.q,
+                              options.orbit.map);
+  const double mu = GetParameter(start.system, options.parameter);
+  Require(mu >= options.lower && mu <= options.upper,
+          fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter, mu,
+                      options.lower, options.upper));
+  for (double bound : {options.lower, options.upper}) {
+    try {
+      problem.SystemAt(bound);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(
+          fmt::format("the bound {} = {} is not valid: {}", options.parameter, bound, e.what()));
+    }
+  }
+  const ImpactMap* map = problem.MapAt(mu);
+  const double residual =
+      DescribeOrbit(*map, start.orbit.eta, options.orbit.p, options.orbit.q).residual;
+  Require(residual <= 1e3 * options.orbit.newton.residual_tolerance,
+          fmt::format("the start is not a P({},{}) orbit: residual {:.2e}", options.orbit.p,
+                      options.orbit.q, residual));
+
+  BranchTracer tracer(problem, options, progress);
+  Branch branch;
+  branch.parameter = options.parameter;
+  branch.p = options.orbit.p;
+  branch.q = options.orbit.q;
+  const bool both = options.direction == ContinuationDirection::kBoth;
+  const double sense = options.direction == ContinuationDirection::kDecreasing ? -1.0 : 1.0;
+  HalfBranch forward = tracer.Trace(StartPoint(problem, start, options, sense));
+  if (both) {
+    HalfBranch backward = tracer.Trace(StartPoint(problem, start, options, -sense));
+    for (auto it = backward.points.rbegin(); it + 1 != backward.points.rend(); ++it) {
+      it->arclength = -it->arclength;
+      branch.points.push_back(*it);
+    }
+    for (auto it = backward.special_points.rbegin(); it != backward.special_points.rend(); ++it) {
+      it->point.arclength = -it->point.arclength;
+      branch.special_points.push_back(*it);
+    }
+    branch.begin = backward.end;
+    branch.begin_message = backward.end_message;
+  }
+  branch.points.insert(branch.points.end(), forward.points.begin(), forward.points.end());
+  branch.special_points.insert(branch.special_points.end(), forward.special_points.begin(),
+                               forward.special_points.end());
+  branch.end = forward.end;
+  branch.end_message = forward.end_message;
+  branch.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return branch;
+}
+
+}  // namespace impactkit

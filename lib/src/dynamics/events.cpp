@@ -1,0 +1,212 @@
+#include "impactkit/dynamics/events.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace impactkit {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// w, w' and w'' at one time.
+struct Point {
+  double t;
+  double w;
+  double dw;
+  double d2w;
+};
+
+Point Evaluate(const Signal& signal, double t) {
+  Point p{t, 0.0, 0.0, 0.0};
+  signal.ValueSlopeCurvature(t, &p.w, &p.dw, &p.d2w);
+  return p;
+}
+
+/// The cubic upper bound P(s) = w + w' s + w'' s²/2 + B3 s³/6 >= w(t + s).
+double UpperCubic(const Point& p, double b3, double s) {
+  return p.w + s * (p.dw + s * (0.5 * p.d2w + s * b3 / 6.0));
+}
+
+/// A step h with P < 0 on [0, h) (w < 0 at p), within 2% of P's first
+/// positive root: no crossing can lie in [t, t + h). P is monotone between
+/// its critical points, so the root is bracketed on the first monotone
+/// piece whose end is not negative and bisected there (polynomial
+/// evaluations cost nothing beside the signal's transcendental calls).
+double CertifiedStep(const Point& p, double b3) {
+  if (p.w >= 0) return 0.0;
+  double pieces[2];
+  int count = 0;
+  // Critical points: P'(s) = w' + w'' s + B3 s²/2 = 0.
+  if (b3 > 0) {
+    const double discriminant = p.d2w * p.d2w - 2.0 * b3 * p.dw;
+    if (discriminant > 0) {
+      const double root = std::sqrt(discriminant);
+      for (double s : {(-p.d2w - root) / b3, (-p.d2w + root) / b3}) {
+        if (s > 0) pieces[count++] = s;
+      }
+    }
+  } else if (p.d2w != 0 && -p.dw / p.d2w > 0) {
+    pieces[count++] = -p.dw / p.d2w;
+  }
+  double low = 0.0, high = kInfinity;
+  for (int i = 0; i < count && high == kInfinity; ++i) {
+    if (UpperCubic(p, b3, pieces[i]) >= 0) {
+      high = pieces[i];
+    } else {
+      low = pieces[i];
+    }
+  }
+  if (high == kInfinity) {
+    // The last piece rises to +inf when B3 > 0; find an end that is not negative.
+    double span = std::max(1.0, low);
+    int doublings = 0;
+    while (UpperCubic(p, b3, low + span) < 0) {
+      if (++doublings > 64) return kInfinity;
+      span *= 2.0;
+    }
+    high = low + span;
+  }
+  while (high - low > 0.02 * high) {
+    const double mid = 0.5 * (low + high);
+    (UpperCubic(p, b3, mid) < 0 ? low : high) = mid;
+  }
+  return low;
+}
+
+/// max over [a, b] of min(upper bound from a, upper bound from b), with
+/// B >= sup|w''|. The two parabolas differ by a linear function of s, so the
+/// maximum is at an end or where they meet.
+double TwoSidedUpperBound(const Point& a, const Point& b, double bound) {
+  const double h = b.t - a.t;
+  double upper = std::max(a.w, b.w);
+  // P_a(s) = wa + wa' s + B s²/2;  P_b(s) = wb - wb' (h - s) + B (h - s)²/2.
+  // P_a - P_b = (wa - wb + wb' h - B h²/2) + (wa' - wb' + B h) s.
+  const double slope = a.dw - b.dw + bound * h;
+  if (slope != 0) {
+    const double s = -(a.w - b.w + b.dw * h - 0.5 * bound * h * h) / slope;
+    if (s > 0 && s < h) upper = std::max(upper, a.w + a.dw * s + 0.5 * bound * s * s);
+  }
+  return upper;
+}
+
+/// A lower bound of w' over [a, b].
+double SlopeLowerBound(const Point& a, const Point& b, double bound) {
+  return 0.5 * (a.dw + b.dw - bound * (b.t - a.t));
+}
+
+/// The tolerance for time t: the requested one, or a few ulps of t.
+double TimeTolerance(double t, const EventOptions& options) {
+  return std::max(options.time_tolerance, 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t));
+}
+
+/// The root of w in [a, b], where w(a) < 0 <= w(b) and w' > 0: Newton on the
+/// exact derivative from the end nearer the root, kept inside the shrinking
+/// bracket (bisection when a Newton step would leave it). Hand-written
+/// because the certified bracket and the exact w' make it converge in a few
+/// steps, and the bracket invariant is what the caller relies on.
+double RefineRoot(const Signal& w, Point a, Point b, const EventOptions& options) {
+  const Point& nearer = -a.w < b.w ? a : b;
+  double t = nearer.t - nearer.w / nearer.dw;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    if (!(t > a.t && t < b.t)) t = 0.5 * (a.t + b.t);
+    const Point p = Evaluate(w, t);
+    if (p.w == 0) return t;
+    (p.w < 0 ? a : b) = p;
+    const double tolerance = TimeTolerance(t, options);
+    const double newton = t - p.w / p.dw;
+    if (std::abs(newton - t) <= tolerance) return std::clamp(newton, a.t, b.t);
+    if (b.t - a.t <= tolerance) return b.t;
+    t = newton;
+  }
+  return b.t;
+}
+
+/// Leaving the surface: w = 0 up to rounding at p. If the first derivative
+/// that is not rounding noise, w^(k), is negative, Taylor's theorem with
+/// B >= sup|w^(k+1)| keeps w < 0 on (0, (k+1)|w^(k)|/B): after an impact
+/// k = 1, at a release from sticking k = 2 or 3. Returns that step, or 0
+/// when w is not at the surface or not certainly leaving it. Without this,
+/// an interval starting on the surface could never be certified empty.
+double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds) {
+  constexpr double kNoise = 1e-11;
+  if (std::abs(p.w) > kNoise * bounds[0]) return 0.0;
+  constexpr int kHighestOrder = 3;
+  for (int k = 1; k <= kHighestOrder; ++k) {
+    const double derivative = k == 1 ? p.dw : k == 2 ? p.d2w : w.Derivative(k).Value(p.t);
+    if (std::abs(derivative) <= kNoise * bounds[k]) continue;
+    if (derivative > 0) return 0.0;
+    return bounds[k + 1] > 0 ? (k + 1) * -derivative / bounds[k + 1]
+                             : std::numeric_limits<double>::infinity();
+  }
+  return 0.0;
+}
+
+/// The first crossing in (a, b], or none, by certified bisection.
+std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, double bound,
+                              const EventOptions& options) {
+  if (b.w >= 0 && a.w < 0 && SlopeLowerBound(a, b, bound) > 0) {
+    return RefineRoot(w, a, b, options);
+  }
+  if (b.w < 0 && TwoSidedUpperBound(a, b, bound) < 0) return std::nullopt;
+  if (b.t - a.t <= TimeTolerance(b.t, options)) {
+    // A tangency resolved to the tolerance: an event only if w got to 0.
+    return b.w >= 0 ? std::optional<double>(b.t) : std::nullopt;
+  }
+  const Point m = Evaluate(w, 0.5 * (a.t + b.t));
+  // By induction Examine returns a crossing whenever its right end has
+  // w >= 0, so the right half is searched only from m with w(m) < 0.
+  if (auto left = Examine(w, a, m, bound, options)) return left;
+  return Examine(w, m, b, bound, options);
+}
+
+}  // namespace
+
+std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_end,
+                                      const EventOptions& options) {
+  const double short_step = 1e-3 * options.time_scale;
+  // Bounds of |w^(k)| valid for every t >= t_begin (Signal::DerivativeBound).
+  double bounds[5];
+  w.DerivativeBounds(t_begin, 4, bounds);
+  if (bounds[0] == 0) return std::nullopt;  // w = 0 throughout
+  const double b2 = bounds[2], b3 = bounds[3];
+  Point p = Evaluate(w, t_begin);
+  if (const double exit = SurfaceExitStep(w, p, bounds); exit > 0) {
+    if (exit >= t_end - t_begin) return std::nullopt;
+    p = Evaluate(w, t_begin + exit);
+  }
+  while (p.t < t_end) {
+    const double step = CertifiedStep(p, b3);
+    if (step >= t_end - p.t) return std::nullopt;
+    if (step >= short_step) {
+      const Point next = Evaluate(w, p.t + step);
+      // The bound makes next.w <= 0; rounding can make it touch 0.
+      if (next.w >= 0) return Examine(w, p, next, b2, options);
+      p = next;
+      continue;
+    }
+    const Point b = Evaluate(w, std::min(t_end, p.t + std::max(4.0 * step, short_step)));
+    if (auto crossing = Examine(w, p, b, b2, options)) return crossing;
+    p = b;
+  }
+  return std::nullopt;
+}
+
+std::vector<double> SignChanges(const Signal& w, double t_begin, double t_end,
+                                const EventOptions& options) {
+  std::vector<double> times;
+  const Signal negated = w.Negated();
+  double value, slope;
+  w.ValueAndSlope(t_begin, &value, &slope);
+  bool rising = value < 0 || (value == 0 && slope < 0);  // looking for w to rise through 0
+  double t = t_begin;
+  while (auto crossing = FirstUpcrossing(rising ? w : negated, t, t_end, options)) {
+    if (*crossing >= t_end) break;
+    times.push_back(*crossing);
+    t = *crossing;
+    rising = !rising;
+  }
+  return times;
+}
+
+}  // namespace impactkit

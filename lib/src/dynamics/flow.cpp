@@ -1,0 +1,407 @@
+#include "impactkit/dynamics/flow.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "impactkit/core/errors.hpp"
+
+namespace impactkit {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// sup over τ >= τ0 of τ e^{-aτ} (a > 0).
+double TauDecayMax(double a, double tau0) {
+  if (a <= 0) return kInfinity;
+  return tau0 >= 1.0 / a ? tau0 * std::exp(-a * tau0) : 1.0 / (a * std::numbers::e);
+}
+
+/// The 2n x 2n first-order matrix S = [[0, I], [-M⁻¹K, -M⁻¹C]].
+Eigen::MatrixXd FirstOrderMatrix(const Eigen::MatrixXd& m_inv_k, const Eigen::MatrixXd& m_inv_c) {
+  const Eigen::Index n = m_inv_k.rows();
+  Eigen::MatrixXd s = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  s.topRightCorner(n, n).setIdentity();
+  s.bottomLeftCorner(n, n) = -m_inv_k;
+  s.bottomRightCorner(n, n) = -m_inv_c;
+  return s;
+}
+
+/// C M⁻¹ K = K M⁻¹ C (Caughey & O'Kelly): the normal modes decouple C too.
+bool IsClassicallyDamped(const Eigen::MatrixXd& c, const Eigen::MatrixXd& m_inv_k) {
+  const Eigen::MatrixXd m_inv_c_term = c * m_inv_k;  // C M⁻¹ K
+  const double scale = c.norm() * m_inv_k.norm();
+  if (scale == 0) return true;
+  return (m_inv_c_term - m_inv_c_term.transpose()).norm() <= 1e-10 * scale;
+}
+
+/// A real basis of invariant 2-planes of S and the 2 x 2 blocks on them.
+struct BlockDecomposition {
+  Eigen::MatrixXd basis;   ///< V (2n x 2n)
+  Eigen::MatrixXd blocks;  ///< 2 x 2n, B_j in columns 2j, 2j+1
+};
+
+/// Normal modes: z_j = (q_j, q_j'), B_j = [[0, 1], [-ω_j², -2 a_j]].
+BlockDecomposition ClassicalBlocks(const Eigen::MatrixXd& m, const Eigen::MatrixXd& c,
+                                   const Eigen::MatrixXd& k) {
+  const Eigen::Index n = m.rows();
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(k, m);  // Φᵀ M Φ = I
+  const Eigen::MatrixXd& phi = modes.eigenvectors();
+  BlockDecomposition d{Eigen::MatrixXd::Zero(2 * n, 2 * n), Eigen::MatrixXd::Zero(2, 2 * n)};
+  for (Eigen::Index j = 0; j < n; ++j) {
+    d.basis.col(2 * j).head(n) = phi.col(j);
+    d.basis.col(2 * j + 1).tail(n) = phi.col(j);
+    const double modal_damping = phi.col(j).dot(c * phi.col(j));  // 2 a_j
+    d.blocks.block<2, 2>(0, 2 * j) << 0.0, 1.0, -modes.eigenvalues()(j), -modal_damping;
+  }
+  return d;
+}
+
+/// Non-classical damping: complex modes of S. A conjugate pair σ ± iω with
+/// eigenvector u + iw spans [u, w] with block [[σ, ω], [-ω, σ]]; real
+/// eigenvalues (an even number of them) are paired as diag(λ1, λ2).
+BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
+  const Eigen::Index dim = s.rows();
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(s);
+  const Eigen::VectorXcd& lambda = solver.eigenvalues();
+  const Eigen::MatrixXcd& vectors = solver.eigenvectors();
+  const double tol = 1e-12 * std::max(1.0, lambda.cwiseAbs().maxCoeff());
+  BlockDecomposition d{Eigen::MatrixXd::Zero(dim, dim), Eigen::MatrixXd::Zero(2, dim)};
+  Eigen::Index col = 0;
+  std::vector<Eigen::Index> reals;
+  for (Eigen::Index i = 0; i < dim; ++i) {
+    if (std::abs(lambda(i).imag()) <= tol) {
+      reals.push_back(i);
+    } else if (lambda(i).imag() > 0) {
+      d.basis.col(col) = vectors.col(i).real();
+      d.basis.col(col + 1) = vectors.col(i).imag();
+      const double sigma = lambda(i).real(), w = lambda(i).imag();
+      d.blocks.block<2, 2>(0, col) << sigma, w, -w, sigma;
+      col += 2;
+    }
+  }
+  std::sort(reals.begin(), reals.end(),
+            [&](auto a, auto b) { return lambda(a).real() < lambda(b).real(); });
+  for (std::size_t i = 0; i + 1 < reals.size(); i += 2) {
+    d.basis.col(col) = vectors.col(reals[i]).real();
+    d.basis.col(col + 1) = vectors.col(reals[i + 1]).real();
+    d.blocks.block<2, 2>(0, col) << lambda(reals[i]).real(), 0.0, 0.0,
+        lambda(reals[i + 1]).real();
+    col += 2;
+  }
+  return d;
+}
+
+}  // namespace
+
+ModeBasis ModeBasis::Make(double decay, double beta2) {
+  return ModeBasis{decay, beta2, std::sqrt(std::abs(beta2))};
+}
+
+void ModeBasis::Evaluate(double tau, double* ec, double* es) const {
+  if (beta2 > 0) {
+    const double e = std::exp(-decay * tau);
+    double sine, cosine;
+    ::sincos(root * tau, &sine, &cosine);  // glibc: one call for both
+    *ec = e * cosine;
+    *es = e * sine / root;
+  } else if (beta2 < 0) {
+    // e^{-aτ}cosh(bτ) and e^{-aτ}sinh(bτ)/b from the two decaying
+    // exponentials, so nothing overflows for long flights.
+    const double slow = std::exp(-(decay - root) * tau);
+    const double fast = std::exp(-(decay + root) * tau);
+    *ec = 0.5 * (slow + fast);
+    *es = -slow * std::expm1(-2.0 * root * tau) / (2.0 * root);
+  } else {
+    const double e = std::exp(-decay * tau);
+    *ec = e;
+    *es = e * tau;
+  }
+}
+
+void ModeBasis::Differentiate(double* alpha, double* gamma) const {
+  // C' = -β² S, S' = C.
+  const double a = *alpha, g = *gamma;
+  *alpha = g - decay * a;
+  *gamma = -decay * g - beta2 * a;
+}
+
+ModeBasis::Decay ModeBasis::DecayFrom(double tau_from) const {
+  // |S| <= τ e^{bτ} in every regime (b = 0 unless over-damped).
+  const double slow_decay = decay - (beta2 < 0 ? root : 0.0);
+  if (tau_from <= 0) return Decay{1.0, TauDecayMax(slow_decay, 0.0), 1.0, 1.0};
+  return Decay{std::exp(-slow_decay * tau_from), TauDecayMax(slow_decay, tau_from),
+               std::exp(-decay * tau_from), std::exp(-(decay + root) * tau_from)};
+}
+
+double ModeBasis::Envelope(double alpha, double gamma, const Decay& d) const {
+  if (alpha == 0 && gamma == 0) return 0.0;
+  const double generic =
+      std::abs(alpha) * d.slow + (gamma == 0 ? 0.0 : std::abs(gamma) * d.tau_times_slow);
+  if (beta2 > 0) {
+    const double ratio = gamma / root;
+    return std::min(generic, d.own * std::sqrt(alpha * alpha + ratio * ratio));
+  }
+  if (beta2 < 0) {
+    const double split = 0.5 * (std::abs(alpha + gamma / root) * d.slow +
+                                std::abs(alpha - gamma / root) * d.fast);
+    return std::min(generic, split);
+  }
+  return generic;
+}
+
+double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
+  return Envelope(alpha, gamma, DecayFrom(tau_from));
+}
+
+Signal::Signal(const std::vector<ModeBasis>* modes, double omega, double t0,
+               Eigen::VectorXd alpha, Eigen::VectorXd gamma, std::complex<double> forced,
+               double constant)
+    : modes_(modes),
+      omega_(omega),
+      t0_(t0),
+      alpha_(std::move(alpha)),
+      gamma_(std::move(gamma)),
+      forced_(forced),
+      constant_(constant) {}
+
+double Signal::Value(double t) const {
+  double value = 0.0, slope = 0.0;
+  ValueAndSlope(t, &value, &slope);
+  return value;
+}
+
+void Signal::ValueAndSlope(double t, double* value, double* slope) const {
+  double curvature;
+  ValueSlopeCurvature(t, value, slope, &curvature);
+}
+
+void Signal::ValueSlopeCurvature(double t, double* value, double* slope,
+                                 double* curvature) const {
+  const double tau = t - t0_;
+  double w = constant_, dw = 0.0, d2w = 0.0;
+  const auto& modes = *modes_;
+  for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
+    double ec, es;
+    modes[j].Evaluate(tau, &ec, &es);
+    double a = alpha_(j), g = gamma_(j);
+    w += a * ec + g * es;
+    modes[j].Differentiate(&a, &g);
+    dw += a * ec + g * es;
+    modes[j].Differentiate(&a, &g);
+    d2w += a * ec + g * es;
+  }
+  const std::complex<double> forced = forced_ * std::polar(1.0, omega_ * t);
+  *value = w + forced.real();
+  *slope = dw - omega_ * forced.imag();
+  *curvature = d2w - omega_ * omega_ * forced.real();
+}
+
+Signal Signal::Derivative(int order) const {
+  Signal d = *this;
+  for (int k = 0; k < order; ++k) {
+    for (Eigen::Index j = 0; j < d.alpha_.size(); ++j) {
+      (*modes_)[j].Differentiate(&d.alpha_(j), &d.gamma_(j));
+    }
+    d.forced_ *= std::complex<double>(0.0, omega_);
+  }
+  if (order > 0) d.constant_ = 0.0;
+  return d;
+}
+
+double Signal::DerivativeBound(int order, double t_from) const {
+  double bounds[kMaxBoundOrder + 1];
+  DerivativeBounds(t_from, order, bounds);
+  return bounds[order];
+}
+
+void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) const {
+  if (max_order < 0 || max_order > kMaxBoundOrder) {
+    throw std::out_of_range("Signal::DerivativeBounds: order must be in [0, 6]");
+  }
+  const double tau = t_from - t0_;
+  for (int k = 0; k <= max_order; ++k) {
+    bounds[k] = std::abs(forced_) * std::pow(omega_, k) + (k == 0 ? std::abs(constant_) : 0.0);
+  }
+  for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
+    const ModeBasis& mode = (*modes_)[j];
+    const ModeBasis::Decay decay = mode.DecayFrom(tau);  // shared by every order
+    double a = alpha_(j), g = gamma_(j);
+    for (int k = 0; k <= max_order; ++k) {
+      bounds[k] += mode.Envelope(a, g, decay);
+      mode.Differentiate(&a, &g);
+    }
+  }
+}
+
+double Signal::Scale() const {
+  return alpha_.cwiseAbs().sum() + gamma_.cwiseAbs().sum() + std::abs(forced_) +
+         std::abs(constant_);
+}
+
+Signal Signal::Negated() const {
+  Signal n = *this;
+  n.alpha_ = -alpha_;
+  n.gamma_ = -gamma_;
+  n.forced_ = -forced_;
+  n.constant_ = -constant_;
+  return n;
+}
+
+LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
+                       const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing,
+                       const Eigen::VectorXd& constant_force, double omega)
+    : dof_(static_cast<int>(mass.rows())), omega_(omega) {
+  const Eigen::Index n = dof_;
+  if (n == 0) {
+    // The stuck subsystem of a single mass: nothing moves.
+    system_matrix_.resize(0, 0);
+    basis_.resize(0, 0);
+    inverse_basis_.resize(0, 0);
+    shifted_blocks_.resize(2, 0);
+    steady_forced_.resize(0);
+    steady_constant_.resize(0);
+    return;
+  }
+  const Eigen::LLT<Eigen::MatrixXd> mass_factor(mass);
+  const Eigen::MatrixXd m_inv_k = mass_factor.solve(stiffness);
+  const Eigen::MatrixXd m_inv_c = mass_factor.solve(damping);
+  system_matrix_ = FirstOrderMatrix(m_inv_k, m_inv_c);
+
+  const BlockDecomposition d = IsClassicallyDamped(damping, m_inv_k)
+                                   ? ClassicalBlocks(mass, damping, stiffness)
+                                   : ComplexBlocks(system_matrix_);
+  basis_ = d.basis;
+  const Eigen::FullPivLU<Eigen::MatrixXd> basis_lu(basis_);
+  if (n > 0 && basis_lu.rcond() < 1e-11) {
+    throw InvalidInput(
+        "non-proportional damping with a repeated (defective) eigenvalue is not supported; "
+        "perturb C slightly or use proportional damping");
+  }
+  inverse_basis_ = n > 0 ? basis_lu.inverse() : Eigen::MatrixXd();
+
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * n), f = Eigen::VectorXd::Zero(2 * n);
+  b.tail(n) = mass_factor.solve(forcing);
+  f.tail(n) = mass_factor.solve(constant_force);
+  const Eigen::VectorXd modal_b = inverse_basis_ * b, modal_f = inverse_basis_ * f;
+
+  shifted_blocks_.resize(2, 2 * n);
+  steady_forced_.resize(2 * n);
+  steady_constant_.resize(2 * n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Matrix2d block = d.blocks.block<2, 2>(0, 2 * j);
+    const double a = -0.5 * block.trace();
+    const double det = block.determinant();
+    const double beta2 = det - a * a;
+    modes_.push_back(ModeBasis::Make(a, beta2));
+    fastest_rate_ = std::max(fastest_rate_, std::abs(a) + std::sqrt(std::abs(beta2)));
+    shifted_blocks_.block<2, 2>(0, 2 * j) = block + a * Eigen::Matrix2d::Identity();
+
+    // Steady response of this block: (iΩ - B_j) Z_j = b_j, B_j z_c = -f_j.
+    const Eigen::Matrix2cd resolvent =
+        std::complex<double>(0.0, omega) * Eigen::Matrix2cd::Identity() - block.cast<std::complex<double>>();
+    const std::complex<double> resolvent_det = resolvent.determinant();
+    const Eigen::Vector2d bj = modal_b.segment<2>(2 * j);
+    if (std::abs(resolvent_det) <= 1e-12 * std::max(omega * omega, std::abs(det))) {
+      if (bj.norm() > 1e-14 * std::max(1.0, b.norm())) {
+        throw InvalidInput(fmt::format(
+            "undamped mode with natural frequency {:.6g} is forced at omega = {:.6g}: no bounded "
+            "steady response exists; add damping or change omega",
+            std::sqrt(std::abs(det)), omega));
+      }
+      steady_forced_.segment<2>(2 * j).setZero();
+    } else {
+      steady_forced_.segment<2>(2 * j) = resolvent.inverse() * bj.cast<std::complex<double>>();
+    }
+    steady_constant_.segment<2>(2 * j) = -block.inverse() * modal_f.segment<2>(2 * j);
+  }
+}
+
+double LinearFlow::ShortestPeriod() const {
+  const double two_pi = 2.0 * std::numbers::pi;
+  return fastest_rate_ > 0 ? std::min(two_pi / omega_, two_pi / fastest_rate_) : two_pi / omega_;
+}
+
+Eigen::VectorXd LinearFlow::Transient(double t, const Eigen::VectorXd& x,
+                                      const Eigen::VectorXd& v) const {
+  const Eigen::Index n = dof_;
+  Eigen::VectorXd y(2 * n);
+  y << x, v;
+  const std::complex<double> rotor = std::polar(1.0, omega_ * t);
+  return inverse_basis_ * y - (steady_forced_ * rotor).real() - steady_constant_;
+}
+
+void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
+                       Eigen::VectorXd* v) const {
+  const Eigen::Index n = dof_;
+  const double tau = t - t0;
+  const std::complex<double> rotor = std::polar(1.0, omega_ * t);
+  Eigen::VectorXd z = (steady_forced_ * rotor).real() + steady_constant_;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double ec, es;
+    modes_[j].Evaluate(tau, &ec, &es);
+    const Eigen::Vector2d zj = z0.segment<2>(2 * j);
+    z.segment<2>(2 * j) += ec * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
+  }
+  const Eigen::VectorXd y = basis_ * z;
+  *x = y.head(n);
+  *v = y.tail(n);
+}
+
+void LinearFlow::SteadyState(double t, Eigen::VectorXd* x, Eigen::VectorXd* v) const {
+  State(t, Eigen::VectorXd::Zero(2 * dof_), t, x, v);
+}
+
+PreparedOutput LinearFlow::Prepare(const LinearOutput& output) const {
+  const Eigen::Index n = dof_;
+  Eigen::RowVectorXd l(2 * n);
+  l << output.wx, output.wv;
+  PreparedOutput p;
+  p.modal_weights = l * basis_;
+  p.forced = (p.modal_weights.cast<std::complex<double>>() * steady_forced_).value() + output.cos_amplitude;
+  p.constant = p.modal_weights.dot(steady_constant_) + output.offset;
+  return p;
+}
+
+Signal LinearFlow::Output(const PreparedOutput& output, double t0,
+                          const Eigen::VectorXd& z0) const {
+  Signal s;
+  Output(output, t0, z0, &s);
+  return s;
+}
+
+void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::VectorXd& z0,
+                        Signal* signal) const {
+  const Eigen::Index n = dof_;
+  signal->modes_ = &modes_;
+  signal->omega_ = omega_;
+  signal->t0_ = t0;
+  signal->alpha_.resize(n);
+  signal->gamma_.resize(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Vector2d c = output.modal_weights.segment<2>(2 * j).transpose();
+    const Eigen::Vector2d zj = z0.segment<2>(2 * j);
+    signal->alpha_(j) = c.dot(zj);
+    signal->gamma_(j) = c.dot(shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
+  }
+  signal->forced_ = output.forced;
+  signal->constant_ = output.constant;
+}
+
+Eigen::MatrixXd LinearFlow::Transition(double tau) const {
+  const Eigen::Index n = dof_;
+  Eigen::MatrixXd modal = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double ec, es;
+    modes_[j].Evaluate(tau, &ec, &es);
+    modal.block<2, 2>(2 * j, 2 * j) =
+        ec * Eigen::Matrix2d::Identity() + es * shifted_blocks_.block<2, 2>(0, 2 * j);
+  }
+  return basis_ * modal * inverse_basis_;
+}
+
+}  // namespace impactkit

@@ -1,0 +1,120 @@
+#include "impactkit/hybrid/recorders.hpp"
+
+#include <cmath>
+
+#include "impactkit/dynamics/events.hpp"
+#include "impactkit/dynamics/segment.hpp"
+
+namespace impactkit {
+
+void ObserverList::OnSegment(const Segment& segment) {
+  for (Observer* o : observers_) o->OnSegment(segment);
+}
+void ObserverList::OnImpact(const Impact& impact) {
+  for (Observer* o : observers_) o->OnImpact(impact);
+}
+void ObserverList::OnChatter(double t_first, double t_end) {
+  for (Observer* o : observers_) o->OnChatter(t_first, t_end);
+}
+void ObserverList::OnRelease(double t_begin, double t_release) {
+  for (Observer* o : observers_) o->OnRelease(t_begin, t_release);
+}
+bool ObserverList::ShouldStop() const {
+  for (const Observer* o : observers_) {
+    if (o->ShouldStop()) return true;
+  }
+  return false;
+}
+
+TimeSeriesRecorder::TimeSeriesRecorder(double t_first, double dt) : t_first_(t_first), dt_(dt) {
+  if (!(dt > 0 && std::isfinite(dt))) throw InvalidInput("the sampling interval must be > 0");
+}
+
+void TimeSeriesRecorder::OnSegment(const Segment& segment) {
+  // A grid time that equals Begin() up to rounding belongs to this segment
+  // (evaluating the closed form a few ulps outside it is harmless).
+  const long first_inside =
+      static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_ - 1e-9));
+  next_ = std::max(next_, first_inside);
+  for (double t = t_first_ + next_ * dt_; t <= segment.End(); t = t_first_ + (++next_) * dt_) {
+    Sample s;
+    s.t = t;
+    s.stuck = segment.Stuck();
+    segment.StateAt(t, &s.x, &s.v);
+    samples_.push_back(std::move(s));
+  }
+}
+
+void ExtremaRecorder::Include(long period, int i, double value) {
+  if (periods_.empty()) {
+    periods_.push_back(PeriodExtrema{period, Eigen::VectorXd::Constant(max_dof_, -INFINITY),
+                                     Eigen::VectorXd::Constant(max_dof_, INFINITY)});
+  }
+  const long first = periods_.front().period;
+  if (period < first) return;  // before the first segment: cannot happen
+  while (periods_.back().period < period) {
+    periods_.push_back(PeriodExtrema{periods_.back().period + 1,
+                                     Eigen::VectorXd::Constant(max_dof_, -INFINITY),
+                                     Eigen::VectorXd::Constant(max_dof_, INFINITY)});
+  }
+  PeriodExtrema& e = periods_[period - first];
+  e.max(i) = std::max(e.max(i), value);
+  e.min(i) = std::min(e.min(i), value);
+}
+
+void ExtremaRecorder::OnSegment(const Segment& segment) {
+  Eigen::VectorXd x, v;
+  segment.StateAt(segment.Begin(), &x, &v);
+  max_dof_ = static_cast<int>(x.size());
+  if (!any_) first_time_ = segment.Begin();
+  any_ = true;
+  last_time_ = segment.End();
+  const EventOptions options{1e-12, period_};
+  for (int i = 0; i < max_dof_; ++i) {
+    const Signal position = segment.Position(i);
+    std::vector<double> times =
+        SignChanges(position.Derivative(), segment.Begin(), segment.End(), options);
+    times.push_back(segment.Begin());
+    times.push_back(segment.End());
+    for (double t : times) Include(static_cast<long>(std::floor(t / period_)), i, position.Value(t));
+    // A period boundary inside the segment closes one period and opens the next.
+    for (long k = static_cast<long>(std::ceil(segment.Begin() / period_));
+         k * period_ <= segment.End(); ++k) {
+      const double value = position.Value(k * period_);
+      Include(k - 1, i, value);
+      Include(k, i, value);
+    }
+  }
+}
+
+std::vector<PeriodExtrema> ExtremaRecorder::CompletePeriods() const {
+  std::vector<PeriodExtrema> complete;
+  for (const PeriodExtrema& e : periods_) {
+    if (e.period * period_ >= first_time_ - 1e-9 * period_ &&
+        (e.period + 1) * period_ <= last_time_ + 1e-9 * period_) {
+      complete.push_back(e);
+    }
+  }
+  return complete;
+}
+
+void StickingRecorder::OnSegment(const Segment& segment) {
+  if (!segment.Stuck()) {
+    open_ = false;
+    return;
+  }
+  if (open_ && intervals_.back().end == segment.Begin()) {
+    intervals_.back().end = segment.End();
+  } else {
+    intervals_.push_back(StickingInterval{segment.Begin(), segment.End()});
+    open_ = true;
+  }
+}
+
+double StickingRecorder::TotalTime() const {
+  double total = 0.0;
+  for (const StickingInterval& i : intervals_) total += i.end - i.begin;
+  return total;
+}
+
+}  // namespace impactkit

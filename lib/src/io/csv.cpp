@@ -1,0 +1,46 @@
+#include "impactkit/io/csv.hpp"
+
+#include <iterator>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace impactkit {
+namespace {
+
+constexpr std::size_t kFlushBytes = 1 << 16;
+
+}  // namespace
+
+CsvWriter::CsvWriter(const std::filesystem::path& path, std::string_view provenance,
+                     const std::vector<std::string>& columns)
+    : file_(path), columns_(columns.size()) {
+  if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");
+  if (provenance.find_first_of("\r\n") != std::string_view::npos) {
+    throw std::invalid_argument("the provenance of a CSV table must be one line");
+  }
+  fmt::format_to(std::back_inserter(buffer_), "# impactkit {}\n{}\n", provenance,
+                 fmt::join(columns, ","));
+}
+
+void CsvWriter::WriteRow(std::span<const double> values) {
+  if (values.size() != columns_) {
+    throw std::invalid_argument(fmt::format("a row of {} needs {} values, got {}", Path().string(),
+                                            columns_, values.size()));
+  }
+  // "{}" is the shortest representation that round-trips (fmt's default).
+  fmt::format_to(std::back_inserter(buffer_), "{}\n", fmt::join(values, ","));
+  if (buffer_.size() >= kFlushBytes) Flush();
+}
+
+void CsvWriter::Commit() {
+  Flush();
+  file_.Commit();
+}
+
+void CsvWriter::Flush() {
+  file_.Write(buffer_);
+  buffer_.clear();
+}
+
+}  // namespace impactkit

@@ -1,0 +1,305 @@
+#include "impactkit/io/system_file.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <span>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "io/toml_json.hpp"
+
+namespace impactkit {
+namespace {
+
+using Json = nlohmann::json;
+using Keys = std::span<const std::string_view>;
+
+constexpr std::array<std::string_view, 9> kTopLevelKeys = {
+    "chain", "mass", "damping", "stiffness", "forcing", "omega", "xs", "r", "contact_dof"};
+constexpr std::array<std::string_view, 4> kChainKeys = {"n", "m", "k", "c"};
+
+/// What a file states, before the paper's defaults fill the gaps.
+struct SystemFields {
+  std::optional<ChainParameters> chain;  ///< the chain form, its gaps already filled
+  std::optional<Eigen::MatrixXd> mass, damping, stiffness;
+  std::optional<Eigen::VectorXd> forcing;
+  std::optional<double> omega, stop, restitution;
+  std::optional<int> contact_dof;  ///< 1-based, as in the file
+  bool General() const { return mass || damping || stiffness || contact_dof; }
+};
+
+/// Largest N accepted in a file, as for `n` in SetParameter: a typo such as
+/// n = 1000000 must fail here, not in allocating an N x N matrix.
+constexpr int kMaxDof = 1000;
+
+/// 'name', as fields are named in messages.
+std::string Field(std::string_view name) { return fmt::format("'{}'", name); }
+
+/// Reads typed fields from a parsed document. Every error names the file and
+/// the field ("entry 2 of 'forcing'": entries and rows count from 1, like
+/// A1..AN) and says what is allowed.
+class FieldReader {
+ public:
+  explicit FieldReader(std::string_view source) : source_(source) {}
+
+  [[noreturn]] void Fail(std::string_view subject, std::string_view problem) const {
+    throw InvalidInput(fmt::format("{}: {} {}", source_, subject, problem));
+  }
+
+  /// `value` must be an object whose keys are all in `allowed`; `name` is
+  /// empty for the top level.
+  void RequireObject(const Json& value, std::string_view name, Keys allowed) const {
+    if (!value.is_object()) {
+      Fail(name.empty() ? "the top level" : Field(name),
+           fmt::format("must be an object with keys {}, got {}", fmt::join(allowed, ", "),
+                       Describe(value)));
+    }
+    for (const auto& [key, unused] : value.items()) {
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      const std::string where = name.empty() ? "" : fmt::format(" in {}", Field(name));
+      // dump() quotes and escapes the key: a key with a line break must not
+      // break the one-line error.
+      throw InvalidInput(fmt::format("{}: unknown key {}{}; allowed: {}", source_, Json(key).dump(),
+                                     where, fmt::join(allowed, ", ")));
+    }
+  }
+
+  double Number(const Json& value, std::string_view subject) const {
+    if (!value.is_number()) Fail(subject, fmt::format("must be a number, got {}", Describe(value)));
+    return value.get<double>();
+  }
+
+  int WholeNumber(const Json& value, std::string_view subject, int min) const {
+    const double number = Number(value, subject);
+    if (!(number >= min && number <= kMaxDof && number == std::floor(number))) {
+      Fail(subject,
+           fmt::format("must be a whole number in [{}, {}], got {}", min, kMaxDof, number));
+    }
+    return static_cast<int>(number);
+  }
+
+  Eigen::VectorXd Vector(const Json& value, std::string_view subject) const {
+    if (!value.is_array()) {
+      Fail(subject, fmt::format("must be an array of numbers, got {}", Describe(value)));
+    }
+    Eigen::VectorXd vector(value.size());
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      vector(static_cast<Eigen::Index>(i)) =
+          Number(value[i], fmt::format("entry {} of {}", i + 1, subject));
+    }
+    return vector;
+  }
+
+  /// A matrix is an array of rows of equal length (whether it is N x N is
+  /// the model's to check).
+  Eigen::MatrixXd Matrix(const Json& value, std::string_view name) const {
+    const std::string expected = "must be an array of N rows of N numbers";
+    if (!value.is_array() || value.empty()) {
+      Fail(Field(name), fmt::format("{}, got {}", expected, Describe(value)));
+    }
+    std::vector<Eigen::VectorXd> rows;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      rows.push_back(Vector(value[i], fmt::format("row {} of {}", i + 1, Field(name))));
+      if (rows.back().size() != rows.front().size()) {
+        Fail(Field(name), fmt::format("{}; row {} has {} entries, row 1 has {}", expected, i + 1,
+                                      rows.back().size(), rows.front().size()));
+      }
+    }
+    Eigen::MatrixXd matrix(rows.size(), rows.front().size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      matrix.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+    }
+    return matrix;
+  }
+
+ private:
+  /// The offending value, shortened: one line however large it is.
+  static std::string Describe(const Json& value) {
+    if (value.is_null()) return "null";
+    std::string text = value.dump();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return fmt::format("{} {}", value.type_name(), text);
+  }
+
+  std::string source_;
+};
+
+ChainParameters ReadChain(const Json& value, const ChainParameters& defaults,
+                          const FieldReader& reader) {
+  reader.RequireObject(value, "chain", kChainKeys);
+  ChainParameters chain = defaults;
+  if (value.contains("n")) chain.dof = reader.WholeNumber(value["n"], Field("chain.n"), 1);
+  if (value.contains("m")) chain.mass = reader.Number(value["m"], Field("chain.m"));
+  if (value.contains("k")) chain.stiffness = reader.Number(value["k"], Field("chain.k"));
+  if (value.contains("c")) chain.damping = reader.Number(value["c"], Field("chain.c"));
+  return chain;
+}
+
+/// The fields of `document`; the chain's gaps are filled from `paper`.
+SystemFields ReadFields(const Json& document, const System& paper, const FieldReader& reader) {
+  reader.RequireObject(document, "", kTopLevelKeys);
+  auto number = [&](const char* key) -> std::optional<double> {
+    if (!document.contains(key)) return std::nullopt;
+    return reader.Number(document[key], Field(key));
+  };
+  auto matrix = [&](const char* key) -> std::optional<Eigen::MatrixXd> {
+    if (!document.contains(key)) return std::nullopt;
+    return reader.Matrix(document[key], key);
+  };
+  SystemFields fields;
+  if (document.contains("chain")) fields.chain = ReadChain(document["chain"], *paper.chain, reader);
+  fields.mass = matrix("mass");
+  fields.damping = matrix("damping");
+  fields.stiffness = matrix("stiffness");
+  if (document.contains("forcing")) {
+    fields.forcing = reader.Vector(document["forcing"], Field("forcing"));
+  }
+  fields.omega = number("omega");
+  fields.stop = number("xs");
+  fields.restitution = number("r");
+  if (document.contains("contact_dof")) {
+    fields.contact_dof = reader.WholeNumber(document["contact_dof"], Field("contact_dof"), 1);
+  }
+  if (fields.chain && fields.General()) {
+    reader.Fail(Field("chain"),
+                "cannot be combined with mass, damping, stiffness or contact_dof: "
+                "describe either a uniform chain or general matrices");
+  }
+  return fields;
+}
+
+/// The paper's forcing for N masses: its first entries, then zeros (as
+/// SetParameter does when n grows).
+Eigen::VectorXd DefaultForcing(const System& paper, int dof) {
+  Eigen::VectorXd forcing = Eigen::VectorXd::Zero(dof);
+  const int kept = std::min<int>(dof, static_cast<int>(paper.forcing.size()));
+  forcing.head(kept) = paper.forcing.head(kept);
+  return forcing;
+}
+
+/// N of a general system: the size of the first matrix given (the others
+/// default to the paper chain's matrices of that size).
+int GeneralDof(const SystemFields& fields, const System& paper) {
+  for (const auto* matrix : {&fields.mass, &fields.stiffness, &fields.damping}) {
+    if (*matrix) return static_cast<int>((*matrix)->rows());
+  }
+  return paper.Dof();
+}
+
+/// The system the fields describe, gaps filled from `paper`. Throws
+/// InvalidInput (without the file name) for values the model rejects.
+System Build(const SystemFields& fields, const System& paper) {
+  const double omega = fields.omega.value_or(paper.omega);
+  const double stop = fields.stop.value_or(paper.stop);
+  const double restitution = fields.restitution.value_or(paper.restitution);
+  if (!fields.General()) {
+    const ChainParameters chain = fields.chain.value_or(*paper.chain);
+    return UniformChain(chain, fields.forcing.value_or(DefaultForcing(paper, chain.dof)), omega,
+                        stop, restitution);
+  }
+  ChainParameters chain = *paper.chain;
+  chain.dof = GeneralDof(fields, paper);
+  const Eigen::VectorXd forcing = fields.forcing.value_or(DefaultForcing(paper, chain.dof));
+  const System defaults = UniformChain(chain, forcing, omega, stop, restitution);
+  std::optional<int> contact_dof;
+  if (fields.contact_dof) contact_dof = *fields.contact_dof - 1;
+  return GeneralSystem(fields.mass.value_or(defaults.mass),
+                       fields.damping.value_or(defaults.damping),
+                       fields.stiffness.value_or(defaults.stiffness), forcing, omega, stop,
+                       restitution, contact_dof);
+}
+
+Json ParseJson(std::string_view text, std::string_view source) {
+  try {
+    return Json::parse(text);
+  } catch (const Json::exception& error) {
+    // Syntax errors, and numbers too large for a double (out_of_range.406).
+    // what() is "[json.exception.parse_error.101] parse error at line 1, ...":
+    // keep the part a user can act on.
+    const std::string what = error.what();
+    const std::size_t start = what.find("] ");
+    throw InvalidInput(fmt::format("{}: invalid JSON: {}", source,
+                                   start == std::string::npos ? what : what.substr(start + 2)));
+  }
+}
+
+std::optional<SystemFileFormat> FormatOf(const std::filesystem::path& path) {
+  const std::string extension = path.extension().string();
+  if (extension == ".json") return SystemFileFormat::kJson;
+  if (extension == ".toml") return SystemFileFormat::kToml;
+  return std::nullopt;
+}
+
+std::string ReadText(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw InvalidInput(fmt::format("{}: no such system file", path.string()));
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InvalidInput(fmt::format("{}: cannot read the system file", path.string()));
+  return text.str();
+}
+
+std::vector<std::vector<double>> Rows(const Eigen::MatrixXd& matrix) {
+  std::vector<std::vector<double>> rows;
+  for (Eigen::Index i = 0; i < matrix.rows(); ++i) {
+    rows.emplace_back(matrix.row(i).begin(), matrix.row(i).end());
+  }
+  return rows;
+}
+
+}  // namespace
+
+System ReadSystemFile(const std::filesystem::path& path) {
+  const std::optional<SystemFileFormat> format = FormatOf(path);
+  if (!format) {
+    throw InvalidInput(fmt::format("{}: unknown system file type '{}'; use .json or .toml",
+                                   path.string(), path.extension().string()));
+  }
+  return ParseSystem(ReadText(path), *format, path.string());
+}
+
+System ParseSystem(std::string_view text, SystemFileFormat format, std::string_view source) {
+  const Json document =
+      format == SystemFileFormat::kJson ? ParseJson(text, source) : ParseTomlAsJson(text, source);
+  const System paper = PaperSystem();
+  const SystemFields fields = ReadFields(document, paper, FieldReader(source));
+  try {
+    System system = Build(fields, paper);
+    Validate(system);
+    return system;
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("{}: {}", source, error.what()));
+  }
+}
+
+std::string SystemToJson(const System& system) {
+  nlohmann::ordered_json json;
+  // The chain form is exact only when the contact DOF is the chain's last.
+  const bool chain_form = system.chain && system.contact_dof == system.Dof() - 1;
+  if (chain_form) {
+    json["chain"] = {{"n", system.chain->dof},
+                     {"m", system.chain->mass},
+                     {"k", system.chain->stiffness},
+                     {"c", system.chain->damping}};
+  } else {
+    json["mass"] = Rows(system.mass);
+    json["damping"] = Rows(system.damping);
+    json["stiffness"] = Rows(system.stiffness);
+  }
+  json["forcing"] = std::vector<double>(system.forcing.begin(), system.forcing.end());
+  json["omega"] = system.omega;
+  json["xs"] = system.stop;
+  json["r"] = system.restitution;
+  if (!chain_form) json["contact_dof"] = system.contact_dof + 1;
+  return json.dump(2);
+}
+
+}  // namespace impactkit

@@ -1,0 +1,251 @@
+#include "impactkit/model/system.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "impactkit/dynamics/flow.hpp"
+#include "dynamics/subsystem.hpp"
+#include "model/validate_parameters.hpp"
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace impactkit {
+namespace {
+
+void Require(bool condition, const std::string& message) {
+  if (!condition) throw InvalidInput(message);
+}
+
+void RequireFinite(const Eigen::MatrixXd& m, const std::string& name) {
+  Require(m.allFinite(), name + " has a NaN or infinite entry; all entries must be finite");
+}
+
+void RequireSquare(const Eigen::MatrixXd& m, int n, const std::string& name) {
+  Require(m.rows() == n && m.cols() == n,
+          fmt::format("{} must be {} x {} (N = {}), got {} x {}", name, n, n, n,
+                 static_cast<int>(m.rows()), static_cast<int>(m.cols())));
+  RequireFinite(m, name);
+  const double scale = m.cwiseAbs().maxCoeff();
+  Require((m - m.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale,
+          name + " must be symmetric");
+}
+
+/// Smallest eigenvalue of a symmetric matrix.
+double SmallestEigenvalue(const Eigen::MatrixXd& m) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .minCoeff();
+}
+
+void ValidateChain(const ChainParameters& chain) {
+  Require(chain.dof >= 1, fmt::format("n (number of masses) must be >= 1, got {}", chain.dof));
+  Require(std::isfinite(chain.mass) && chain.mass > 0,
+          fmt::format("m (mass) must be finite and > 0, got {}", chain.mass));
+  Require(std::isfinite(chain.stiffness) && chain.stiffness > 0,
+          fmt::format("k (stiffness) must be finite and > 0, got {}", chain.stiffness));
+  Require(std::isfinite(chain.damping) && chain.damping >= 0,
+          fmt::format("c (damping) must be finite and >= 0, got {}", chain.damping));
+}
+
+void ValidateMatrices(const System& s) {
+  const int n = s.Dof();
+  Require(n >= 1, "the system needs at least one mass (N >= 1)");
+  RequireSquare(s.mass, n, "M (mass matrix)");
+  RequireSquare(s.damping, n, "C (damping matrix)");
+  RequireSquare(s.stiffness, n, "K (stiffness matrix)");
+  const double m_scale = s.mass.cwiseAbs().maxCoeff();
+  Require(m_scale > 0 && SmallestEigenvalue(s.mass) > 1e-12 * m_scale,
+          "M (mass matrix) must be positive definite (every mass > 0)");
+  const double k_scale = s.stiffness.cwiseAbs().maxCoeff();
+  Require(k_scale > 0 && SmallestEigenvalue(s.stiffness) > 1e-12 * k_scale,
+          "K (stiffness matrix) must be positive definite (every mass tied by a spring)");
+  const double c_scale = s.damping.cwiseAbs().maxCoeff();
+  Require(c_scale == 0 || SmallestEigenvalue(s.damping) >= -1e-12 * c_scale,
+          "C (damping matrix) must be positive semi-definite (no negative damping)");
+}
+
+void ValidateScalars(const System& s) {
+  const int n = s.Dof();
+  Require(s.forcing.size() == n,
+          fmt::format("A (forcing) must have N = {} entries, got {}", n,
+                 static_cast<int>(s.forcing.size())));
+  Require(s.forcing.allFinite(), "A (forcing) has a NaN or infinite entry");
+  Require(std::isfinite(s.omega) && s.omega > 0,
+          fmt::format("omega (forcing frequency) must be finite and > 0, got {}", s.omega));
+  Require(std::isfinite(s.stop), fmt::format("xs (stop position) must be finite, got {}", s.stop));
+  Require(std::isfinite(s.restitution) && s.restitution >= 0 && s.restitution <= 1,
+          fmt::format("r (coefficient of restitution) must be in [0, 1], got {}", s.restitution));
+  Require(s.contact_dof >= 0 && s.contact_dof < n,
+          fmt::format("contact DOF must be in [1, {}], got {}", n, s.contact_dof + 1));
+}
+
+/// The subsystem that moves while the contact mass sticks must have a
+/// bounded steady response too.
+void ValidateStuckSubsystem(const System& s) {
+  const int c = s.contact_dof;
+  try {
+    LinearFlow(WithoutIndex(s.mass, c), WithoutIndex(s.damping, c), WithoutIndex(s.stiffness, c),
+               WithoutIndex(s.forcing, c),
+               -WithoutIndex(Eigen::VectorXd(s.stiffness.col(c)), c) * s.stop, s.omega);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("stuck subsystem (mass {} held at the stop): {}", c + 1,
+                                   e.what()));
+  }
+}
+
+/// Index of the parameter A<i> (1-based in the name), or -1.
+int ForcingIndex(std::string_view name, int dof) {
+  if (name.size() < 2 || name[0] != 'A') return -1;
+  int index = 0;
+  for (char ch : name.substr(1)) {
+    if (ch < '0' || ch > '9') return -1;
+    index = index * 10 + (ch - '0');
+    if (index > dof) return -1;
+  }
+  return index >= 1 ? index - 1 : -1;
+}
+
+[[noreturn]] void UnknownParameter(const System& s, std::string_view name) {
+  throw InvalidInput(
+      fmt::format("unknown parameter '{}'; known: {}", name, fmt::join(ParameterNames(s), ", ")));
+}
+
+}  // namespace
+
+double System::ForcingPeriod() const { return 2.0 * std::numbers::pi / omega; }
+
+double System::Phase(double t) const {
+  const double period = ForcingPeriod();
+  const double phase = std::fmod(t, period);
+  return phase < 0 ? phase + period : phase;
+}
+
+Eigen::MatrixXd ChainCouplingMatrix(int dof) {
+  Eigen::MatrixXd e = Eigen::MatrixXd::Zero(dof, dof);
+  for (int i = 0; i < dof; ++i) {
+    e(i, i) = (i + 1 < dof) ? 2.0 : 1.0;
+    if (i + 1 < dof) e(i, i + 1) = e(i + 1, i) = -1.0;
+  }
+  return e;
+}
+
+System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
+                    double stop, double restitution) {
+  // Values are checked by Validate(); only the shape is needed to build.
+  Require(chain.dof >= 1, fmt::format("n (number of masses) must be >= 1, got {}", chain.dof));
+  const Eigen::MatrixXd e = ChainCouplingMatrix(chain.dof);
+  System s = GeneralSystem(chain.mass * Eigen::MatrixXd::Identity(chain.dof, chain.dof),
+                           chain.damping * e, chain.stiffness * e, forcing, omega, stop,
+                           restitution);
+  s.chain = chain;
+  return s;
+}
+
+System PaperSystem(double omega) {
+  return UniformChain(ChainParameters{}, Eigen::Vector2d(0.5, 0.0), omega, 0.1, 0.7);
+}
+
+System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
+                     const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing,
+                     double omega, double stop, double restitution,
+                     std::optional<int> contact_dof) {
+  System s;
+  s.mass = mass;
+  s.damping = damping;
+  s.stiffness = stiffness;
+  s.forcing = forcing;
+  s.omega = omega;
+  s.stop = stop;
+  s.restitution = restitution;
+  s.contact_dof = contact_dof.value_or(static_cast<int>(mass.rows()) - 1);
+  return s;
+}
+
+void ValidateParameters(const System& s) {
+  if (s.chain) ValidateChain(*s.chain);
+  ValidateMatrices(s);
+  ValidateScalars(s);
+}
+
+void Validate(const System& s) {
+  ValidateParameters(s);
+  // Constructing the flows rejects an undamped resonance (no bounded
+  // steady response): the same test the simulator relies on.
+  LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()), s.omega);
+  if (s.Dof() > 1) ValidateStuckSubsystem(s);
+}
+
+std::vector<std::string> ParameterNames(const System& s) {
+  std::vector<std::string> names = {"omega", "xs", "r"};
+  for (int i = 0; i < s.Dof(); ++i) names.push_back(fmt::format("A{}", i + 1));
+  if (s.chain) names.insert(names.end(), {"m", "k", "c", "n"});
+  return names;
+}
+
+double GetParameter(const System& s, std::string_view name) {
+  if (name == "omega") return s.omega;
+  if (name == "xs") return s.stop;
+  if (name == "r") return s.restitution;
+  if (const int i = ForcingIndex(name, s.Dof()); i >= 0) return s.forcing(i);
+  if (s.chain) {
+    if (name == "m") return s.chain->mass;
+    if (name == "k") return s.chain->stiffness;
+    if (name == "c") return s.chain->damping;
+    if (name == "n") return s.chain->dof;
+  }
+  UnknownParameter(s, name);
+}
+
+void SetParameter(System& s, std::string_view name, double value) {
+  if (name == "omega") {
+    s.omega = value;
+  } else if (name == "xs") {
+    s.stop = value;
+  } else if (name == "r") {
+    s.restitution = value;
+  } else if (const int i = ForcingIndex(name, s.Dof()); i >= 0) {
+    s.forcing(i) = value;
+  } else if (s.chain && (name == "m" || name == "k" || name == "c" || name == "n")) {
+    ChainParameters chain = *s.chain;
+    if (name == "m") chain.mass = value;
+    if (name == "k") chain.stiffness = value;
+    if (name == "c") chain.damping = value;
+    if (name == "n") {
+      // The modal decomposition costs O(N³): n = 1000 takes seconds, more
+      // would look like a hang.
+      Require(std::isfinite(value) && value >= 1 && value == std::floor(value) && value <= 1000,
+              fmt::format("n (number of masses) must be a whole number in [1, 1000], got {}", value));
+      chain.dof = static_cast<int>(value);
+    }
+    Eigen::VectorXd forcing = Eigen::VectorXd::Zero(chain.dof);
+    const int kept = std::min<int>(chain.dof, static_cast<int>(s.forcing.size()));
+    forcing.head(kept) = s.forcing.head(kept);
+    s = UniformChain(chain, forcing, s.omega, s.stop, s.restitution);
+  } else {
+    UnknownParameter(s, name);
+  }
+}
+
+HybridState RestState(const System& s) {
+  HybridState state;
+  state.x = Eigen::VectorXd::Zero(s.Dof());
+  state.v = Eigen::VectorXd::Zero(s.Dof());
+  return state;
+}
+
+void ValidateState(const System& s, const HybridState& state) {
+  const int n = s.Dof();
+  Require(state.x.size() == n && state.v.size() == n,
+          fmt::format("the initial state must have N = {} positions and {} velocities, got {} and {}",
+                 n, n, static_cast<int>(state.x.size()), static_cast<int>(state.v.size())));
+  Require(std::isfinite(state.t) && state.x.allFinite() && state.v.allFinite(),
+          "the initial state has a NaN or infinite entry");
+  const int c = s.contact_dof;
+  Require(state.x(c) <= s.stop,
+          fmt::format("initial x{} = {} is beyond the stop xs = {}; it must be <= xs", c + 1,
+                 state.x(c), s.stop));
+  Require(!state.stuck || (state.x(c) == s.stop && state.v(c) == 0.0),
+          fmt::format("a stuck initial state needs x{} = xs and v{} = 0", c + 1, c + 1));
+}
+
+}  // namespace impactkit

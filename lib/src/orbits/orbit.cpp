@@ -1,0 +1,186 @@
+#include "impactkit/orbits/orbit.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+
+namespace impactkit {
+namespace {
+
+/// The same impact state with τ moved into [0, T): the map commutes with
+/// shifts by T, and small times keep event times precise.
+Eigen::VectorXd WithPhase(const ImpactMap& map, Eigen::VectorXd eta) {
+  const int i = map.TimeIndex();
+  eta(i) = map.GetSystem().Phase(eta(i));
+  return eta;
+}
+
+/// U(η) = P_I^p(η) - η - q T e_τ and its Jacobian, as callbacks for the
+/// nonlinear solvers; a failing map (or an η that is no impact state)
+/// tells the solver to shorten its step.
+class FixedPointProblem {
+ public:
+  FixedPointProblem(const ImpactMap& map, const OrbitOptions& options)
+      : map_(map), options_(options) {}
+
+  bool Residual(const Eigen::VectorXd& eta, Eigen::VectorXd* u) const {
+    // Newton asks for the Jacobian where it has just asked for the residual:
+    // the analytic one costs little beside the map, so compute both at once.
+    const bool analytic = options_.jacobian == JacobianMethod::kAnalytic;
+    const std::optional<MapResult> image = Map(eta, analytic);
+    if (!image) return false;
+    if (analytic) {
+      cached_eta_ = eta;
+      cached_jacobian_ = image->jacobian;
+    }
+    *u = image->eta - eta;
+    (*u)(map_.TimeIndex()) -= options_.q * map_.GetSystem().ForcingPeriod();
+    return u->allFinite();
+  }
+
+  bool Jacobian(const Eigen::VectorXd& eta, Eigen::MatrixXd* jacobian) const {
+    if (options_.jacobian == JacobianMethod::kFiniteDifference) {
+      *jacobian = map_.FiniteDifferenceJacobian(eta, options_.p);
+      if (jacobian->size() == 0) return false;
+    } else if (cached_eta_.size() == eta.size() && cached_eta_ == eta) {
+      *jacobian = cached_jacobian_;
+    } else {
+      const std::optional<MapResult> image = Map(eta, true);
+      if (!image) return false;
+      *jacobian = image->jacobian;
+    }
+    jacobian->diagonal().array() -= 1.0;
+    return jacobian->allFinite();
+  }
+
+ private:
+  std::optional<MapResult> Map(const Eigen::VectorXd& eta, bool with_jacobian) const {
+    const int speed_index = map_.TimeIndex() + 1 + map_.GetSystem().contact_dof;
+    if (!eta.allFinite() || !(eta(speed_index) > 0)) return std::nullopt;
+    MapResult image = map_.Apply(eta, options_.p, with_jacobian);
+    if (image.status != MapStatus::kOk) return std::nullopt;
+    return image;
+  }
+
+  const ImpactMap& map_;
+  const OrbitOptions& options_;
+  mutable Eigen::VectorXd cached_eta_;  ///< where cached_jacobian_ was computed
+  mutable Eigen::MatrixXd cached_jacobian_;
+};
+
+}  // namespace
+
+PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q) {
+  const MapResult image = map.Apply(eta, p, true);
+  if (image.status != MapStatus::kOk) {
+    throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
+                                   image.impacts_done, p, ToString(image.status)));
+  }
+  const System& system = map.GetSystem();
+  PeriodicOrbit orbit;
+  orbit.p = p;
+  orbit.q = q;
+  orbit.omega = system.omega;
+  orbit.eta = eta;
+  orbit.jacobian = image.jacobian;
+  Eigen::VectorXd shift = Eigen::VectorXd::Zero(eta.size());
+  shift(map.TimeIndex()) = q * system.ForcingPeriod();
+  orbit.residual = (image.eta - eta - shift).cwiseAbs().maxCoeff();
+  const int n = system.Dof(), c = system.contact_dof;
+  for (int k = 0; k < p; ++k) {
+    const Eigen::VectorXd& at = k == 0 ? eta : image.path[k - 1];
+    const double t = at(map.TimeIndex());
+    orbit.impacts.push_back({t, system.Phase(t), at(n + c)});
+  }
+  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(image.jacobian).eigenvalues();
+  std::sort(lambda.begin(), lambda.end(),
+            [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
+  orbit.multipliers = lambda;
+  orbit.stable = lambda.size() == 0 || std::abs(lambda(0)) < 1.0;
+  orbit.contacts = MeasureOrbitContacts(map, eta, p);
+  return orbit;
+}
+
+std::string ToString(JacobianMethod method) {
+  return method == JacobianMethod::kAnalytic ? "analytic" : "finite-difference";
+}
+
+std::string ToString(OrbitTermination termination) {
+  switch (termination) {
+    case OrbitTermination::kConverged:
+      return "converged";
+    case OrbitTermination::kNoConvergence:
+      return "no convergence";
+    case OrbitTermination::kMapFailed:
+      return "map failed at the seed";
+  }
+  return "unknown";
+}
+
+bool OrbitOptions::IsValid(std::string* error) const {
+  if (p < 1 || q < 1) {
+    if (error) *error = fmt::format("p and q must be >= 1, got p = {}, q = {}", p, q);
+    return false;
+  }
+  return newton.IsValid(error) && map.IsValid(error);
+}
+
+std::string OrbitSummary::BriefReport() const {
+  return fmt::format("{}: residual {:.2e} after {} iterations{}, {:.3g} s{}", ToString(termination),
+                     residual, iterations, used_fallback ? " (Levenberg-Marquardt fallback)" : "",
+                     seconds, message.empty() ? "" : " (" + message + ")");
+}
+
+OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
+                       const OrbitOptions& options, PeriodicOrbit* orbit) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  const ImpactMap map(system, options.map);
+  map.ValidateEta(guess);
+  const FixedPointProblem problem(map, options);
+  const Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
+    return problem.Residual(x, f);
+  };
+  const Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
+    return problem.Jacobian(x, j);
+  };
+
+  OrbitSummary summary;
+  Eigen::VectorXd eta = WithPhase(map, guess);
+  Eigen::VectorXd u;
+  if (!problem.Residual(eta, &u)) {
+    const MapResult image = map.Apply(eta, options.p, false);
+    summary.termination = OrbitTermination::kMapFailed;
+    summary.message = fmt::format("after {} of {} impacts: {}", image.impacts_done, options.p,
+                                  ToString(image.status));
+    return summary;
+  }
+  SolveSummary solve = SolveNewton(residual, jacobian, options.newton, &eta);
+  summary.iterations = solve.iterations;
+  if (solve.termination != SolveTermination::kConverged && options.least_squares_fallback) {
+    eta = WithPhase(map, guess);
+    solve = SolveLeastSquares(residual, jacobian, options.newton, &eta);
+    summary.iterations += solve.iterations;
+    summary.used_fallback = true;
+  }
+  summary.termination = solve.termination == SolveTermination::kConverged
+                            ? OrbitTermination::kConverged
+                            : OrbitTermination::kNoConvergence;
+  summary.message = solve.message;
+  summary.residual = solve.residual_norm;
+  eta = WithPhase(map, eta);
+  if (summary.termination == OrbitTermination::kConverged) {
+    *orbit = DescribeOrbit(map, eta, options.p, options.q);
+  } else {
+    orbit->eta = eta;
+  }
+  orbit->residual = solve.residual_norm;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace impactkit
