@@ -78,7 +78,7 @@ std::vector<TracedBranch> SwitchBranches(const System& system, const TracedBranc
       for (const GrazingSeed& seed : SeedsAtGrazing(system, main.branch, special, options)) {
         PeriodicOrbit orbit;
         if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
-            OrbitTermination::kConverged) {
+            Termination::kConverged) {
           continue;
         }
         ContinuationOptions next = options;

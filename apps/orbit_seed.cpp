@@ -84,7 +84,7 @@ PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
   *options = ChooseSeed(system, seed, &eta);
   PeriodicOrbit orbit;
   const OrbitSummary result = FindOrbit(system, eta, *options, &orbit);
-  if (result.termination != OrbitTermination::kConverged) {
+  if (result.termination != Termination::kConverged) {
     throw std::runtime_error(
         fmt::format("no P({},{}) orbit found: {}", options->p, options->q, result.BriefReport()));
   }

@@ -38,7 +38,7 @@ int main() {
   OrbitOptions orbit_options;
   PeriodicOrbit start;
   if (FindOrbit(system, seed->eta, orbit_options, &start).termination !=
-      OrbitTermination::kConverged) {
+      Termination::kConverged) {
     return 1;
   }
   ContinuationOptions options;
@@ -60,7 +60,7 @@ int main() {
       System at = system;
       at.omega = point.parameter;
       PeriodicOrbit orbit;
-      if (FindOrbit(at, eta, by_hand, &orbit).termination == OrbitTermination::kConverged) {
+      if (FindOrbit(at, eta, by_hand, &orbit).termination == Termination::kConverged) {
         eta = orbit.eta;
       } else {
         ++failures;

@@ -20,7 +20,7 @@ int main() {
   PeriodicOrbit orbit;
   const OrbitSummary summary = FindOrbit(system, seed->eta, options, &orbit);
   std::printf("%s\n", summary.BriefReport().c_str());
-  if (summary.termination != OrbitTermination::kConverged) return EXIT_FAILURE;
+  if (summary.termination != Termination::kConverged) return EXIT_FAILURE;
 
   std::printf("P(%d,%d), %s\n", orbit.p, orbit.q, orbit.stable ? "stable" : "unstable");
   for (const OrbitImpact& impact : orbit.impacts) {

@@ -13,7 +13,7 @@ int main() {
   if (!seed) return EXIT_FAILURE;
   PeriodicOrbit start;
   if (FindOrbit(system, seed->eta, OrbitOptions{}, &start).termination !=
-      OrbitTermination::kConverged) {
+      Termination::kConverged) {
     return EXIT_FAILURE;
   }
 

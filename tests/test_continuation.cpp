@@ -27,7 +27,7 @@ PeriodicOrbit Orbit(const System& system, int p, int q) {
   options.q = q;
   PeriodicOrbit orbit;
   REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination ==
-          OrbitTermination::kConverged);
+          Termination::kConverged);
   return orbit;
 }
 
@@ -64,7 +64,7 @@ std::complex<double> RecomputedMultiplier(const System& base, const Branch& bran
   PeriodicOrbit orbit;
   const System system = At(base, branch.parameter, s.point.parameter);
   REQUIRE(FindOrbit(system, s.point.orbit.eta, options, &orbit).termination ==
-          OrbitTermination::kConverged);
+          Termination::kConverged);
   std::complex<double> best = orbit.multipliers(0);
   for (const std::complex<double>& m : orbit.multipliers) {
     if (std::abs(m - target) < std::abs(best - target)) best = m;
@@ -274,7 +274,7 @@ TEST_CASE(
   for (const GrazingSeed& seed : SeedsAtGrazing(system, branch, graze, options)) {
     PeriodicOrbit orbit;
     if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
-        OrbitTermination::kConverged) {
+        Termination::kConverged) {
       continue;
     }
     CHECK(orbit.p == 2);
@@ -332,7 +332,7 @@ TEST_CASE(
     // An independent solve at the bound from the start orbit's seed.
     PeriodicOrbit orbit;
     REQUIRE(FindOrbit(At(system, name, to), start.eta, OrbitOptions{}, &orbit).termination ==
-            OrbitTermination::kConverged);
+            Termination::kConverged);
     CHECK(std::abs(orbit.impacts[0].velocity - end.orbit.impacts[0].velocity) < 1e-9);
     CHECK(std::abs(std::remainder(orbit.impacts[0].phase - end.orbit.impacts[0].phase,
                                   system.ForcingPeriod())) < 1e-9);

@@ -100,7 +100,7 @@ std::uint64_t OrbitHash(const System& system, int p, int q) {
   options.q = q;
   PeriodicOrbit orbit;
   REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination ==
-          OrbitTermination::kConverged);
+          Termination::kConverged);
   BitHash hash;
   hash.Add(orbit.eta);
   hash.Add(orbit.jacobian);
@@ -163,7 +163,7 @@ TEST_CASE("A continued branch is bit-identical to the recorded fingerprint", "[f
   options.direction = ContinuationDirection::kBoth;
   BranchStart start{system, {}, {}};
   REQUIRE(FindOrbit(system, seed->eta, options.orbit, &start.orbit).termination ==
-          OrbitTermination::kConverged);
+          Termination::kConverged);
   const Branch branch = ContinueBranch(start, options);
   BitHash hash;
   for (const BranchPoint& point : branch.points) {

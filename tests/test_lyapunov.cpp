@@ -86,7 +86,7 @@ TEST_CASE("on the stable P(1,1) at Omega = 1.2 the exponents are log|multipliers
   REQUIRE(seed);
   PeriodicOrbit orbit;
   const OrbitSummary summary = FindOrbit(s, seed->eta, {}, &orbit);
-  REQUIRE(summary.termination == OrbitTermination::kConverged);
+  REQUIRE(summary.termination == Termination::kConverged);
   REQUIRE(orbit.stable);
 
   LyapunovOptions options;

@@ -42,7 +42,7 @@ TEST_CASE("the fit recovers Eq. 18's parameters from noisy samples of the map", 
   }
   const MapFitSummary fit = FitSqrtMap(x, y);
   INFO(fit.BriefReport());
-  REQUIRE(fit.termination == MapFitTermination::kConverged);
+  REQUIRE(fit.termination == Termination::kConverged);
   // Each parameter within 4 standard errors of the truth (a 6e-5 chance of
   // failing by noise per parameter), and the errors small: the data decide.
   CHECK_THAT(fit.parameters.s, WithinAbs(truth.s, 4 * fit.standard_error.s));
@@ -60,7 +60,7 @@ TEST_CASE("points all beyond the break do not determine the fit", "[map_fit]") {
   std::vector<double> x{1.0, 1.1, 1.2, 1.3, 1.4};
   std::vector<double> y{0.2, 0.22, 0.24, 0.26, 0.28};
   const MapFitSummary fit = FitSqrtMap(x, y);
-  CHECK(fit.termination == MapFitTermination::kFailure);
+  CHECK(fit.termination == Termination::kFailure);
   CHECK_THROWS_AS(FitSqrtMap({1.0, 2.0}, {1.0, 2.0}), InvalidInput);
   CHECK_THROWS_AS(FitSqrtMap({1.0, 2.0, 3.0, 4.0}, {1.0, 2.0, 3.0}), InvalidInput);
 }
@@ -93,7 +93,7 @@ TEST_CASE("on the paper's Omega = 1.72 return map the break sits at the near-ver
 
   const MapFitSummary fit = FitSqrtMap(points.from, points.to);
   INFO(fit.BriefReport());
-  REQUIRE(fit.termination == MapFitTermination::kConverged);
+  REQUIRE(fit.termination == Termination::kConverged);
   CHECK_THAT(fit.parameters.d, WithinAbs(median, 0.02));
   // Better than the mean alone, though the branched arch and the scatter at
   // the drop leave much unexplained (docs/maps.md): rms 0.051 against a

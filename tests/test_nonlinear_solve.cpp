@@ -117,7 +117,7 @@ TEST_CASE("Newton through KINSOL converges quadratically to the tolerance", "[so
   Eigen::VectorXd x = Eigen::Vector2d(3.0, 1.0);
   const SolveSummary s = SolveNewton(p.residual, recording, NewtonOptions{}, &x);
   INFO(s.BriefReport());
-  CHECK(s.termination == SolveTermination::kConverged);
+  CHECK(s.termination == Termination::kConverged);
   CHECK(s.residual_norm <= 1e-11);
   CHECK(s.iterations <= 8);  // 5 observed
   CHECK(s.jacobian_evaluations == s.iterations);  // exact Newton: a fresh Jacobian each time
@@ -163,7 +163,7 @@ TEST_CASE("a linear system is solved in one Newton iteration, far from the guess
     Eigen::VectorXd x = Eigen::VectorXd::Zero(5);
     const SolveSummary s = SolveNewton(residual, jacobian, options, &x);
     INFO(s.BriefReport());
-    CHECK(s.termination == SolveTermination::kConverged);
+    CHECK(s.termination == Termination::kConverged);
     CHECK(s.iterations >= 1);
     CHECK(s.iterations <= 2);  // 1 observed
     CHECK((x - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
@@ -195,7 +195,7 @@ TEST_CASE("a residual that fails in part of the domain makes Newton shorten its 
       const SolveSummary s = SolveNewton(residual, p.jacobian, options, &x);
       INFO(s.BriefReport() << " (NaN: " << report_nan << ", line search: " << line_search << ")");
       CHECK(failures >= 1);  // the failing region was really visited
-      CHECK(s.termination == SolveTermination::kConverged);
+      CHECK(s.termination == Termination::kConverged);
       CHECK_THAT(x(0), WithinAbs(0.0, 1e-11));
     }
     // Levenberg-Marquardt rejects the failed step and shrinks its region.
@@ -203,7 +203,7 @@ TEST_CASE("a residual that fails in part of the domain makes Newton shorten its 
     Eigen::VectorXd x = Eigen::VectorXd::Constant(1, 1.5);
     const SolveSummary s = SolveLeastSquares(residual, p.jacobian, NewtonOptions{}, &x);
     INFO(s.BriefReport());
-    CHECK(s.termination == SolveTermination::kConverged);
+    CHECK(s.termination == Termination::kConverged);
     CHECK_THAT(x(0), WithinAbs(0.0, 1e-11));
   }
 }
@@ -235,14 +235,14 @@ TEST_CASE("Levenberg-Marquardt converges where Newton from a poor guess does not
     Eigen::VectorXd x = guess;
     const SolveSummary newton = SolveNewton(residual, jacobian, options, &x);
     INFO(newton.BriefReport());
-    CHECK(newton.termination == SolveTermination::kNoConvergence);
+    CHECK(newton.termination == Termination::kNoConvergence);
     CHECK(newton.residual_norm > 1.0);
     CHECK(x.allFinite());
 
     x = guess;
     const SolveSummary lm = SolveLeastSquares(residual, jacobian, NewtonOptions{}, &x);
     INFO(lm.BriefReport());
-    CHECK(lm.termination == SolveTermination::kConverged);
+    CHECK(lm.termination == Termination::kConverged);
     CHECK(lm.residual_norm <= 1e-11);
     // At a singular root the tolerance on F bounds x to 1e-11 but y only to
     // about sqrt((1e-11 + 100 |x|) / 2) ~ 2e-5.
@@ -257,13 +257,13 @@ TEST_CASE("Levenberg-Marquardt converges where Newton from a poor guess does not
     Eigen::VectorXd x = Eigen::VectorXd::Constant(1, 2.0);
     const SolveSummary newton = SolveNewton(p.residual, p.jacobian, options, &x);
     INFO(newton.BriefReport());
-    CHECK(newton.termination == SolveTermination::kNoConvergence);  // KIN_MXNEWT_5X_EXCEEDED
+    CHECK(newton.termination == Termination::kNoConvergence);  // KIN_MXNEWT_5X_EXCEEDED
     CHECK(x(0) == 2.0);
     CHECK_THAT(newton.residual_norm, WithinRel(std::atan(2.0), 1e-15));
 
     const SolveSummary lm = SolveLeastSquares(p.residual, p.jacobian, options, &x);
     INFO(lm.BriefReport());
-    CHECK(lm.termination == SolveTermination::kConverged);
+    CHECK(lm.termination == Termination::kConverged);
     CHECK_THAT(x(0), WithinAbs(0.0, 1e-11));
   }
 }
@@ -275,7 +275,7 @@ TEST_CASE("no root is never reported as converged", "[solve]") {
       Eigen::VectorXd x = Eigen::VectorXd::Constant(1, guess);
       const SolveSummary s = solve(p.residual, p.jacobian, NewtonOptions{}, &x);
       INFO(s.BriefReport());
-      CHECK(s.termination != SolveTermination::kConverged);
+      CHECK(s.termination != Termination::kConverged);
       CHECK(x.allFinite());
       CHECK(s.residual_norm >= 1.0);
       CHECK(std::isfinite(s.residual_norm));
@@ -300,7 +300,7 @@ TEST_CASE("NaN in the residual is never reported as converged", "[solve]") {
       Eigen::VectorXd x = Eigen::Vector2d(0.7, 0.1);
       const SolveSummary s = solve(nan, identity, NewtonOptions{}, &x);
       INFO(s.BriefReport());
-      CHECK(s.termination == SolveTermination::kFailure);
+      CHECK(s.termination == Termination::kFailure);
       CHECK(s.iterations == 0);
       CHECK(x == Eigen::Vector2d(0.7, 0.1));
       CHECK(s.residual_norm == std::numeric_limits<double>::infinity());
@@ -317,7 +317,7 @@ TEST_CASE("NaN in the residual is never reported as converged", "[solve]") {
       Eigen::VectorXd x = Eigen::Vector2d(3.0, -2.0);
       const SolveSummary s = solve(nan_at_root, identity, NewtonOptions{}, &x);
       INFO(s.BriefReport());
-      CHECK(s.termination != SolveTermination::kConverged);
+      CHECK(s.termination != Termination::kConverged);
       CHECK(x.allFinite());
       CHECK(s.residual_norm >= 1e-3);
       CHECK(std::isfinite(s.residual_norm));
@@ -395,7 +395,7 @@ TEST_CASE("Levenberg-Marquardt stops at the tolerance on max|F|", "[solve]") {
   Eigen::VectorXd x = Eigen::Vector2d(3.0, 1.0);
   const SolveSummary s = SolveLeastSquares(p.residual, p.jacobian, NewtonOptions{}, &x);
   INFO(s.BriefReport());
-  CHECK(s.termination == SolveTermination::kConverged);
+  CHECK(s.termination == Termination::kConverged);
   CHECK(s.residual_norm <= 1e-11);
   CHECK(s.iterations <= 20);  // 6 observed
   CHECK(s.jacobian_evaluations >= 1);
@@ -433,15 +433,15 @@ TEST_CASE("the solvers print nothing, even when they fail", "[solve]") {
   });
   INFO("printed: " << output);
   CHECK(output.empty());
-  CHECK(singular.termination == SolveTermination::kFailure);
+  CHECK(singular.termination == Termination::kFailure);
   CHECK_THAT(singular.message, Contains("KIN_LSETUP_FAIL"));
-  CHECK(first_call.termination == SolveTermination::kFailure);
+  CHECK(first_call.termination == Termination::kFailure);
   CHECK_THAT(first_call.message, Contains("KIN_FIRST_SYSFUNC_ERR"));
-  CHECK(lm_failure.termination == SolveTermination::kFailure);
-  CHECK(lm_no_root.termination == SolveTermination::kNoConvergence);
-  CHECK(jacobian_later.termination == SolveTermination::kFailure);
+  CHECK(lm_failure.termination == Termination::kFailure);
+  CHECK(lm_no_root.termination == Termination::kNoConvergence);
+  CHECK(jacobian_later.termination == Termination::kFailure);
   CHECK_THAT(jacobian_later.message, Contains("KIN_LSETUP_FAIL"));
-  CHECK(lm_jacobian_later.termination == SolveTermination::kFailure);
+  CHECK(lm_jacobian_later.termination == Termination::kFailure);
   // x is the best point, one where F was fine but J was not (below 1).
   CHECK(lm_jacobian_later_x(0) < 1.0);
   CHECK_THAT(lm_jacobian_later.residual_norm,

@@ -34,7 +34,7 @@ TEST_CASE("Newton finds the paper's orbits from seeds 1e-2 away", "[orbit]") {
     INFO("omega = " << c.omega);
     OrbitSummary summary;
     const PeriodicOrbit orbit = Solve(c.omega, c.p, c.q, 1e-2, &summary);
-    REQUIRE(summary.termination == OrbitTermination::kConverged);
+    REQUIRE(summary.termination == Termination::kConverged);
     CHECK(summary.residual <= 1e-11);
     CHECK_FALSE(summary.used_fallback);
     CHECK(orbit.stable);
@@ -50,8 +50,8 @@ TEST_CASE("analytic and finite-difference Jacobians give the same orbit", "[orbi
   OrbitSummary analytic_summary, fd_summary;
   const PeriodicOrbit analytic = Solve(0.6, 2, 1, 1e-3, &analytic_summary);
   const PeriodicOrbit fd = Solve(0.6, 2, 1, 1e-3, &fd_summary, JacobianMethod::kFiniteDifference);
-  REQUIRE(analytic_summary.termination == OrbitTermination::kConverged);
-  REQUIRE(fd_summary.termination == OrbitTermination::kConverged);
+  REQUIRE(analytic_summary.termination == Termination::kConverged);
+  REQUIRE(fd_summary.termination == Termination::kConverged);
   CHECK((analytic.eta - fd.eta).cwiseAbs().maxCoeff() < 1e-10);
   for (Eigen::Index i = 0; i < analytic.multipliers.size(); ++i) {
     CHECK(std::abs(analytic.multipliers(i) - fd.multipliers(i)) < 1e-9);
@@ -63,7 +63,7 @@ TEST_CASE("an unstable orbit is found as readily: P(1,1) past its period doublin
   // paper's period doubling near 1.61: a multiplier must have passed -1.
   OrbitSummary summary;
   PeriodicOrbit orbit = Solve(1.6, 1, 1, 0.0, &summary);
-  REQUIRE(summary.termination == OrbitTermination::kConverged);
+  REQUIRE(summary.termination == Termination::kConverged);
   REQUIRE(orbit.stable);
   for (double omega = 1.61; omega <= 1.6501; omega += 0.01) {
     OrbitOptions options;
@@ -72,7 +72,7 @@ TEST_CASE("an unstable orbit is found as readily: P(1,1) past its period doublin
     Eigen::VectorXd guess = orbit.eta;
     guess(1) *= orbit.omega / omega;
     summary = FindOrbit(PaperSystem(omega), guess, options, &next);
-    REQUIRE(summary.termination == OrbitTermination::kConverged);
+    REQUIRE(summary.termination == Termination::kConverged);
     orbit = next;
   }
   CHECK_FALSE(orbit.stable);
@@ -106,6 +106,6 @@ TEST_CASE("a seed whose map fails is reported, not solved", "[orbit]") {
   options.map.max_flight_periods = 4.0;
   PeriodicOrbit orbit;
   const OrbitSummary summary = FindOrbit(s, eta, options, &orbit);
-  CHECK(summary.termination == OrbitTermination::kMapFailed);
+  CHECK(summary.termination == Termination::kFailure);
   CHECK_THAT(summary.message, Contains("lost impact"));
 }

@@ -127,7 +127,7 @@ TEST_CASE("N = 1: the P(1,1) orbit and its multipliers match the closed form", "
           PeriodicOrbit orbit;
           const OrbitSummary summary =
               FindOrbit(system, eta + Eigen::Vector2d(1e-3, 1e-3), options, &orbit);
-          REQUIRE(summary.termination == OrbitTermination::kConverged);
+          REQUIRE(summary.termination == Termination::kConverged);
           CHECK(std::abs(orbit.eta(1) - o.u) < 1e-10);
           Eigen::Vector2cd lambda = Eigen::EigenSolver<Eigen::Matrix2d>(expected).eigenvalues();
           if (std::abs(lambda(1)) > std::abs(lambda(0))) std::swap(lambda(0), lambda(1));

@@ -120,7 +120,7 @@ TEST_CASE("sweep classification agrees with the orbits Newton finds", "[sweep]")
     orbit_options.q = expected[k].q;
     PeriodicOrbit orbit;
     REQUIRE(FindOrbit(s, seed->eta, orbit_options, &orbit).termination ==
-            OrbitTermination::kConverged);
+            Termination::kConverged);
     REQUIRE(orbit.stable);
     CHECK(point.classification.kind == MotionKind::kPeriodic);
     CHECK(point.classification.period.p == orbit.p);

@@ -25,7 +25,7 @@ int main() {
     options.orbit.q = seed->motion.q;
     PeriodicOrbit start;
     if (FindOrbit(system, seed->eta, options.orbit, &start).termination !=
-        OrbitTermination::kConverged) {
+        Termination::kConverged) {
       return EXIT_FAILURE;
     }
     for (const SpecialPoint& s : ContinueBranch({system, start, {}}, options).special_points) {

@@ -94,18 +94,6 @@ bool MapFitOptions::IsValid(std::string* error) const {
   return true;
 }
 
-std::string ToString(MapFitTermination termination) {
-  switch (termination) {
-    case MapFitTermination::kConverged:
-      return "converged";
-    case MapFitTermination::kNoConvergence:
-      return "no convergence";
-    case MapFitTermination::kFailure:
-      return "failure";
-  }
-  return "unknown";
-}
-
 std::string MapFitSummary::BriefReport() const {
   return fmt::format(
       "{}: s = {:.6g} ± {:.2g}, d = {:.6g} ± {:.2g}, lambda = {:.6g} ± {:.2g}; "
@@ -169,14 +157,14 @@ MapFitSummary FitSqrtMap(const std::vector<double>& x, const std::vector<double>
   summary.rms_residual = std::sqrt(sum_of_squares / summary.points);
   summary.sigma = std::sqrt(sum_of_squares / (summary.points - 3));
   summary.termination =
-      ceres_summary.termination_type == ceres::CONVERGENCE      ? MapFitTermination::kConverged
-      : ceres_summary.termination_type == ceres::NO_CONVERGENCE ? MapFitTermination::kNoConvergence
-                                                                : MapFitTermination::kFailure;
+      ceres_summary.termination_type == ceres::CONVERGENCE      ? Termination::kConverged
+      : ceres_summary.termination_type == ceres::NO_CONVERGENCE ? Termination::kNoConvergence
+                                                                : Termination::kFailure;
   summary.message = ceres_summary.message;
 
   if (summary.points_on_root_branch < 2) {
     // With (almost) no point below d, s and d are not determined.
-    summary.termination = MapFitTermination::kFailure;
+    summary.termination = Termination::kFailure;
     summary.message = fmt::format("{} of {} points lie on the root branch: d is not determined",
                                   summary.points_on_root_branch, summary.points);
     summary.seconds =
@@ -196,8 +184,8 @@ MapFitSummary FitSqrtMap(const std::vector<double>& x, const std::vector<double>
                          (summary.sigma * summary.sigma);
     const Eigen::Vector3d se = summary.covariance.diagonal().cwiseSqrt();
     summary.standard_error = {se(0), se(1), se(2)};
-  } else if (summary.termination == MapFitTermination::kConverged) {
-    summary.termination = MapFitTermination::kFailure;
+  } else if (summary.termination == Termination::kConverged) {
+    summary.termination = Termination::kFailure;
     summary.message = "the covariance is rank deficient: a parameter is not determined by the data";
   }
   summary.seconds =

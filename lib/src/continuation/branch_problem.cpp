@@ -142,7 +142,7 @@ std::optional<Eigen::VectorXd> BranchProblem::Correct(const Eigen::VectorXd& gue
   Eigen::VectorXd x = guess;
   const SolveSummary summary = SolveNewton(residual, jacobian, newton, &x);
   *iterations = summary.iterations;
-  if (summary.termination != SolveTermination::kConverged) return std::nullopt;
+  if (summary.termination != Termination::kConverged) return std::nullopt;
   return x;
 }
 

@@ -108,18 +108,6 @@ std::string ToString(JacobianMethod method) {
   return method == JacobianMethod::kAnalytic ? "analytic" : "finite-difference";
 }
 
-std::string ToString(OrbitTermination termination) {
-  switch (termination) {
-    case OrbitTermination::kConverged:
-      return "converged";
-    case OrbitTermination::kNoConvergence:
-      return "no convergence";
-    case OrbitTermination::kMapFailed:
-      return "map failed at the seed";
-  }
-  return "unknown";
-}
-
 bool OrbitOptions::IsValid(std::string* error) const {
   if (p < 1 || q < 1) {
     if (error) *error = fmt::format("p and q must be >= 1, got p = {}, q = {}", p, q);
@@ -154,26 +142,24 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
   Eigen::VectorXd u;
   if (!problem.Residual(eta, &u)) {
     const MapResult image = map.Apply(eta, options.p, false);
-    summary.termination = OrbitTermination::kMapFailed;
-    summary.message = fmt::format("after {} of {} impacts: {}", image.impacts_done, options.p,
+    summary.termination = Termination::kFailure;
+    summary.message = fmt::format("the map failed at the seed after {} of {} impacts: {}", image.impacts_done, options.p,
                                   ToString(image.status));
     return summary;
   }
   SolveSummary solve = SolveNewton(residual, jacobian, options.newton, &eta);
   summary.iterations = solve.iterations;
-  if (solve.termination != SolveTermination::kConverged && options.least_squares_fallback) {
+  if (solve.termination != Termination::kConverged && options.least_squares_fallback) {
     eta = WithPhase(map, guess);
     solve = SolveLeastSquares(residual, jacobian, options.newton, &eta);
     summary.iterations += solve.iterations;
     summary.used_fallback = true;
   }
-  summary.termination = solve.termination == SolveTermination::kConverged
-                            ? OrbitTermination::kConverged
-                            : OrbitTermination::kNoConvergence;
+  summary.termination = solve.termination;
   summary.message = solve.message;
   summary.residual = solve.residual_norm;
   eta = WithPhase(map, eta);
-  if (summary.termination == OrbitTermination::kConverged) {
+  if (summary.termination == Termination::kConverged) {
     *orbit = DescribeOrbit(map, eta, options.p, options.q);
   } else {
     orbit->eta = eta;

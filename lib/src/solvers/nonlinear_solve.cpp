@@ -12,15 +12,6 @@
 
 namespace impactkit {
 
-std::string ToString(SolveTermination termination) {
-  switch (termination) {
-    case SolveTermination::kConverged: return "converged";
-    case SolveTermination::kNoConvergence: return "no convergence";
-    case SolveTermination::kFailure: return "failure";
-  }
-  return "unknown";
-}
-
 bool NewtonOptions::IsValid(std::string* error) const {
   auto fail = [&](std::string message) {
     if (error) *error = std::move(message);
@@ -117,9 +108,9 @@ void GuardedProblem::Finish(const NewtonOptions& options,
   if (best_x_.size() == n_) *x = best_x_;
   summary->residual_norm = best_norm_;
   if (best_norm_ <= options.residual_tolerance) {
-    summary->termination = SolveTermination::kConverged;
-  } else if (summary->termination == SolveTermination::kConverged) {
-    summary->termination = SolveTermination::kNoConvergence;
+    summary->termination = Termination::kConverged;
+  } else if (summary->termination == Termination::kConverged) {
+    summary->termination = Termination::kNoConvergence;
   }
   summary->seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -120,8 +120,8 @@ SolveSummary SolveLeastSquares(const Residual& residual, const Jacobian& jacobia
   summary.iterations = std::max(0, static_cast<int>(ceres_summary.iterations.size()) - 1);
   summary.termination = ceres_summary.termination_type == ceres::FAILURE ||
                                 ceres_summary.termination_type == ceres::USER_FAILURE
-                            ? SolveTermination::kFailure
-                            : SolveTermination::kNoConvergence;  // Finish decides convergence
+                            ? Termination::kFailure
+                            : Termination::kNoConvergence;  // Finish decides convergence
   summary.message =
       state.failed_with_jacobian
           ? "Ceres Levenberg-Marquardt: F or its Jacobian failed at the guess or an accepted point"

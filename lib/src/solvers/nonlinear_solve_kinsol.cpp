@@ -142,19 +142,19 @@ std::string FlagName(int flag) {
 
 /// The method's own verdict; GuardedProblem::Finish then confirms or
 /// withdraws kConverged by max |F|.
-SolveTermination Classify(int flag) {
+Termination Classify(int flag) {
   switch (flag) {
     case KIN_SUCCESS:
     case KIN_INITIAL_GUESS_OK:
-      return SolveTermination::kConverged;
+      return Termination::kConverged;
     case KIN_STEP_LT_STPTOL:
     case KIN_LINESEARCH_NONCONV:
     case KIN_LINESEARCH_BCFAIL:
     case KIN_MAXITER_REACHED:
     case KIN_MXNEWT_5X_EXCEEDED:
-      return SolveTermination::kNoConvergence;
+      return Termination::kNoConvergence;
     default:  // F or J failed, singular Jacobian
-      return SolveTermination::kFailure;
+      return Termination::kFailure;
   }
 }
 

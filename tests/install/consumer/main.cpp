@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     options.q = seed->motion.q;
     PeriodicOrbit orbit;
     const OrbitSummary summary = FindOrbit(system, seed->eta, options, &orbit);
-    if (summary.termination != OrbitTermination::kConverged) {
+    if (summary.termination != Termination::kConverged) {
       std::fprintf(stderr, "%s\n", summary.BriefReport().c_str());
       return EXIT_FAILURE;
     }

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "impactkit/core/termination.hpp"
+
 namespace impactkit {
 
 struct SqrtMapParameters {
@@ -51,17 +53,8 @@ struct MapFitOptions {
   bool IsValid(std::string* error) const;
 };
 
-enum class MapFitTermination {
-  kConverged,      ///< the fit and its uncertainties are valid
-  kNoConvergence,  ///< the iteration limit was reached; the best point is returned
-  kFailure,        ///< the solver failed or the covariance is rank deficient
-};
-
-std::string ToString(MapFitTermination termination);
-
-struct MapFitSummary {
-  MapFitTermination termination = MapFitTermination::kFailure;
-  std::string message;
+/// Summary::iterations counts Levenberg–Marquardt iterations.
+struct MapFitSummary : Summary {
   SqrtMapParameters parameters;      ///< the fit
   SqrtMapParameters standard_error;  ///< one-sigma uncertainties of each parameter
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< of (s, d, λ)
@@ -69,8 +62,6 @@ struct MapFitSummary {
   double sigma = 0.0;  ///< √(Σ r² / (n - 3)), the residual scale
   int points = 0;
   int points_on_root_branch = 0;  ///< x <= d at the fit
-  int iterations = 0;
-  double seconds = 0.0;
   std::string BriefReport() const;
 };
 

@@ -44,14 +44,6 @@ struct OrbitOptions {
   bool IsValid(std::string* error) const;
 };
 
-enum class OrbitTermination {
-  kConverged,      ///< the orbit fields are valid
-  kNoConvergence,  ///< neither solver reached the tolerance; the orbit holds the best point
-  kMapFailed,      ///< the map failed at the seed itself (lost impact, grazing, chatter)
-};
-
-std::string ToString(OrbitTermination termination);
-
 /// One impact of the orbit.
 struct OrbitImpact {
   double t = 0.0;
@@ -77,13 +69,10 @@ struct PeriodicOrbit {
 /// InvalidInput if the map cannot follow p impacts from eta.
 PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q);
 
-struct OrbitSummary {
-  OrbitTermination termination = OrbitTermination::kNoConvergence;
-  std::string message;
-  int iterations = 0;          ///< Newton iterations (plus LM iterations if used)
+/// Summary::iterations counts Newton iterations plus LM iterations if used.
+struct OrbitSummary : Summary {
   bool used_fallback = false;  ///< Levenberg–Marquardt was needed
   double residual = 0.0;       ///< max |U| at the returned point
-  double seconds = 0.0;
   std::string BriefReport() const;
 };
 

@@ -15,6 +15,8 @@
 
 #include <Eigen/Dense>
 
+#include "impactkit/core/termination.hpp"
+
 namespace impactkit {
 
 /// Writes F(x) into f, which arrives sized n. Returns false when F cannot be
@@ -25,21 +27,6 @@ using Residual = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd* f
 /// Writes dF/dx (n x n) into jacobian, which arrives sized n x n. Returns
 /// false when it cannot be evaluated; both solvers then stop (kFailure).
 using Jacobian = std::function<bool(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian)>;
-
-enum class SolveTermination {
-  /// max |F(x)| <= residual_tolerance at the returned x.
-  kConverged,
-  /// The method ran its course without reaching the tolerance: iterations
-  /// ran out, the step or the line search stalled (a local minimum of |F|,
-  /// or no root), or the iterates diverged. x is the best point found.
-  kNoConvergence,
-  /// The method could not go on: F failed at the guess or wherever the step
-  /// was shortened to, the Jacobian failed or was singular. x is the best
-  /// point found (the guess if F failed there).
-  kFailure,
-};
-
-std::string ToString(SolveTermination termination);
 
 struct NewtonOptions {
   /// Converged when max_i |F_i(x)| is at most this (KINSOL's own default,
@@ -60,15 +47,11 @@ struct NewtonOptions {
   bool IsValid(std::string* error) const;
 };
 
-struct SolveSummary {
-  SolveTermination termination = SolveTermination::kFailure;
-  /// The library's own reason for stopping, e.g. "KINSOL KIN_SUCCESS".
-  std::string message;
-  int iterations = 0;            ///< Newton iterations, or LM steps tried
+/// Summary::iterations counts Newton iterations, or LM steps tried.
+struct SolveSummary : Summary {
   int residual_evaluations = 0;  ///< calls of the user's residual
   int jacobian_evaluations = 0;  ///< calls of the user's Jacobian
   double residual_norm = std::numeric_limits<double>::infinity();  ///< max |F(x)| at the returned x
-  double seconds = 0.0;          ///< wall time of the solve
 
   /// One line: termination, max|F|, counts, time and message.
   std::string BriefReport() const;
