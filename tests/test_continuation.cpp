@@ -338,3 +338,36 @@ TEST_CASE(
                                   system.ForcingPeriod())) < 1e-9);
   }
 }
+
+TEST_CASE("test functions vanish at their bifurcations and names round-trip", "[continuation]") {
+  // D P with multipliers λ1, λ2 (upper triangular): fold test (λ1-1)(λ2-1),
+  // period-doubling test (λ1+1)(λ2+1), Neimark–Sacker test λ1 λ2 - 1.
+  auto tests_of = [](double l1, double l2) {
+    Eigen::Matrix2d dp;
+    dp << l1, 0.3, 0.0, l2;
+    Eigen::VectorXcd multipliers(2);
+    multipliers << l1, l2;
+    return EvaluateBifurcationTests(dp, multipliers);
+  };
+  const auto values = tests_of(0.5, -0.25);
+  CHECK_THAT(values[0], Catch::Matchers::WithinAbs((0.5 - 1) * (-0.25 - 1), 1e-15));
+  CHECK_THAT(values[1], Catch::Matchers::WithinAbs((0.5 + 1) * (-0.25 + 1), 1e-15));
+  CHECK_THAT(values[2], Catch::Matchers::WithinAbs(0.5 * -0.25 - 1, 1e-15));
+  CHECK_THAT(tests_of(1.0, 0.2)[0], Catch::Matchers::WithinAbs(0.0, 1e-15));
+  CHECK_THAT(tests_of(-1.0, 0.2)[1], Catch::Matchers::WithinAbs(0.0, 1e-15));
+  // A rotation by 0.7 rad: a complex pair on the unit circle.
+  Eigen::Matrix2d rotation;
+  rotation << std::cos(0.7), -std::sin(0.7), std::sin(0.7), std::cos(0.7);
+  const Eigen::VectorXcd pair = rotation.eigenvalues();
+  CHECK_THAT(EvaluateBifurcationTests(rotation, pair)[2], Catch::Matchers::WithinAbs(0.0, 1e-14));
+  const TestFunction& ns = BifurcationTests()[2];
+  CHECK(ns.type == SpecialPointType::kNeimarkSacker);
+  CHECK(ns.distance(std::polar(1.0, 0.7)) < 1e-15);
+  CHECK(ns.distance(std::complex<double>(2.0, 0.0)) > ns.max_distance);  // real: a neutral saddle
+  for (SpecialPointType type :
+       {SpecialPointType::kFold, SpecialPointType::kPeriodDoubling,
+        SpecialPointType::kNeimarkSacker, SpecialPointType::kGrazing, SpecialPointType::kSticking}) {
+    CHECK(SpecialPointTypeFromName(ToString(type)) == type);
+  }
+  CHECK_FALSE(SpecialPointTypeFromName("cusp").has_value());
+}

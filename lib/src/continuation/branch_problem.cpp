@@ -12,17 +12,6 @@ namespace {
 
 constexpr std::size_t kCachedMaps = 4;
 
-/// Π_{i<j} (λ_i λ_j - 1): zero when two multipliers have product 1, which
-/// for a complex pair means |λ| = 1. Real for a real matrix (the factors
-/// come in conjugate pairs); the rounding in the imaginary part is dropped.
-double NeimarkSackerTest(const Eigen::VectorXcd& lambda) {
-  std::complex<double> product = 1.0;
-  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
-    for (Eigen::Index j = i + 1; j < lambda.size(); ++j) product *= lambda(i) * lambda(j) - 1.0;
-  }
-  return product.real();
-}
-
 }  // namespace
 
 BranchProblem::BranchProblem(const System& base, std::string parameter, int p, int q,
@@ -177,11 +166,7 @@ std::optional<BranchPoint> BranchProblem::Describe(const Eigen::VectorXd& x,
   point.parameter = Mu(x);
   point.orbit = DescribeOrbit(*map, eta, p_, q_);
   point.tangent = *tangent;
-  const Eigen::MatrixXd& dp = point.orbit.jacobian;
-  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(dp.rows(), dp.cols());
-  point.fold_test = (dp - identity).determinant();
-  point.period_doubling_test = (dp + identity).determinant();
-  point.neimark_sacker_test = NeimarkSackerTest(point.orbit.multipliers);
+  point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
   return point;
 }
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/branch_point.hpp"
 #include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/solvers/nonlinear_solve.hpp"
 

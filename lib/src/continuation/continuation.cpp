@@ -181,17 +181,10 @@ class BranchTracer {
   /// Locates each test function's sign change between consecutive points
   /// and inserts the located points before `b`.
   void LocateBifurcations(const BranchPoint& a, const BranchPoint& b, HalfBranch* half) const {
-    struct Test {
-      SpecialPointType type;
-      double BranchPoint::*value;
-    };
-    const Test tests[] = {{SpecialPointType::kFold, &BranchPoint::fold_test},
-                          {SpecialPointType::kPeriodDoubling, &BranchPoint::period_doubling_test},
-                          {SpecialPointType::kNeimarkSacker, &BranchPoint::neimark_sacker_test}};
     std::vector<SpecialPoint> found;
-    for (const Test& test : tests) {
-      if ((a.*test.value > 0) == (b.*test.value > 0)) continue;
-      std::optional<SpecialPoint> special = LocateZero(a, b, test.type, test.value);
+    for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
+      if ((a.test_values[test] > 0) == (b.test_values[test] > 0)) continue;
+      std::optional<SpecialPoint> special = LocateZero(a, b, test);
       if (special) found.push_back(*special);
     }
     std::sort(found.begin(), found.end(), [](const SpecialPoint& x, const SpecialPoint& y) {
@@ -203,12 +196,13 @@ class BranchTracer {
     }
   }
 
-  /// The Illinois method on s for the zero of one test function between a
-  /// (s = 0) and b, each trial corrected onto the branch from a.
+  /// The Illinois method on s for the zero of test function `test` between
+  /// a (s = 0) and b, each trial corrected onto the branch from a.
   std::optional<SpecialPoint> LocateZero(const BranchPoint& a, const BranchPoint& b,
-                                         SpecialPointType type, double BranchPoint::*test) const {
+                                         std::size_t test) const {
+    auto value = [test](const BranchPoint& point) { return point.test_values[test]; };
     double lo = 0.0, hi = b.arclength - a.arclength;
-    double f_lo = a.*test, f_hi = b.*test;
+    double f_lo = value(a), f_hi = value(b);
     std::optional<BranchPoint> best;
     int side = 0;
     for (int k = 0; k < kMaxLocateIterations && hi - lo > 1e-14 * std::abs(hi); ++k) {
@@ -216,8 +210,8 @@ class BranchTracer {
       int iterations = 0;
       std::optional<BranchPoint> trial = Advance(a, s, &iterations);
       if (!trial) break;
-      const double f = (*trial).*test;
-      if (!best || std::abs(f) < std::abs((*best).*test)) best = trial;
+      const double f = value(*trial);
+      if (!best || std::abs(f) < std::abs(value(*best))) best = trial;
       if (f == 0.0) break;
       if ((f > 0) == (f_lo > 0)) {
         lo = s;
@@ -233,47 +227,32 @@ class BranchTracer {
     }
     // No trial converged (rare: the corrector fails between two good
     // points): the nearer end stands in, its test value saying how near.
-    if (!best) best = std::abs(a.*test) < std::abs(b.*test) ? a : b;
-    return Classify(*best, type);
+    if (!best) best = std::abs(value(a)) < std::abs(value(b)) ? a : b;
+    return Classify(*best, test);
   }
 
-  /// The special point of a located zero, with its critical multiplier;
-  /// empty for a neutral saddle (a real pair with product 1).
-  static std::optional<SpecialPoint> Classify(const BranchPoint& point, SpecialPointType type) {
+  /// The special point of a located zero of test function `test`, with its
+  /// critical multiplier; empty when that multiplier is too far from the
+  /// critical set (a neutral saddle for Neimark–Sacker).
+  static std::optional<SpecialPoint> Classify(const BranchPoint& point, std::size_t test) {
+    const TestFunction& function = BifurcationTests()[test];
     SpecialPoint special;
-    special.type = type;
+    special.type = function.type;
     special.point = point;
+    special.monitor = point.test_values[test];
     const Eigen::VectorXcd& lambda = point.orbit.multipliers;
-    auto closest = [&](auto distance) {
-      Eigen::Index best = 0;
-      for (Eigen::Index i = 1; i < lambda.size(); ++i) {
-        if (distance(lambda(i)) < distance(lambda(best))) best = i;
-      }
-      return lambda(best);
-    };
-    switch (type) {
-      case SpecialPointType::kFold:
-        special.monitor = point.fold_test;
-        special.multiplier = closest([](std::complex<double> l) { return std::abs(l - 1.0); });
-        break;
-      case SpecialPointType::kPeriodDoubling:
-        special.monitor = point.period_doubling_test;
-        special.multiplier = closest([](std::complex<double> l) { return std::abs(l + 1.0); });
-        special.eigenvector = FlipEigenvector(point.orbit.jacobian);
-        break;
-      default:
-        special.monitor = point.neimark_sacker_test;
-        special.multiplier = closest([](std::complex<double> l) {
-          return l.imag() > 0 ? std::abs(std::abs(l) - 1.0)
-                              : std::numeric_limits<double>::infinity();
-        });
-        if (!(special.multiplier.imag() > 0) ||
-            std::abs(std::abs(special.multiplier) - 1.0) > 1e-4) {
-          return std::nullopt;
-        }
+    Eigen::Index nearest = 0;
+    for (Eigen::Index i = 1; i < lambda.size(); ++i) {
+      if (function.distance(lambda(i)) < function.distance(lambda(nearest))) nearest = i;
+    }
+    special.multiplier = lambda(nearest);
+    if (function.distance(special.multiplier) > function.max_distance) return std::nullopt;
+    if (function.type == SpecialPointType::kPeriodDoubling) {
+      special.eigenvector = FlipEigenvector(point.orbit.jacobian);
     }
     return special;
   }
+
 
   /// The real eigenvector of D P for its eigenvalue nearest -1, unit length.
   static Eigen::VectorXd FlipEigenvector(const Eigen::MatrixXd& jacobian) {
@@ -403,22 +382,6 @@ BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
 
 }  // namespace
 
-std::string ToString(SpecialPointType type) {
-  switch (type) {
-    case SpecialPointType::kFold:
-      return "fold";
-    case SpecialPointType::kPeriodDoubling:
-      return "period_doubling";
-    case SpecialPointType::kNeimarkSacker:
-      return "neimark_sacker";
-    case SpecialPointType::kGrazing:
-      return "grazing";
-    case SpecialPointType::kSticking:
-      return "sticking";
-  }
-  return "unknown";
-}
-
 std::string ToString(BranchEnd end) {
   switch (end) {
     case BranchEnd::kParameterBound:
@@ -439,17 +402,14 @@ std::string SpecialPoint::Describe(const std::string& parameter) const {
   std::string name = ToString(type);
   std::replace(name.begin(), name.end(), '_', ' ');
   const std::string where = fmt::format("{} at {} = {:.10g}", name, parameter, point.parameter);
-  switch (type) {
-    case SpecialPointType::kGrazing:
-    case SpecialPointType::kSticking:
-      return vanishing_impact < 0
-                 ? fmt::format("{} (a new contact; clearance {:.1e})", where, monitor)
-                 : fmt::format("{} (impact {} vanishes; depth {:.1e})", where, vanishing_impact + 1,
-                               monitor);
-    default:
-      return fmt::format("{} (multiplier {:.9f}{:+.9f}i)", where, multiplier.real(),
-                         multiplier.imag());
+  if (type == SpecialPointType::kGrazing || type == SpecialPointType::kSticking) {
+    return vanishing_impact < 0
+               ? fmt::format("{} (a new contact; clearance {:.1e})", where, monitor)
+               : fmt::format("{} (impact {} vanishes; depth {:.1e})", where, vanishing_impact + 1,
+                             monitor);
   }
+  return fmt::format("{} (multiplier {:.9f}{:+.9f}i)", where, multiplier.real(),
+                     multiplier.imag());
 }
 
 bool ContinuationOptions::IsValid(std::string* error) const {

@@ -19,13 +19,11 @@
 /// U_μ is a central difference in μ (the map has no closed-form parameter
 /// derivative here; Newton needs only an approximate one).
 ///
-/// Along the branch, test functions are evaluated at every point and each
+/// Along the branch, the test functions of test_functions.hpp (fold,
+/// period doubling, Neimark–Sacker) are evaluated at every point and each
 /// sign change is located by the Illinois method on s (each trial point
-/// corrected onto the branch):
-///   fold             det(D P_I^p - I)          (a multiplier through +1)
-///   period doubling  det(D P_I^p + I)          (a multiplier through -1)
-///   Neimark–Sacker   Π_{i<j} (λ_i λ_j - 1)    (a complex pair through |λ| = 1;
-///                    its real-pair zeros, neutral saddles, are discarded)
+/// corrected onto the branch); Neimark–Sacker zeros at a real pair of
+/// multipliers (neutral saddles) are discarded.
 /// Grazing and sticking onset (orbit_contacts.hpp) end the branch: past them
 /// the orbit would pass through the stop, so they are approached from the
 /// branch side — the monitor is extrapolated linearly in s and its zero
@@ -39,6 +37,8 @@
 #include <vector>
 
 #include "impactkit/model/system.hpp"
+#include "impactkit/continuation/branch_point.hpp"
+#include "impactkit/continuation/test_functions.hpp"
 #include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit {
@@ -70,22 +70,6 @@ struct ContinuationOptions {
   OrbitOptions orbit;
   bool IsValid(std::string* error) const;
 };
-
-/// One corrected point of a branch.
-struct BranchPoint {
-  double parameter = 0.0;
-  double arclength = 0.0;             ///< from the start point, signed by direction
-  PeriodicOrbit orbit;                ///< at this parameter value
-  double fold_test = 0.0;             ///< det(D P - I)
-  double period_doubling_test = 0.0;  ///< det(D P + I)
-  double neimark_sacker_test = 0.0;   ///< Π_{i<j} (λ_i λ_j - 1)
-  Eigen::VectorXd tangent;            ///< unit tangent (η, μ) here
-};
-
-enum class SpecialPointType { kFold, kPeriodDoubling, kNeimarkSacker, kGrazing, kSticking };
-
-/// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking".
-std::string ToString(SpecialPointType type);
 
 struct SpecialPoint {
   SpecialPointType type = SpecialPointType::kFold;

@@ -1,0 +1,23 @@
+#pragma once
+/// \file branch_point.hpp
+/// One corrected point of a branch of periodic orbits.
+
+#include <array>
+
+#include <Eigen/Dense>
+
+#include "impactkit/continuation/test_functions.hpp"
+#include "impactkit/orbits/orbit.hpp"
+
+namespace impactkit {
+
+struct BranchPoint {
+  double parameter = 0.0;
+  double arclength = 0.0;  ///< from the start point, signed by direction
+  PeriodicOrbit orbit;     ///< at this parameter value
+  /// The bifurcation test functions here, in BifurcationTests() order.
+  std::array<double, kBifurcationTestCount> test_values{};
+  Eigen::VectorXd tangent;  ///< unit tangent (η, μ) here
+};
+
+}  // namespace impactkit

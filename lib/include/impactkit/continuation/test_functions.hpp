@@ -1,0 +1,55 @@
+#pragma once
+/// \file test_functions.hpp
+/// The kinds of special point met along a branch, and the bifurcation test
+/// functions as data: each a named condition on the fixed point's Jacobian
+/// D P and its multipliers λ, zero where the bifurcation happens.
+///
+///     fold              det(D P − I)            a multiplier through +1
+///     period doubling   det(D P + I)            a multiplier through −1
+///     Neimark–Sacker    Π_{i<j} (λ_i λ_j − 1)   a complex pair through |λ| = 1
+///
+/// Continuation watches each for a sign change between consecutive points
+/// and locates its zero; the two-parameter code follows the same list.
+
+#include <array>
+#include <complex>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <Eigen/Dense>
+
+namespace impactkit {
+
+enum class SpecialPointType { kFold, kPeriodDoubling, kNeimarkSacker, kGrazing, kSticking };
+
+/// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking": the
+/// name that outputs (CSV, JSON) use for the type.
+std::string ToString(SpecialPointType type);
+/// The type of a name of ToString; empty for any other name.
+std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name);
+
+struct TestFunction {
+  SpecialPointType type;
+  /// The test function's value at a fixed point with Jacobian `jacobian`
+  /// and eigenvalues `multipliers`.
+  double (*value)(const Eigen::MatrixXd& jacobian, const Eigen::VectorXcd& multipliers);
+  /// How far a multiplier is from the critical one (+1, −1, the upper unit
+  /// half-circle): the critical multiplier is the one nearest.
+  double (*distance)(std::complex<double> multiplier);
+  /// A located zero whose critical multiplier is farther than this is not
+  /// this bifurcation (Π (λ_i λ_j − 1) also vanishes at a real pair with
+  /// product 1, a neutral saddle).
+  double max_distance;
+};
+
+inline constexpr std::size_t kBifurcationTestCount = 3;
+
+/// Fold, period doubling and Neimark–Sacker, in that order.
+const std::array<TestFunction, kBifurcationTestCount>& BifurcationTests();
+
+/// Every test function's value at one fixed point, in BifurcationTests() order.
+std::array<double, kBifurcationTestCount> EvaluateBifurcationTests(
+    const Eigen::MatrixXd& jacobian, const Eigen::VectorXcd& multipliers);
+
+}  // namespace impactkit

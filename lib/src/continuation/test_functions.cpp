@@ -1,0 +1,73 @@
+#include "impactkit/continuation/test_functions.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace impactkit {
+namespace {
+
+double FoldTest(const Eigen::MatrixXd& dp, const Eigen::VectorXcd&) {
+  return (dp - Eigen::MatrixXd::Identity(dp.rows(), dp.cols())).determinant();
+}
+
+double PeriodDoublingTest(const Eigen::MatrixXd& dp, const Eigen::VectorXcd&) {
+  return (dp + Eigen::MatrixXd::Identity(dp.rows(), dp.cols())).determinant();
+}
+
+/// Π_{i<j} (λ_i λ_j - 1): zero when two multipliers have product 1, which
+/// for a complex pair means |λ| = 1. Real for a real matrix (the factors
+/// come in conjugate pairs); the rounding in the imaginary part is dropped.
+double NeimarkSackerTest(const Eigen::MatrixXd&, const Eigen::VectorXcd& lambda) {
+  std::complex<double> product = 1.0;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+    for (Eigen::Index j = i + 1; j < lambda.size(); ++j) product *= lambda(i) * lambda(j) - 1.0;
+  }
+  return product.real();
+}
+
+constexpr double kAny = std::numeric_limits<double>::infinity();
+
+constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
+    {SpecialPointType::kFold, FoldTest, [](std::complex<double> l) { return std::abs(l - 1.0); },
+     kAny},
+    {SpecialPointType::kPeriodDoubling, PeriodDoublingTest,
+     [](std::complex<double> l) { return std::abs(l + 1.0); }, kAny},
+    {SpecialPointType::kNeimarkSacker, NeimarkSackerTest,
+     [](std::complex<double> l) { return l.imag() > 0 ? std::abs(std::abs(l) - 1.0) : kAny; },
+     1e-4},
+}};
+
+constexpr std::array<std::pair<SpecialPointType, std::string_view>, 5> kNames = {{
+    {SpecialPointType::kFold, "fold"},
+    {SpecialPointType::kPeriodDoubling, "period_doubling"},
+    {SpecialPointType::kNeimarkSacker, "neimark_sacker"},
+    {SpecialPointType::kGrazing, "grazing"},
+    {SpecialPointType::kSticking, "sticking"},
+}};
+
+}  // namespace
+
+std::string ToString(SpecialPointType type) {
+  for (const auto& [known, name] : kNames) {
+    if (known == type) return std::string(name);
+  }
+  return "unknown";
+}
+
+std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name) {
+  for (const auto& [type, known] : kNames) {
+    if (known == name) return type;
+  }
+  return std::nullopt;
+}
+
+const std::array<TestFunction, kBifurcationTestCount>& BifurcationTests() { return kTests; }
+
+std::array<double, kBifurcationTestCount> EvaluateBifurcationTests(
+    const Eigen::MatrixXd& jacobian, const Eigen::VectorXcd& multipliers) {
+  std::array<double, kBifurcationTestCount> values;
+  for (std::size_t i = 0; i < kTests.size(); ++i) values[i] = kTests[i].value(jacobian, multipliers);
+  return values;
+}
+
+}  // namespace impactkit
