@@ -11,6 +11,7 @@
 #include <mutex>
 #include <thread>
 
+#include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 
 namespace impactkit {
@@ -100,31 +101,26 @@ bool RunValue(const System& system, const SweepOptions& options, HybridState& st
   const int first_classified = std::max(0, end - window);
   state.t = 0.0;
 
-  ImpactRecorder impacts;
-  StroboscopicRecorder strobe(run.Period());
-  ChatterRecorder chatter;
+  SteadyWindowRecorder steady(run.Period());
   ExtremaRecorder extrema(run.Period());
-  ObserverList classified;
-  classified.Add(impacts);
-  classified.Add(strobe);
-  classified.Add(chatter);
-  ObserverList recorded = classified;
+  ObserverList recorded;
+  recorded.Add(steady);
   recorded.Add(extrema);
 
   const bool reached = run.RunTo(state, first_classified, nullptr) &&
-                       run.RunTo(state, transient, &classified) && run.RunTo(state, end, &recorded);
+                       run.RunTo(state, transient, &steady) && run.RunTo(state, end, &recorded);
   point->status = run.Status();
   point->events = run.Events();
   const double t_record = static_cast<double>(transient) * run.Period();
-  for (const Impact& i : impacts.Impacts()) {
+  for (const Impact& i : steady.Impacts()) {
     if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity});
   }
   const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
   point->range_contact = Ranges(periods, system.contact_dof);
   point->range_first = Ranges(periods, 0);
   if (reached) {
-    point->classification = ClassifyMotion(system, strobe.Points(), impacts.Impacts(),
-                                           chatter.EndTimes(), options.classify);
+    point->classification = ClassifyMotion(system, steady.Strobe(), steady.Impacts(),
+                                           steady.ChatterEnds(), options.classify);
   }
   return reached;
 }
