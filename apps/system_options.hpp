@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "impactkit/model/system.hpp"
+#include "impactkit/model/parameters.hpp"
 
 namespace impactkit::cli {
 

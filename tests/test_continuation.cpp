@@ -14,6 +14,7 @@
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "impactkit/model/parameters.hpp"
 
 using namespace impactkit;
 

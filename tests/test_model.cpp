@@ -5,6 +5,7 @@
 
 #include "impactkit/model/modal.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/model/parameters.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
@@ -124,4 +125,23 @@ TEST_CASE("initial state checks", "[model]") {
   state = RestState(s);
   state.v(0) = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_WITH(ValidateState(s, state), Contains("NaN"));
+}
+
+TEST_CASE("the parameter table names every parameter once, with its meaning", "[model]") {
+  const System chain = PaperSystem();
+  const System general =
+      GeneralSystem(chain.mass, chain.damping, chain.stiffness, chain.forcing, 1.0, 0.1, 0.7);
+  CHECK(ParameterNames(chain) ==
+        std::vector<std::string>{"omega", "xs", "r", "A1", "A2", "m", "k", "c", "n"});
+  CHECK(ParameterNames(general) == std::vector<std::string>{"omega", "xs", "r", "A1", "A2"});
+  for (const ParameterSpec& spec : ParameterTable()) {
+    CHECK_FALSE(spec.meaning.empty());
+    CHECK_FALSE(spec.range.empty());
+    CHECK((spec.get == nullptr) == (spec.set == nullptr));
+  }
+  REQUIRE(FindParameter(chain, "A2") != nullptr);
+  CHECK(FindParameter(chain, "A2")->name == "A");
+  CHECK(FindParameter(chain, "A3") == nullptr);
+  CHECK(FindParameter(general, "m") == nullptr);
+  CHECK_THROWS_WITH(GetParameter(general, "m"), Contains("unknown parameter 'm'"));
 }

@@ -13,6 +13,7 @@
 
 #include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/model/parameters.hpp"
 
 namespace impactkit {
 namespace {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "impactkit/orbits/orbit.hpp"
+#include "impactkit/model/parameters.hpp"
 
 namespace impactkit::detail {
 namespace {

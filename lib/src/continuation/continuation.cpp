@@ -1,4 +1,5 @@
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/model/parameters.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,5 @@
 #include "impactkit/io/system_file.hpp"
+#include "impactkit/model/parameters.hpp"
 
 #include <algorithm>
 #include <array>

@@ -93,23 +93,6 @@ void ValidateStuckSubsystem(const System& s) {
   }
 }
 
-/// Index of the parameter A<i> (1-based in the name), or -1.
-int ForcingIndex(std::string_view name, int dof) {
-  if (name.size() < 2 || name[0] != 'A') return -1;
-  int index = 0;
-  for (char ch : name.substr(1)) {
-    if (ch < '0' || ch > '9') return -1;
-    index = index * 10 + (ch - '0');
-    if (index > dof) return -1;
-  }
-  return index >= 1 ? index - 1 : -1;
-}
-
-[[noreturn]] void UnknownParameter(const System& s, std::string_view name) {
-  throw InvalidInput(
-      fmt::format("unknown parameter '{}'; known: {}", name, fmt::join(ParameterNames(s), ", ")));
-}
-
 }  // namespace
 
 double System::ForcingPeriod() const { return 2.0 * std::numbers::pi / omega; }
@@ -173,57 +156,6 @@ void Validate(const System& s) {
   // steady response): the same test the simulator relies on.
   LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()), s.omega);
   if (s.Dof() > 1) ValidateStuckSubsystem(s);
-}
-
-std::vector<std::string> ParameterNames(const System& s) {
-  std::vector<std::string> names = {"omega", "xs", "r"};
-  for (int i = 0; i < s.Dof(); ++i) names.push_back(fmt::format("A{}", i + 1));
-  if (s.chain) names.insert(names.end(), {"m", "k", "c", "n"});
-  return names;
-}
-
-double GetParameter(const System& s, std::string_view name) {
-  if (name == "omega") return s.omega;
-  if (name == "xs") return s.stop;
-  if (name == "r") return s.restitution;
-  if (const int i = ForcingIndex(name, s.Dof()); i >= 0) return s.forcing(i);
-  if (s.chain) {
-    if (name == "m") return s.chain->mass;
-    if (name == "k") return s.chain->stiffness;
-    if (name == "c") return s.chain->damping;
-    if (name == "n") return s.chain->dof;
-  }
-  UnknownParameter(s, name);
-}
-
-void SetParameter(System& s, std::string_view name, double value) {
-  if (name == "omega") {
-    s.omega = value;
-  } else if (name == "xs") {
-    s.stop = value;
-  } else if (name == "r") {
-    s.restitution = value;
-  } else if (const int i = ForcingIndex(name, s.Dof()); i >= 0) {
-    s.forcing(i) = value;
-  } else if (s.chain && (name == "m" || name == "k" || name == "c" || name == "n")) {
-    ChainParameters chain = *s.chain;
-    if (name == "m") chain.mass = value;
-    if (name == "k") chain.stiffness = value;
-    if (name == "c") chain.damping = value;
-    if (name == "n") {
-      // The modal decomposition costs O(N³): n = 1000 takes seconds, more
-      // would look like a hang.
-      Require(std::isfinite(value) && value >= 1 && value == std::floor(value) && value <= 1000,
-              fmt::format("n (number of masses) must be a whole number in [1, 1000], got {}", value));
-      chain.dof = static_cast<int>(value);
-    }
-    Eigen::VectorXd forcing = Eigen::VectorXd::Zero(chain.dof);
-    const int kept = std::min<int>(chain.dof, static_cast<int>(s.forcing.size()));
-    forcing.head(kept) = s.forcing.head(kept);
-    s = UniformChain(chain, forcing, s.omega, s.stop, s.restitution);
-  } else {
-    UnknownParameter(s, name);
-  }
 }
 
 HybridState RestState(const System& s) {

@@ -15,6 +15,7 @@
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/io/system_file.hpp"
+#include "impactkit/model/parameters.hpp"
 
 int main(int argc, char** argv) {
   using namespace impactkit;

@@ -73,18 +73,6 @@ System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping
 /// natural frequencies (no bounded steady response exists).
 void Validate(const System& system);
 
-/// Names accepted by GetParameter / SetParameter for this system:
-/// omega, xs, r, A1..AN, and for chains m, k, c, n.
-std::vector<std::string> ParameterNames(const System& system);
-
-/// Value of a named scalar parameter; throws InvalidInput for unknown names.
-double GetParameter(const System& system, std::string_view name);
-
-/// Sets a named scalar parameter (rebuilding chain matrices for m, k, c, n;
-/// n must be a whole number and resizes A, keeping given entries). Throws
-/// InvalidInput for unknown names; does not validate ranges (call Validate).
-void SetParameter(System& system, std::string_view name, double value);
-
 /// The hybrid state: time, positions, velocities, and whether the contact
 /// mass is held at the stop (sticking).
 struct HybridState {

@@ -1,0 +1,45 @@
+#pragma once
+/// \file parameters.hpp
+/// The named scalar parameters of a system, in one table: the model gets and
+/// sets them by name, system files take their chain keys from it, and the
+/// command line lists them in `--set`'s help and in every provenance line.
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "impactkit/model/system.hpp"
+
+namespace impactkit {
+
+struct ParameterSpec {
+  /// The name; "A" stands for A1 … AN, one per mass.
+  std::string_view name;
+  std::string_view meaning;  ///< e.g. "forcing frequency"
+  std::string_view range;    ///< the values Validate() accepts, e.g. "> 0"
+  bool chain_only;           ///< only a uniform chain has it (m, k, c, n)
+  /// Value and assignment; null for the indexed "A" (see Get/SetParameter).
+  double (*get)(const System& system);
+  void (*set)(System& system, double value);
+};
+
+/// omega, xs, r, A, m, k, c, n: the order of ParameterNames.
+std::span<const ParameterSpec> ParameterTable();
+
+/// The entry for a name (A1 … AN map to "A"); null if the system lacks it.
+const ParameterSpec* FindParameter(const System& system, std::string_view name);
+
+/// Names accepted by GetParameter / SetParameter for this system:
+/// omega, xs, r, A1..AN, and for chains m, k, c, n.
+std::vector<std::string> ParameterNames(const System& system);
+
+/// Value of a named scalar parameter; throws InvalidInput for unknown names.
+double GetParameter(const System& system, std::string_view name);
+
+/// Sets a named scalar parameter (rebuilding chain matrices for m, k, c, n;
+/// n must be a whole number and resizes A, keeping given entries). Throws
+/// InvalidInput for unknown names; does not validate ranges (call Validate).
+void SetParameter(System& system, std::string_view name, double value);
+
+}  // namespace impactkit
