@@ -362,10 +362,6 @@ class BranchTracer {
   NewtonOptions newton_;
 };
 
-void Require(bool condition, const std::string& message) {
-  if (!condition) throw InvalidInput(message);
-}
-
 /// The start as an oriented branch point.
 BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
                        const ContinuationOptions& options, double sense) {

@@ -12,10 +12,6 @@
 namespace impactkit {
 namespace {
 
-void Require(bool condition, const std::string& message) {
-  if (!condition) throw InvalidInput(message);
-}
-
 void RequireFinite(const Eigen::MatrixXd& m, const std::string& name) {
   Require(m.allFinite(), name + " has a NaN or infinite entry; all entries must be finite");
 }

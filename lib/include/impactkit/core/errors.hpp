@@ -5,6 +5,7 @@
 /// termination of a summary (termination.hpp).
 
 #include <stdexcept>
+#include <string>
 
 namespace impactkit {
 
@@ -14,5 +15,10 @@ class InvalidInput : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+/// Throws InvalidInput(message) unless `condition` holds.
+inline void Require(bool condition, const std::string& message) {
+  if (!condition) throw InvalidInput(message);
+}
 
 }  // namespace impactkit

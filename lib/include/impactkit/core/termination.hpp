@@ -34,7 +34,6 @@ struct Summary {
   std::string message;
   int iterations = 0;    ///< iterations of the method (both methods, if a fallback ran)
   double seconds = 0.0;  ///< wall time
-  bool Converged() const { return termination == Termination::kConverged; }
 };
 
 }  // namespace impactkit

@@ -83,7 +83,6 @@ class Signal {
   /// The sum of the coefficients' magnitudes: a cheap scale for rounding
   /// noise in w (no transcendental calls).
   double Scale() const;
-  double Origin() const { return t0_; }
   double Omega() const { return omega_; }
 
  private:
@@ -127,9 +126,8 @@ class LinearFlow {
   int Dof() const { return dof_; }
   double Omega() const { return omega_; }
   const std::vector<ModeBasis>& Modes() const { return modes_; }
-  /// Largest |eigenvalue| of S (the fastest rate in the flow), 0 if n = 0.
-  double FastestRate() const { return fastest_rate_; }
-  /// The shortest time scale of the motion: min(2π/Ω, 2π/FastestRate()).
+  /// The shortest time scale of the motion: min(2π/Ω, 2π/ρ), ρ the largest
+  /// |eigenvalue| of S (the fastest rate in the flow).
   double ShortestPeriod() const;
 
   /// Modal coordinates of the transient y(t) - y_p(t).
