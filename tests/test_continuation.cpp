@@ -177,6 +177,8 @@ TEST_CASE(
   for (int k = 0; k < 100; ++k)
     ((amplitude(0.5 * (lo + hi)) > 0) == (amplitude(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
   CHECK(std::abs(end.point.parameter - lo) < 1e-5);
+  // Located by the reduced orbit's defining equation, not the depth.
+  CHECK(std::abs(end.parameter - lo) < 1e-9);
 
   // The depth v²/(2|a|) recomputed by CVODE over the flight into the impact.
   const System at = At(system, "omega", end.point.parameter);
@@ -287,6 +289,9 @@ TEST_CASE(
   CHECK(other_side.type == SpecialPointType::kGrazing);
   CHECK(other_side.vanishing_impact >= 0);
   CHECK(std::abs(other_side.point.parameter - graze.point.parameter) < 1e-5);
+  // The P(2,1) end, located on the reduced P(1,1) orbit, is the P(1,1)
+  // grazing located by its clearance (to ~1e-10).
+  CHECK(std::abs(other_side.parameter - graze.point.parameter) < 1e-8);
 }
 
 TEST_CASE("continuation: bad input is rejected with a clear error", "[continuation]") {
@@ -371,4 +376,29 @@ TEST_CASE("test functions vanish at their bifurcations and names round-trip", "[
     CHECK(SpecialPointTypeFromName(ToString(type)) == type);
   }
   CHECK_FALSE(SpecialPointTypeFromName("cusp").has_value());
+}
+
+TEST_CASE("continuation: a vanishing impact is located by its defining equation where the slope "
+          "is small", "[continuation]") {
+  // N = 1, m = 2, k = 3, c = 0.1, A = 1.2, xs = 0.05, r = 0.75: the P(1,1)
+  // impact vanishes where the non-impacting amplitude |A / (k − mΩ² + icΩ)|
+  // equals xs. The depth alone left an error of 3.4e-4 here.
+  const System system = GeneralSystem(Eigen::MatrixXd::Constant(1, 1, 2.0),
+                                      Eigen::MatrixXd::Constant(1, 1, 0.1),
+                                      Eigen::MatrixXd::Constant(1, 1, 3.0),
+                                      Eigen::VectorXd::Constant(1, 1.2), 1.5, 0.05, 0.75);
+  const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}},
+                                       Options(1.5, 6.0, 1, 1, ContinuationDirection::kIncreasing));
+  REQUIRE(branch.end == BranchEnd::kGrazing);
+  const SpecialPoint& end = branch.special_points.back();
+  REQUIRE(end.vanishing_impact == 0);
+  auto excess = [](double w) {  // amplitude − xs, closed form
+    return 1.2 / std::abs(std::complex<double>(3.0 - 2.0 * w * w, 0.1 * w)) - 0.05;
+  };
+  double lo = 3.0, hi = 4.5;
+  REQUIRE((excess(lo) > 0) != (excess(hi) > 0));
+  for (int k = 0; k < 200; ++k)
+    ((excess(0.5 * (lo + hi)) > 0) == (excess(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  CHECK_THAT(end.parameter, Catch::Matchers::WithinAbs(lo, 1e-9));
+  CHECK_THAT(lo, Catch::Matchers::WithinAbs(3.674043252, 1e-9));
 }

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "continuation/branch_problem.hpp"
+#include "continuation/vanishing_impact.hpp"
 
 namespace impactkit {
 namespace {
@@ -240,6 +241,7 @@ class BranchTracer {
     SpecialPoint special;
     special.type = function.type;
     special.point = point;
+    special.parameter = point.parameter;
     special.monitor = point.test_values[test];
     const Eigen::VectorXcd& lambda = point.orbit.multipliers;
     Eigen::Index nearest = 0;
@@ -353,6 +355,14 @@ class BranchTracer {
     const bool pressed = monitor == Monitor::kDepth && contacts.slowest_pressed;
     special.type = pressed ? SpecialPointType::kSticking : SpecialPointType::kGrazing;
     special.vanishing_impact = monitor == Monitor::kDepth ? contacts.slowest_impact : -1;
+    special.parameter = best.parameter;
+    if (monitor == Monitor::kDepth && !pressed) {
+      // The depth locates μ only to v / (dv/dμ): the reduced orbit's
+      // defining equation does better (vanishing_impact.hpp).
+      const std::optional<detail::VanishingImpactPoint> end = detail::LocateVanishingImpact(
+          problem_, previous, best, contacts.slowest_impact, options_.orbit);
+      if (end) special.parameter = end->parameter;
+    }
     return special;
   }
 
@@ -395,10 +405,10 @@ std::string ToString(BranchEnd end) {
   return "unknown";
 }
 
-std::string SpecialPoint::Describe(const std::string& parameter) const {
+std::string SpecialPoint::Describe(const std::string& parameter_name) const {
   std::string name = ToString(type);
   std::replace(name.begin(), name.end(), '_', ' ');
-  const std::string where = fmt::format("{} at {} = {:.10g}", name, parameter, point.parameter);
+  const std::string where = fmt::format("{} at {} = {:.10g}", name, parameter_name, parameter);
   if (type == SpecialPointType::kGrazing || type == SpecialPointType::kSticking) {
     return vanishing_impact < 0
                ? fmt::format("{} (a new contact; clearance {:.1e})", where, monitor)

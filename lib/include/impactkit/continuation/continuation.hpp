@@ -74,6 +74,11 @@ struct ContinuationOptions {
 struct SpecialPoint {
   SpecialPointType type = SpecialPointType::kFold;
   BranchPoint point;  ///< the located point
+  /// The parameter value of the special point. It is point.parameter except
+  /// where an impact vanishes: there the branch's last point stops short
+  /// (its multipliers grow like 1/v) and the value comes from the reduced
+  /// orbit's defining equation, its flight maximum at the stop.
+  double parameter = 0.0;
   /// The critical multiplier (fold, period doubling, Neimark–Sacker), and
   /// for a period doubling the real eigenvector of D P for it.
   std::complex<double> multiplier{0.0, 0.0};
@@ -84,7 +89,7 @@ struct SpecialPoint {
   /// Grazing/sticking: which impact vanishes (-1 for a new contact).
   int vanishing_impact = -1;
   /// One line: "period doubling at omega = 1.6123 (multiplier -1.000000)".
-  std::string Describe(const std::string& parameter) const;
+  std::string Describe(const std::string& parameter_name) const;
 };
 
 enum class BranchEnd {

@@ -1,0 +1,130 @@
+#include "continuation/vanishing_impact.hpp"
+
+#include <cmath>
+#include <complex>
+#include <functional>
+
+namespace impactkit::detail {
+namespace {
+
+/// The secant iterations allowed.
+constexpr int kMaxIterations = 60;
+/// Converged when |clearance| is below this (lengths) ...
+constexpr double kClearanceTolerance = 1e-13;
+/// ... or the step in μ below this, relative to max(1, |μ|).
+constexpr double kStepTolerance = 1e-14;
+
+/// xs − max_t x_c(t) of the non-impacting steady response X cos(Ωt − φ):
+/// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A.
+double NonImpactingClearance(const System& s) {
+  using Complex = std::complex<double>;
+  const double w = s.omega;
+  const Eigen::MatrixXcd dynamic = s.stiffness.cast<Complex>() - w * w * s.mass.cast<Complex>() +
+                                   Complex(0.0, w) * s.damping.cast<Complex>();
+  const Eigen::VectorXcd x = dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
+  return s.stop - std::abs(x(s.contact_dof));
+}
+
+/// The reduced orbit's clearance at μ, seeded from (and updating) `seed`;
+/// empty where no P(p − 1, q) orbit with a flight maximum is found.
+class ReducedOrbitClearance {
+ public:
+  ReducedOrbitClearance(const BranchProblem& problem, const OrbitOptions& options,
+                        Eigen::VectorXd seed)
+      : problem_(problem), options_(options), seed_(std::move(seed)) {}
+
+  std::optional<double> operator()(double mu) {
+    if (options_.p == 0) return NonImpactingClearance(problem_.SystemAt(mu));
+    System system;
+    try {
+      system = problem_.SystemAt(mu);
+    } catch (const InvalidInput&) {
+      return std::nullopt;  // μ outside the parameter's range
+    }
+    PeriodicOrbit orbit;
+    if (FindOrbit(system, seed_, options_, &orbit).termination != Termination::kConverged ||
+        !orbit.contacts.clearance) {
+      return std::nullopt;
+    }
+    seed_ = orbit.eta;
+    return *orbit.contacts.clearance;
+  }
+
+ private:
+  const BranchProblem& problem_;
+  OrbitOptions options_;
+  Eigen::VectorXd seed_;
+};
+
+}  // namespace
+
+std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& problem,
+                                                          const BranchPoint& a,
+                                                          const BranchPoint& b, int impact,
+                                                          const OrbitOptions& orbit_options) {
+  if (b.parameter == a.parameter) return std::nullopt;
+  const double direction = b.parameter > a.parameter ? 1.0 : -1.0;
+  const ImpactMap* map = problem.MapAt(b.parameter);
+  if (!map) return std::nullopt;
+  const MapResult path = map->Apply(b.orbit.eta, problem.p(), false);
+  if (path.status != MapStatus::kOk) return std::nullopt;
+
+  OrbitOptions reduced = orbit_options;
+  reduced.p = problem.p() - 1;
+  reduced.q = problem.q();
+  // The impact after the vanishing one starts the reduced orbit: its state
+  // barely changes as v_k → 0 (the vanishing impact changes v_c by (1 + r) v_k).
+  const Eigen::VectorXd seed = path.path[static_cast<std::size_t>(impact)];
+  ReducedOrbitClearance clearance(problem, reduced, seed);
+
+  // A first point where the reduced orbit exists (clearance > 0): b itself,
+  // or the nearest found stepping out to either side. Which side the
+  // reduced orbit lives on depends on the grazing (Nordmark's normal form).
+  const double scale = std::max(1.0, std::abs(b.parameter));
+  double mu1 = b.parameter;
+  std::optional<double> c1 = clearance(mu1);
+  for (double step = 1e-9 * scale; !(c1 && *c1 > 0) && step < 1e-2 * scale; step *= 4.0) {
+    for (double side : {direction, -direction}) {
+      mu1 = b.parameter + side * step;
+      c1 = clearance(mu1);
+      if (c1 && *c1 > 0) break;
+    }
+  }
+  if (!(c1 && *c1 > 0)) return std::nullopt;
+  // A second point, a small step away on whichever side the orbit continues.
+  double mu0 = mu1;
+  std::optional<double> c0;
+  for (double side : {1.0, -1.0}) {
+    mu0 = mu1 + side * 1e-7 * scale;
+    c0 = clearance(mu0);
+    if (c0 && *c0 != *c1) break;
+  }
+  if (!c0 || *c0 == *c1) return std::nullopt;
+
+  // Secant towards the zero; a step that lands where the reduced orbit does
+  // not exist (or jumps) is halved back towards the last good point.
+  for (int k = 0; k < kMaxIterations; ++k) {
+    if (std::abs(*c1) <= kClearanceTolerance) break;
+    double delta = -*c1 * (mu1 - mu0) / (*c1 - *c0);
+    if (std::abs(delta) <= kStepTolerance * scale) {
+      mu1 += delta;  // the zero, extrapolated from the last two values
+      c1 = 0.0;
+      break;
+    }
+    std::optional<double> c;
+    for (int halving = 0; halving < 30; ++halving, delta /= 2.0) {
+      c = clearance(mu1 + delta);
+      if (c && std::abs(*c) < std::abs(*c1) * 2.0) break;
+      c.reset();
+    }
+    if (!c) return std::nullopt;
+    mu0 = mu1;
+    c0 = c1;
+    mu1 += delta;
+    c1 = c;
+  }
+  if (!(std::abs(*c1) <= 1e3 * kClearanceTolerance)) return std::nullopt;
+  return VanishingImpactPoint{mu1, *c1};
+}
+
+}  // namespace impactkit::detail
