@@ -402,3 +402,59 @@ TEST_CASE("continuation: a vanishing impact is located by its defining equation 
   CHECK_THAT(end.parameter, Catch::Matchers::WithinAbs(lo, 1e-9));
   CHECK_THAT(lo, Catch::Matchers::WithinAbs(3.674043252, 1e-9));
 }
+
+TEST_CASE("continuation: a doubled branch ends where it meets the orbit it doubled, walked once",
+          "[continuation]") {
+  // P(2,2) from Ω = 1.7 down: it meets P(1,1) traversed twice at P(1,1)'s
+  // period doubling; beyond, it would walk its own orbits again with the
+  // impacts renumbered (the same period doubling found twice).
+  const System system = PaperSystem(1.7);
+  const Branch p22 = ContinueBranch({system, Orbit(system, 2, 2), {}},
+                                    Options(1.6, 1.7, 2, 2, ContinuationDirection::kDecreasing));
+  REQUIRE(p22.end == BranchEnd::kBranchPoint);
+  const SpecialPoint& meet = p22.special_points.back();
+  CHECK(meet.type == SpecialPointType::kBranchPoint);
+  int doublings = 0;
+  for (const SpecialPoint& s : p22.special_points) {
+    doublings += s.type == SpecialPointType::kPeriodDoubling;
+    CHECK(s.type != SpecialPointType::kFold);
+  }
+  CHECK(doublings == 1);
+  // Independently: P(1,1)'s own period doubling, by its own branch.
+  const System at_14 = PaperSystem(1.4);
+  const Branch p11 = ContinueBranch({at_14, Orbit(at_14, 1, 1), {}},
+                                    Options(1.4, 1.7, 1, 1, ContinuationDirection::kIncreasing));
+  const SpecialPoint* pd = Find(p11, SpecialPointType::kPeriodDoubling, 1.6, 1.62);
+  REQUIRE(pd != nullptr);
+  CHECK_THAT(meet.parameter, Catch::Matchers::WithinAbs(pd->parameter, 1e-8));
+  CHECK(PrimitivePeriod(ImpactMap(At(system, "omega", meet.parameter)), meet.point.orbit.eta, 2,
+                        2, 1e-6)
+            .p == 1);
+
+  // Started on P(1,1) traversed twice, the branch is followed as P(1,1).
+  PeriodicOrbit twice;
+  OrbitOptions as_p22;
+  as_p22.p = as_p22.q = 2;
+  REQUIRE(FindOrbit(at_14, Orbit(at_14, 1, 1).eta, as_p22, &twice).termination ==
+          Termination::kConverged);
+  const Branch relabelled = ContinueBranch(
+      {at_14, twice, {}}, Options(1.4, 1.5, 2, 2, ContinuationDirection::kIncreasing));
+  CHECK(relabelled.p == 1);
+  CHECK(relabelled.q == 1);
+}
+
+TEST_CASE("continuation: a bound at the end of the parameter's range (r = 1) is reached",
+          "[continuation]") {
+  const System system = PaperSystem(1.2);
+  ContinuationOptions options = Options(0.7, 1.0, 1, 1, ContinuationDirection::kIncreasing);
+  options.parameter = "r";
+  const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
+  CHECK(branch.end == BranchEnd::kParameterBound);
+  CHECK(branch.points.back().parameter == 1.0);
+  // The end point is an orbit at r = 1 (a fresh solve converges to it).
+  PeriodicOrbit fresh;
+  OrbitOptions orbit_options;
+  REQUIRE(FindOrbit(At(system, "r", 1.0), branch.points.back().orbit.eta, orbit_options, &fresh)
+              .termination == Termination::kConverged);
+  CHECK((fresh.eta - branch.points.back().orbit.eta).cwiseAbs().maxCoeff() < 1e-8);
+}

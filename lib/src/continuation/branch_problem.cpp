@@ -24,6 +24,9 @@ BranchProblem::BranchProblem(const System& base, std::string parameter, int p, i
       size_(2 * base.Dof() + 1),
       map_options_(map_options) {
   GetParameter(base_, parameter_);  // throws for an unknown name
+  for (int d = 2; d <= std::min(p, q) && repeat_divisor_ == 1; ++d) {
+    if (p % d == 0 && q % d == 0) repeat_divisor_ = d;  // the first is prime
+  }
 }
 
 System BranchProblem::SystemAt(double mu) const {
@@ -168,6 +171,12 @@ std::optional<BranchPoint> BranchProblem::Describe(const Eigen::VectorXd& x,
   point.orbit = DescribeOrbit(*map, eta, p_, q_);
   point.tangent = *tangent;
   point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
+  if (repeat_divisor_ > 1) {
+    const MapResult part = map->Apply(eta, p_ / repeat_divisor_, false);
+    if (part.status != MapStatus::kOk) return std::nullopt;
+    point.repeat_gap = part.eta - eta;
+    point.repeat_gap(map->TimeIndex()) -= (q_ / repeat_divisor_) * map->GetSystem().ForcingPeriod();
+  }
   return point;
 }
 

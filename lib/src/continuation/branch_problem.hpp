@@ -60,12 +60,17 @@ class BranchProblem {
   std::optional<BranchPoint> Describe(const Eigen::VectorXd& x,
                                       const Eigen::VectorXd& previous) const;
 
+  /// The smallest prime dividing both p and q (the orbit could be a shorter
+  /// one traversed that many times), or 1 when they are coprime.
+  int RepeatDivisor() const { return repeat_divisor_; }
+
  private:
   std::optional<MapResult> Image(const Eigen::VectorXd& x, bool with_jacobian) const;
 
   System base_;
   std::string parameter_;
   int p_, q_, size_;
+  int repeat_divisor_ = 1;
   ImpactMapOptions map_options_;
   mutable std::vector<std::pair<double, std::unique_ptr<ImpactMap>>> maps_;  // newest last
   mutable Eigen::VectorXd cached_x_;  ///< where cached_map_jacobian_ was computed

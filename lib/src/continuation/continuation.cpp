@@ -97,6 +97,17 @@ class BranchTracer {
       int iterations = 0;
       std::optional<BranchPoint> next = Advance(from, step, &iterations);
       if (!next) {
+        // The corrector cannot work beyond a bound where the parameter
+        // leaves its range (r > 1): the point on the bound, from the
+        // prediction, ends the branch.
+        const Eigen::VectorXd predicted = PointX(from) + step * from.tangent;
+        const double mu = BranchProblem::Mu(predicted);
+        if (mu > options_.upper || mu < options_.lower) {
+          if (std::optional<BranchPoint> on = OnBound(from, predicted)) {
+            EndOnBound(from, *on, &half);
+            return half;
+          }
+        }
         if (step > options_.min_step) {
           step = std::max(step / 2.0, options_.min_step);
           continue;
@@ -111,7 +122,7 @@ class BranchTracer {
       const bool beyond = next->parameter < options_.lower || next->parameter > options_.upper;
       if (beyond) {
         const double bound = next->parameter > options_.upper ? options_.upper : options_.lower;
-        next = OnBound(from, *next);
+        next = OnBound(from, PointX(*next));
         if (!next && step > options_.min_step) {
           step = std::max(step / 2.0, options_.min_step);
           continue;
@@ -125,14 +136,19 @@ class BranchTracer {
           return half;
         }
       }
-      if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
-      Accept(*next, &half);
-      if (beyond) {
-        half.end = BranchEnd::kParameterBound;
-        half.end_message =
-            fmt::format("reached {} = {:.10g}", problem_.Parameter(), next->parameter);
+      if (PassesRepeat(from, *next)) {
+        // No test function is located in this last interval: at the branch
+        // point the shorter orbit's multiplier −1 is +1 for this one, a
+        // fold that is not one.
+        EndAtBranchPoint(from, *next, &half);
         return half;
       }
+      if (beyond) {
+        EndOnBound(from, *next, &half);
+        return half;
+      }
+      if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
+      Accept(*next, &half);
       if (GrazingAhead(half, step) && EndAtGrazing(half)) return half;
       if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
       if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
@@ -160,11 +176,12 @@ class BranchTracer {
 
   /// The point of the branch on the parameter bound crossed between `from`
   /// and `beyond`.
-  std::optional<BranchPoint> OnBound(const BranchPoint& from, const BranchPoint& beyond) const {
-    const double bound = beyond.parameter > options_.upper ? options_.upper : options_.lower;
-    const double w = (bound - from.parameter) / (beyond.parameter - from.parameter);
+  std::optional<BranchPoint> OnBound(const BranchPoint& from, const Eigen::VectorXd& beyond) const {
+    const double mu = BranchProblem::Mu(beyond);
+    const double bound = mu > options_.upper ? options_.upper : options_.lower;
+    const double w = (bound - from.parameter) / (mu - from.parameter);
     const Eigen::VectorXd x0 = PointX(from);
-    const Eigen::VectorXd guess = x0 + w * (PointX(beyond) - x0);
+    const Eigen::VectorXd guess = x0 + w * (beyond - x0);
     int iterations = 0;
     const Eigen::VectorXd e_mu = Eigen::VectorXd::Unit(problem_.Size(), problem_.Size() - 1);
     const std::optional<Eigen::VectorXd> x =
@@ -173,6 +190,14 @@ class BranchTracer {
     std::optional<BranchPoint> point = problem_.Describe(*x, from.tangent);
     if (point) point->arclength = from.arclength + from.tangent.dot(*x - x0);
     return point;
+  }
+
+  /// Ends the branch at `on`, the point on a bound after `from`.
+  void EndOnBound(const BranchPoint& from, const BranchPoint& on, HalfBranch* half) const {
+    if (options_.locate_bifurcations) LocateBifurcations(from, on, half);
+    Accept(on, half);
+    half->end = BranchEnd::kParameterBound;
+    half->end_message = fmt::format("reached {} = {:.10g}", problem_.Parameter(), on.parameter);
   }
 
   void Accept(const BranchPoint& point, HalfBranch* half) const {
@@ -198,11 +223,19 @@ class BranchTracer {
     }
   }
 
-  /// The Illinois method on s for the zero of test function `test` between
-  /// a (s = 0) and b, each trial corrected onto the branch from a.
+  /// The zero of test function `test` between a and b, classified.
   std::optional<SpecialPoint> LocateZero(const BranchPoint& a, const BranchPoint& b,
                                          std::size_t test) const {
-    auto value = [test](const BranchPoint& point) { return point.test_values[test]; };
+    return Classify(
+        IllinoisZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; }),
+        test);
+  }
+
+  /// The Illinois method on s for the zero of `value` between a (s = 0)
+  /// and b, where it changes sign, each trial corrected onto the branch from
+  /// a. The point with the least |value| found.
+  template <typename Value>
+  BranchPoint IllinoisZero(const BranchPoint& a, const BranchPoint& b, Value value) const {
     double lo = 0.0, hi = b.arclength - a.arclength;
     double f_lo = value(a), f_hi = value(b);
     std::optional<BranchPoint> best;
@@ -230,7 +263,85 @@ class BranchTracer {
     // No trial converged (rare: the corrector fails between two good
     // points): the nearer end stands in, its test value saying how near.
     if (!best) best = std::abs(value(a)) < std::abs(value(b)) ? a : b;
-    return Classify(*best, test);
+    return *best;
+  }
+
+  /// True when the branch passed between a and b through a point where its
+  /// orbit is a shorter one traversed several times (the repeat gap flips).
+  static bool PassesRepeat(const BranchPoint& a, const BranchPoint& b) {
+    if (a.repeat_gap.size() == 0 || b.repeat_gap.size() == 0) return false;
+    // Or reached it: on the branch of the repeated orbit the gap is rounding.
+    const double noise = 1e-9 * (1.0 + b.orbit.eta.cwiseAbs().maxCoeff());
+    return a.repeat_gap.dot(b.repeat_gap) < 0 || (b.repeat_gap.cwiseAbs().maxCoeff() <= noise &&
+                                                  a.repeat_gap.cwiseAbs().maxCoeff() > noise);
+  }
+
+  /// The branch's point where it meets the shorter orbit P(p/d, q/d): where
+  /// that orbit has the multiplier e^{2πi/d} (−1 for d = 2: its period
+  /// doubling), by secant steps in μ from the last two points. The branch
+  /// reaches that point with a vertical tangent (μ − μ* ∝ |repeat gap|²), so
+  /// its own points locate μ* poorly; the shorter orbit is regular there.
+  std::optional<BranchPoint> PrimitiveBifurcation(const BranchPoint& from,
+                                                  const BranchPoint& next) const {
+    OrbitOptions primitive = options_.orbit;
+    primitive.p = problem_.p() / problem_.RepeatDivisor();
+    primitive.q = problem_.q() / problem_.RepeatDivisor();
+    // d = 2: det(DP + I); d >= 3: a complex pair on the unit circle.
+    const std::size_t test = problem_.RepeatDivisor() == 2 ? 1 : 2;
+    Eigen::VectorXd seed = from.orbit.eta;
+    auto value = [&](double mu) -> std::optional<double> {
+      PeriodicOrbit orbit;
+      System system;
+      try {
+        system = problem_.SystemAt(mu);
+      } catch (const InvalidInput&) {
+        return std::nullopt;
+      }
+      if (FindOrbit(system, seed, primitive, &orbit).termination != Termination::kConverged) {
+        return std::nullopt;
+      }
+      seed = orbit.eta;
+      return EvaluateBifurcationTests(orbit.jacobian, orbit.multipliers)[test];
+    };
+    double mu0 = from.parameter, mu1 = next.parameter;
+    std::optional<double> f0 = value(mu0), f1 = value(mu1);
+    for (int k = 0; k < kMaxLocateIterations && f0 && f1 && *f1 != *f0; ++k) {
+      const double delta = -*f1 * (mu1 - mu0) / (*f1 - *f0);
+      mu0 = mu1;
+      f0 = f1;
+      mu1 += delta;
+      f1 = value(mu1);
+      if (std::abs(delta) <= 1e-14 * std::max(1.0, std::abs(mu1)) && f1) {
+        // The shorter orbit at μ*, traversed d times, is this branch's end.
+        const Eigen::VectorXd x = BranchProblem::Join(seed, mu1);
+        std::optional<BranchPoint> point = problem_.Describe(x, from.tangent);
+        if (point) point->arclength = from.arclength + (x - PointX(from)).norm();
+        return point;
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// Ends the branch at the point between `from` and `next` where its orbit
+  /// repeats: beyond it the branch would walk the same orbits again with
+  /// their impacts renumbered.
+  void EndAtBranchPoint(const BranchPoint& from, const BranchPoint& next, HalfBranch* half) const {
+    const Eigen::VectorXd direction = from.repeat_gap;
+    const BranchPoint located = PrimitiveBifurcation(from, next).value_or(IllinoisZero(
+        from, next, [&](const BranchPoint& point) { return point.repeat_gap.dot(direction); }));
+    Accept(located, half);
+    SpecialPoint special;
+    special.type = SpecialPointType::kBranchPoint;
+    special.point = located;
+    special.parameter = located.parameter;
+    special.monitor = located.repeat_gap.cwiseAbs().maxCoeff();
+    half->special_points.push_back(special);
+    half->end = BranchEnd::kBranchPoint;
+    half->end_message = special.Describe(problem_.Parameter()) +
+                        fmt::format(": the orbit is P({},{}) traversed {} times",
+                                    problem_.p() / problem_.RepeatDivisor(),
+                                    problem_.q() / problem_.RepeatDivisor(),
+                                    problem_.RepeatDivisor());
   }
 
   /// The special point of a located zero of test function `test`, with its
@@ -397,6 +508,8 @@ std::string ToString(BranchEnd end) {
       return "grazing";
     case BranchEnd::kSticking:
       return "sticking";
+    case BranchEnd::kBranchPoint:
+      return "branch_point";
     case BranchEnd::kMaxPoints:
       return "max_points";
     case BranchEnd::kCorrectorFailed:
@@ -409,6 +522,9 @@ std::string SpecialPoint::Describe(const std::string& parameter_name) const {
   std::string name = ToString(type);
   std::replace(name.begin(), name.end(), '_', ' ');
   const std::string where = fmt::format("{} at {} = {:.10g}", name, parameter_name, parameter);
+  if (type == SpecialPointType::kBranchPoint) {
+    return fmt::format("{} (repeat gap {:.1e})", where, monitor);
+  }
   if (type == SpecialPointType::kGrazing || type == SpecialPointType::kSticking) {
     return vanishing_impact < 0
                ? fmt::format("{} (a new contact; clearance {:.1e})", where, monitor)
@@ -471,6 +587,19 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
   Require(residual <= 1e3 * options.orbit.newton.residual_tolerance,
           fmt::format("the start is not a P({},{}) orbit: residual {:.2e}", options.orbit.p,
                       options.orbit.q, residual));
+  // A P(2,2) that is P(1,1) traversed twice is followed as P(1,1): as P(2,2)
+  // its multipliers are squared (P(1,1)'s period doubling would read as a
+  // fold) and the branch would be walked once per relabelling.
+  const OrbitPeriod primitive =
+      PrimitivePeriod(*map, start.orbit.eta, options.orbit.p, options.orbit.q);
+  if (primitive.p != options.orbit.p) {
+    ContinuationOptions reduced = options;
+    reduced.orbit.p = primitive.p;
+    reduced.orbit.q = primitive.q;
+    BranchStart shorter = start;
+    shorter.orbit = DescribeOrbit(*map, start.orbit.eta, primitive.p, primitive.q);
+    return ContinueBranch(shorter, reduced, progress);
+  }
 
   BranchTracer tracer(problem, options, progress);
   Branch branch;

@@ -37,12 +37,13 @@ constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
      1e-4},
 }};
 
-constexpr std::array<std::pair<SpecialPointType, std::string_view>, 5> kNames = {{
+constexpr std::array<std::pair<SpecialPointType, std::string_view>, 6> kNames = {{
     {SpecialPointType::kFold, "fold"},
     {SpecialPointType::kPeriodDoubling, "period_doubling"},
     {SpecialPointType::kNeimarkSacker, "neimark_sacker"},
     {SpecialPointType::kGrazing, "grazing"},
     {SpecialPointType::kSticking, "sticking"},
+    {SpecialPointType::kBranchPoint, "branch_point"},
 }};
 
 }  // namespace

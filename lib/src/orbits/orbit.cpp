@@ -73,6 +73,24 @@ class FixedPointProblem {
 
 }  // namespace
 
+OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
+                            double tolerance) {
+  const MapResult image = map.Apply(eta, p, false);
+  if (image.status != MapStatus::kOk) {
+    throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
+                                   image.impacts_done, p, ToString(image.status)));
+  }
+  const double scale = 1.0 + eta.cwiseAbs().maxCoeff();
+  const double period = map.GetSystem().ForcingPeriod();
+  for (int part = 1; part < p; ++part) {  // the shortest repeating part first
+    if (p % part != 0 || q % (p / part) != 0) continue;
+    Eigen::VectorXd gap = image.path[part - 1] - eta;
+    gap(map.TimeIndex()) -= (q / (p / part)) * period;
+    if (gap.cwiseAbs().maxCoeff() <= tolerance * scale) return {part, q / (p / part)};
+  }
+  return {p, q};
+}
+
 PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q) {
   const MapResult image = map.Apply(eta, p, true);
   if (image.status != MapStatus::kOk) {

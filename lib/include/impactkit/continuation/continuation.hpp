@@ -96,11 +96,13 @@ enum class BranchEnd {
   kParameterBound,   ///< reached lower or upper
   kGrazing,          ///< ended at a grazing point (special point)
   kSticking,         ///< ended at sticking onset (special point)
+  kBranchPoint,      ///< met the branch of a shorter orbit traversed several times
   kMaxPoints,        ///< max_points reached
   kCorrectorFailed,  ///< no convergence even with the smallest step
 };
 
-/// "parameter_bound", "grazing", "sticking", "max_points", "corrector_failed".
+/// "parameter_bound", "grazing", "sticking", "branch_point", "max_points",
+/// "corrector_failed".
 std::string ToString(BranchEnd end);
 
 struct Branch {
@@ -134,7 +136,9 @@ struct BranchStart {
 /// Follows the branch through `start`. Throws InvalidInput for bad
 /// options, a parameter name the system lacks, bounds not valid for the
 /// system or not holding the start, or a start that is not an orbit (its
-/// residual above 1e3 times the tolerance).
+/// residual above 1e3 times the tolerance). A start that is a shorter orbit
+/// traversed several times (PrimitivePeriod) is followed as that orbit:
+/// Branch::p and q say which.
 Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
                       const ContinuationProgress& progress = {});
 

@@ -21,10 +21,20 @@
 
 namespace impactkit {
 
-enum class SpecialPointType { kFold, kPeriodDoubling, kNeimarkSacker, kGrazing, kSticking };
+enum class SpecialPointType {
+  kFold,
+  kPeriodDoubling,
+  kNeimarkSacker,
+  kGrazing,
+  kSticking,
+  /// The orbit becomes a shorter orbit traversed several times (a P(2,2)
+  /// that is P(1,1) twice): the branch meets the branch of that shorter
+  /// orbit at its period doubling.
+  kBranchPoint,
+};
 
-/// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking": the
-/// name that outputs (CSV, JSON) use for the type.
+/// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking",
+/// "branch_point": the name that outputs (CSV, JSON) use for the type.
 std::string ToString(SpecialPointType type);
 /// The type of a name of ToString; empty for any other name.
 std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name);

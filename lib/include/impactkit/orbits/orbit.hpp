@@ -69,6 +69,18 @@ struct PeriodicOrbit {
 /// InvalidInput if the map cannot follow p impacts from eta.
 PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q);
 
+/// The least period of the orbit P(p, q) through η: (p/d, q/d) for the
+/// largest d dividing both with P_I^{p/d}(η) = η + (q/d) T e_τ to
+/// `tolerance` (relative to 1 + max|η|). A P(2,2) that is P(1,1)
+/// traversed twice has the primitive period (1, 1). Throws InvalidInput if
+/// the map cannot follow p impacts from η.
+struct OrbitPeriod {
+  int p = 1;
+  int q = 1;
+};
+OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
+                            double tolerance = 1e-8);
+
 /// Summary::iterations counts Newton iterations plus LM iterations if used.
 struct OrbitSummary : Summary {
   bool used_fallback = false;  ///< Levenberg–Marquardt was needed
