@@ -91,19 +91,53 @@ OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, in
   return {p, q};
 }
 
-PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q) {
-  const MapResult image = map.Apply(eta, p, true);
+namespace {
+
+/// D P_I^p at η by finite differences; throws where a perturbed map fails.
+Eigen::MatrixXd FiniteDifferenceJacobianOrThrow(const ImpactMap& map, const Eigen::VectorXd& eta,
+                                                int p) {
+  Eigen::MatrixXd jacobian = map.FiniteDifferenceJacobian(eta, p);
+  if (jacobian.size() == 0) {
+    throw InvalidInput(
+        "the finite-difference Jacobian cannot be formed here: a perturbed map loses or grazes an "
+        "impact (use the analytic Jacobian)");
+  }
+  return jacobian;
+}
+
+MapResult ApplyOrThrow(const ImpactMap& map, const Eigen::VectorXd& eta, int p) {
+  MapResult image = map.Apply(eta, p, true);
   if (image.status != MapStatus::kOk) {
     throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
                                    image.impacts_done, p, ToString(image.status)));
   }
+  return image;
+}
+
+}  // namespace
+
+JacobianComparison CompareJacobians(const ImpactMap& map, const Eigen::VectorXd& eta, int p) {
+  const Eigen::MatrixXd analytic = ApplyOrThrow(map, eta, p).jacobian;
+  const Eigen::MatrixXd difference = analytic - FiniteDifferenceJacobianOrThrow(map, eta, p);
+  JacobianComparison comparison;
+  comparison.max_difference = difference.cwiseAbs().maxCoeff();
+  comparison.max_relative_difference =
+      comparison.max_difference / std::max(1.0, analytic.cwiseAbs().maxCoeff());
+  return comparison;
+}
+
+PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
+                            JacobianMethod method) {
+  const MapResult image = ApplyOrThrow(map, eta, p);
   const System& system = map.GetSystem();
   PeriodicOrbit orbit;
   orbit.p = p;
   orbit.q = q;
   orbit.omega = system.omega;
   orbit.eta = eta;
-  orbit.jacobian = image.jacobian;
+  orbit.jacobian = method == JacobianMethod::kAnalytic
+                       ? image.jacobian
+                       : FiniteDifferenceJacobianOrThrow(map, eta, p);
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(eta.size());
   shift(map.TimeIndex()) = q * system.ForcingPeriod();
   orbit.residual = (image.eta - eta - shift).cwiseAbs().maxCoeff();
@@ -113,7 +147,7 @@ PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, in
     const double t = at(map.TimeIndex());
     orbit.impacts.push_back({t, system.Phase(t), at(n + c)});
   }
-  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(image.jacobian).eigenvalues();
+  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(orbit.jacobian).eigenvalues();
   std::sort(lambda.begin(), lambda.end(),
             [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
   orbit.multipliers = lambda;
@@ -178,7 +212,7 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
   summary.residual = solve.residual_norm;
   eta = WithPhase(map, eta);
   if (summary.termination == Termination::kConverged) {
-    *orbit = DescribeOrbit(map, eta, options.p, options.q);
+    *orbit = DescribeOrbit(map, eta, options.p, options.q, options.jacobian);
   } else {
     orbit->eta = eta;
   }

@@ -65,9 +65,21 @@ struct PeriodicOrbit {
 };
 
 /// The orbit P(p, q) through the fixed point `eta` of P_I^p: impacts,
-/// Jacobian, multipliers, stability, residual and contacts. Throws
-/// InvalidInput if the map cannot follow p impacts from eta.
-PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q);
+/// Jacobian (by `method`), multipliers, stability, residual and contacts.
+/// Throws InvalidInput if the map cannot follow p impacts from eta, or
+/// (finite differences) a perturbed map cannot.
+PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
+                            JacobianMethod method = JacobianMethod::kAnalytic);
+
+/// The analytic Jacobian of P_I^p at η beside the finite-difference one (the
+/// paper's method): how far apart they are, entry by entry.
+struct JacobianComparison {
+  double max_difference = 0.0;  ///< max |J_analytic − J_fd|
+  /// The same relative to max |J_analytic| (at least 1).
+  double max_relative_difference = 0.0;
+};
+/// Throws InvalidInput if the map or a perturbed map cannot follow p impacts.
+JacobianComparison CompareJacobians(const ImpactMap& map, const Eigen::VectorXd& eta, int p);
 
 /// The least period of the orbit P(p, q) through η: (p/d, q/d) for the
 /// largest d dividing both with P_I^{p/d}(η) = η + (q/d) T e_τ to
