@@ -21,6 +21,7 @@
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
+using Catch::Matchers::Equals;
 using namespace impactkit;
 namespace fs = std::filesystem;
 
@@ -367,6 +368,26 @@ TEST_CASE("a JSON number too large for a double is an InvalidInput naming the fi
   const std::string message = MessageOf<InvalidInput>(
       [] { ParseSystem(R"({"omega": 1e400})", SystemFileFormat::kJson, "bad.json"); });
   CHECK_THAT(message, StartsWith("bad.json:") && Contains("1e400"));
+}
+
+TEST_CASE("a key given twice, or nesting far beyond a system file's, is refused", "[io]") {
+  for (const auto& [text, format, expected] :
+       {std::tuple{R"({"omega": 1.0, "omega": 2.0})", SystemFileFormat::kJson,
+                   "key \"omega\" is given twice"},
+        std::tuple{R"({"chain": {"n": 2, "n": 3}})", SystemFileFormat::kJson,
+                   "key \"n\" is given twice"},
+        std::tuple{"omega = 1.0\nomega = 2.0\n", SystemFileFormat::kToml,
+                   "cannot redefine existing"}}) {
+    INFO(text);
+    const std::string message = MessageOf<InvalidInput>([&] { ParseSystem(text, format, "dup"); });
+    CHECK_THAT(message, StartsWith("dup") && Contains(expected));
+  }
+  // 100,000 levels (200 kB) once overflowed the stack; the depth is checked
+  // while parsing, before any of it is built.
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  CHECK_THAT(MessageOf<InvalidInput>(
+                 [&] { ParseSystem(deep, SystemFileFormat::kJson, "deep.json"); }),
+             Equals("deep.json: invalid JSON: nested deeper than 16 levels"));
 }
 
 // A key with a line break (legal in a JSON string or a quoted TOML key) is

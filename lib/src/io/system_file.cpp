@@ -215,9 +215,55 @@ System Build(const SystemFields& fields, const System& paper) {
                        restitution, contact_dof);
 }
 
+/// A system file is at most a few levels deep (top level, chain, matrix
+/// rows); far deeper nesting is no system file, and nlohmann's DOM would
+/// recurse once per level building and destroying it.
+constexpr int kMaxJsonDepth = 16;
+
+/// Rejects, while parsing, nesting beyond kMaxJsonDepth and a key given
+/// twice in one object (nlohmann keeps the last silently; which was meant
+/// cannot be guessed).
+class JsonGuard {
+ public:
+  explicit JsonGuard(std::string_view source) : source_(source) {}
+
+  bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
+    switch (event) {
+      case Json::parse_event_t::object_start:
+      case Json::parse_event_t::array_start:
+        if (depth >= kMaxJsonDepth) {
+          throw InvalidInput(fmt::format("{}: invalid JSON: nested deeper than {} levels", source_,
+                                         kMaxJsonDepth));
+        }
+        if (event == Json::parse_event_t::object_start) keys_.emplace_back();
+        break;
+      case Json::parse_event_t::object_end:
+        keys_.pop_back();
+        break;
+      case Json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        std::vector<std::string>& seen = keys_.back();
+        if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+          throw InvalidInput(
+              fmt::format("{}: key {} is given twice in one object", source_, Json(key).dump()));
+        }
+        seen.push_back(key);
+        break;
+      }
+      default:
+        break;
+    }
+    return true;
+  }
+
+ private:
+  std::string_view source_;
+  std::vector<std::vector<std::string>> keys_;  ///< per open object
+};
+
 Json ParseJson(std::string_view text, std::string_view source) {
   try {
-    return Json::parse(text);
+    return Json::parse(text, JsonGuard(source));
   } catch (const Json::exception& error) {
     // Syntax errors, and numbers too large for a double (out_of_range.406).
     // what() is "[json.exception.parse_error.101] parse error at line 1, ...":
