@@ -16,7 +16,7 @@
 
 #include "commands.hpp"
 #include "impactkit/model/system.hpp"
-#include "system_options.hpp"
+#include "common/system_options.hpp"
 
 namespace {
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file simulate_run.hpp
+/// \file simulate/run.hpp
 /// The job of `impactkit simulate`: from an initial state, run a transient
 /// of whole forcing periods and discard it, then record a window
 ///
@@ -16,7 +16,7 @@
 #include "impactkit/analysis/periodicity.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
-#include "system_options.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 

@@ -1,7 +1,8 @@
 #pragma once
-/// \file orbit_seed.hpp
+/// \file common/orbit_seed.hpp
 /// The flags that choose a starting orbit, shared by `orbit` and
-/// `continue`: p and q, and either a guess or a steady simulation.
+/// `continue` (and the starts of `paper`'s branches): p and q, and either a
+/// guess or a steady simulation.
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Dense>

@@ -1,4 +1,4 @@
-#include "simulate_summary.hpp"
+#include "simulate/summary.hpp"
 
 #include <algorithm>
 

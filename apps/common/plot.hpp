@@ -1,5 +1,5 @@
 #pragma once
-/// \file plot.hpp
+/// \file common/plot.hpp
 /// Line charts through gnuplot: the data and a script go to a private
 /// temporary directory, gnuplot renders a PNG there, and the bytes come
 /// back to the caller, who writes them like any other output (whole or not

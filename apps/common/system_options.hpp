@@ -1,5 +1,5 @@
 #pragma once
-/// \file system_options.hpp
+/// \file common/system_options.hpp
 /// The flags every subcommand shares to name its system: a file or the
 /// paper's default, then changes by parameter name, the names of
 /// impactkit::ParameterNames (omega, xs, r, A1..AN; m, k, c, n for chains).

@@ -18,9 +18,9 @@
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/analysis/sweep.hpp"
-#include "plot.hpp"
-#include "sweep_chart.hpp"
-#include "system_options.hpp"
+#include "common/plot.hpp"
+#include "sweep/chart.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -44,7 +44,7 @@ struct SweepRequest {
 };
 
 /// Values done of K on stderr, rewritten in place; like ProgressLine
-/// (progress.hpp), only on a terminal and only after the first second.
+/// (common/progress.hpp), only on a terminal and only after the first second.
 class SweepProgressLine {
  public:
   explicit SweepProgressLine(std::string parameter)

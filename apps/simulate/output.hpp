@@ -1,5 +1,5 @@
 #pragma once
-/// \file simulate_output.hpp
+/// \file simulate/output.hpp
 /// The files `impactkit simulate` writes:
 ///
 ///     --series   t,x1..xN,v1..vN,stuck    one row per sample of the window
@@ -7,7 +7,7 @@
 ///                                         the contact mass just before it;
 ///                                         x, v: the state just before it)
 ///     --plot     x1..xN against t, the contact mass solid, the stop dotted
-///     --json     the summary (simulate_summary.hpp)
+///     --json     the summary (simulate/summary.hpp)
 ///
 /// All are created as temporaries before the run, so an unwritable path
 /// fails first, and appear only once all are complete.
@@ -17,7 +17,7 @@
 
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
-#include "simulate_run.hpp"
+#include "simulate/run.hpp"
 
 namespace impactkit::cli {
 

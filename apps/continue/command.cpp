@@ -13,15 +13,15 @@
 #include <optional>
 #include <vector>
 
-#include "branches.hpp"
+#include "continue/branches.hpp"
 #include "commands.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "orbit_seed.hpp"
-#include "plot.hpp"
-#include "system_options.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -1,11 +1,11 @@
 #pragma once
-/// \file simulate_summary.hpp
+/// \file simulate/summary.hpp
 /// What `impactkit simulate` reports about its window: printed for a person,
 /// and as JSON (--json) for scripts. Both say the same things.
 
 #include <string>
 
-#include "simulate_run.hpp"
+#include "simulate/run.hpp"
 
 namespace impactkit::cli {
 

@@ -1,4 +1,4 @@
-#include "sweep_chart.hpp"
+#include "sweep/chart.hpp"
 
 #include <fmt/format.h>
 

@@ -22,9 +22,9 @@
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "plot.hpp"
-#include "progress.hpp"
-#include "system_options.hpp"
+#include "common/plot.hpp"
+#include "common/progress.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -12,8 +12,8 @@
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/analysis/resonance.hpp"
-#include "plot.hpp"
-#include "system_options.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -1,4 +1,4 @@
-#include "orbit_seed.hpp"
+#include "common/orbit_seed.hpp"
 
 #include <fmt/format.h>
 

@@ -1,13 +1,13 @@
 /// `impactkit simulate`: its flags, mapped onto a SimulateRequest
-/// (simulate_run.hpp does the work).
+/// (simulate/run.hpp does the work).
 
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "simulate_run.hpp"
-#include "system_options.hpp"
+#include "simulate/run.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -1,11 +1,11 @@
-#include "simulate_output.hpp"
+#include "simulate/output.hpp"
 
 #include <array>
 
 #include <fmt/format.h>
 
-#include "plot.hpp"
-#include "simulate_summary.hpp"
+#include "common/plot.hpp"
+#include "simulate/summary.hpp"
 
 namespace impactkit::cli {
 namespace {

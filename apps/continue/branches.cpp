@@ -1,4 +1,4 @@
-#include "branches.hpp"
+#include "continue/branches.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
 #pragma once
-/// \file progress.hpp
+/// \file common/progress.hpp
 /// A progress line for long simulations, drawn on stderr and rewritten in
 /// place. Only for a person watching: silent when stderr is not a terminal
 /// (pipes, logs, tests) and for runs that finish within a second.

@@ -1,4 +1,4 @@
-#include "plot.hpp"
+#include "common/plot.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>

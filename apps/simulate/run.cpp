@@ -1,4 +1,4 @@
-#include "simulate_run.hpp"
+#include "simulate/run.hpp"
 
 #include <algorithm>
 #include <iterator>
@@ -8,10 +8,10 @@
 #include <fmt/format.h>
 
 #include "impactkit/io/output_file.hpp"
-#include "plot.hpp"
-#include "progress.hpp"
-#include "simulate_output.hpp"
-#include "simulate_summary.hpp"
+#include "common/plot.hpp"
+#include "common/progress.hpp"
+#include "simulate/output.hpp"
+#include "simulate/summary.hpp"
 
 namespace impactkit::cli {
 namespace {

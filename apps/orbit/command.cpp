@@ -10,11 +10,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "orbit_seed.hpp"
+#include "common/orbit_seed.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "system_options.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-/// \file branches.hpp
+/// \file continue/branches.hpp
 /// Continued branches as the command line shows them: traced with the
 /// branches born at their special points, printed, written as CSV and JSON,
 /// drawn — shared by `impactkit continue` and `impactkit paper`.
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "impactkit/continuation/continuation.hpp"
-#include "plot.hpp"
+#include "common/plot.hpp"
 
 namespace impactkit::cli {
 

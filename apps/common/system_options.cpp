@@ -1,4 +1,4 @@
-#include "system_options.hpp"
+#include "common/system_options.hpp"
 
 #include <algorithm>
 #include <charconv>

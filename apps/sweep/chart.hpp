@@ -1,12 +1,12 @@
 #pragma once
-/// \file sweep_chart.hpp
+/// \file sweep/chart.hpp
 /// The two panels of the paper's Fig. 3 from a sweep, shared by `impactkit
 /// sweep --plot` and `impactkit paper`.
 
 #include <vector>
 
 #include "impactkit/analysis/sweep.hpp"
-#include "plot.hpp"
+#include "common/plot.hpp"
 
 namespace impactkit::cli {
 

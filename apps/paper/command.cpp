@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "branches.hpp"
+#include "continue/branches.hpp"
 #include "commands.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/io/csv.hpp"
@@ -25,10 +25,10 @@
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "orbit_seed.hpp"
-#include "plot.hpp"
-#include "sweep_chart.hpp"
-#include "system_options.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/plot.hpp"
+#include "sweep/chart.hpp"
+#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {
