@@ -13,15 +13,16 @@
 #include <optional>
 #include <vector>
 
-#include "continue/branches.hpp"
 #include "commands.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/output.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
+#include "continue/branches.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "common/orbit_seed.hpp"
-#include "common/plot.hpp"
-#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -131,9 +132,7 @@ void RunContinue(const ContinueRequest& request) {
     fmt::print("wrote:      {}\n", request.json);
   }
   if (!request.plot.empty()) {
-    AtomicOutputFile png(request.plot);
-    png.Write(RenderPng(BranchChart(branches)));
-    png.Commit();
+    WriteChartPng(request.plot, BranchChart(branches));
     fmt::print("wrote:      {}\n", request.plot);
   }
 }

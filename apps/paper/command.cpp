@@ -16,19 +16,19 @@
 #include <thread>
 #include <vector>
 
-#include "continue/branches.hpp"
 #include "commands.hpp"
-#include "impactkit/continuation/continuation.hpp"
-#include "impactkit/io/csv.hpp"
-#include "impactkit/model/modal.hpp"
-#include "impactkit/io/output_file.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/output.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
+#include "continue/branches.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/sweep.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/io/csv.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "common/orbit_seed.hpp"
-#include "common/plot.hpp"
+#include "impactkit/model/modal.hpp"
 #include "sweep/chart.hpp"
-#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -62,9 +62,7 @@ void Stage(int k, const std::string& what) {
 /// Writes `text` to out/name and says so.
 void WriteFile(const std::filesystem::path& out, const std::string& name, const std::string& text,
                std::vector<std::string>* written) {
-  AtomicOutputFile file(out / name);
-  file.Write(text);
-  file.Commit();
+  WriteWhole(out / name, text);
   written->push_back(name);
 }
 

@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "impactkit/io/csv.hpp"
-#include "impactkit/io/output_file.hpp"
-#include "impactkit/analysis/resonance.hpp"
+#include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
+#include "impactkit/analysis/resonance.hpp"
+#include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -84,9 +84,7 @@ void RunResonance(const ResonanceRequest& request) {
       }
       chart.curves.push_back(c);
     }
-    AtomicOutputFile png(request.plot);
-    png.Write(RenderPng(chart));
-    png.Commit();
+    WriteChartPng(request.plot, chart);
     fmt::print("wrote:       {}\n", request.plot);
   }
 }

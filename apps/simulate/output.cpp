@@ -1,8 +1,8 @@
 #include "simulate/output.hpp"
 
-#include <array>
-
 #include <fmt/format.h>
+
+#include <array>
 
 #include "common/plot.hpp"
 #include "simulate/summary.hpp"
@@ -99,7 +99,7 @@ void SimulateOutputs::WriteSeries(const SimulateResult& result) {
 
 void SimulateOutputs::WriteImpacts(const SimulateResult& result) {
   std::vector<double> row;
-  for (const Impact& impact : result.recorders.impacts.Impacts()) {
+  for (const Impact& impact : result.recorders.steady.Impacts()) {
     row.assign({impact.t, impact.phase, impact.velocity});
     AppendState(row, impact.x, impact.v);
     impacts_->WriteRow(row);

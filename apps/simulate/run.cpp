@@ -1,15 +1,16 @@
 #include "simulate/run.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <iterator>
 #include <stdexcept>
 #include <utility>
 
-#include <fmt/format.h>
-
-#include "impactkit/io/output_file.hpp"
 #include "common/plot.hpp"
 #include "common/progress.hpp"
+#include "common/require.hpp"
+#include "impactkit/io/output_file.hpp"
 #include "simulate/output.hpp"
 #include "simulate/summary.hpp"
 
@@ -19,10 +20,6 @@ namespace {
 /// A series is held in memory until written: beyond this many rows, ask
 /// for fewer periods or samples rather than exhaust memory at the end.
 constexpr double kMaxSeriesRows = 2e7;
-
-void Require(bool condition, const std::string& message) {
-  if (!condition) throw InvalidInput(message);
-}
 
 /// Two outputs naming one file would silently keep only the last written.
 void CheckDistinctOutputs(const SimulateRequest& request) {
@@ -115,15 +112,11 @@ double Advance(const Simulator& simulator, HybridState& state, double t_end,
 
 WindowAnalysis Analyse(const WindowRecorders& recorders, const Window& window) {
   WindowAnalysis analysis;
-  const std::vector<Impact>& impacts = recorders.impacts.Impacts();
+  const std::vector<Impact>& impacts = recorders.steady.Impacts();
   analysis.impacts_per_period = static_cast<double>(impacts.size()) / window.periods;
   analysis.sticking_fraction = recorders.sticking.TotalTime() / (window.end - window.begin);
-  analysis.chatter_sequences = static_cast<long>(recorders.chatter.EndTimes().size());
-  std::vector<double> impact_times;
-  for (const Impact& impact : impacts) impact_times.push_back(impact.t);
-  const PeriodOptions options;
-  const std::vector<Sample>& strobe = recorders.strobe.Points();
-  analysis.motion = DetectPeriod(strobe, impact_times, recorders.chatter.EndTimes(), options);
+  analysis.chatter_sequences = static_cast<long>(recorders.steady.ChatterEnds().size());
+  analysis.motion = recorders.steady.Period();
   analysis.searched_q = analysis.motion.searched_q;
   return analysis;
 }
@@ -138,11 +131,9 @@ SimulationOptions SimulationOptionsOf(const SimulateRequest& request) {
 }
 
 WindowRecorders::WindowRecorders(const Window& window, std::optional<double> sample_interval)
-    : strobe(window.period) {
-  all.Add(impacts);
-  all.Add(strobe);
+    : steady(window.period) {
+  all.Add(steady);
   all.Add(sticking);
-  all.Add(chatter);
   if (sample_interval) all.Add(series.emplace(window.begin, *sample_interval));
 }
 

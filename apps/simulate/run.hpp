@@ -13,10 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "common/system_options.hpp"
 #include "impactkit/analysis/periodicity.hpp"
+#include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
-#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 
@@ -52,10 +53,10 @@ struct WindowRecorders {
   WindowRecorders(const WindowRecorders&) = delete;
   WindowRecorders& operator=(const WindowRecorders&) = delete;
 
-  ImpactRecorder impacts;
-  StroboscopicRecorder strobe;
+  /// Impacts, stroboscopic points and chatter ends, as every steady-state
+  /// analysis records them; the motion's period comes from them.
+  SteadyWindowRecorder steady;
   StickingRecorder sticking;
-  ChatterRecorder chatter;
   std::optional<TimeSeriesRecorder> series;  ///< only when a series or plot is asked for
   ObserverList all;
 };

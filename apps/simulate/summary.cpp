@@ -1,8 +1,8 @@
 #include "simulate/summary.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "impactkit/io/system_file.hpp"
@@ -22,7 +22,7 @@ std::string Count(long n, const std::string& noun) {
 long PeriodsForFullSearch() { return 2L * PeriodOptions{}.max_q; }
 
 std::string ImpactLine(const SimulateResult& result) {
-  const std::vector<Impact>& impacts = result.recorders.impacts.Impacts();
+  const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
   if (impacts.empty()) return "none";
   const auto [slowest, fastest] =
       std::minmax_element(impacts.begin(), impacts.end(),
@@ -125,7 +125,7 @@ std::string SummaryText(const SimulateResult& result) {
 }
 
 std::string SummaryJson(const SimulateResult& result, const std::string& provenance) {
-  const std::vector<Impact>& impacts = result.recorders.impacts.Impacts();
+  const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
   const Window& window = result.window;
   Json json = {{"command", provenance}, {"impactkit_version", IMPACTKIT_VERSION}};
   json["system"] = Json::parse(SystemToJson(result.system));
