@@ -11,6 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "commands.hpp"
@@ -119,6 +120,13 @@ void RunContinue(const ContinueRequest& request) {
                              {request.switch_period_doubling, request.follow_grazing}, progress);
   }
   for (const TracedBranch& b : branches) PrintBranch(b);
+  // A branch of one point is no branch: exit status 1 before any output.
+  const Branch& traced = branches.front().branch;
+  if (traced.points.size() < 2) {
+    throw std::runtime_error(
+        fmt::format("the P({},{}) branch could not be continued beyond its start: {} ({})",
+                    traced.p, traced.q, ToString(traced.end), traced.end_message));
+  }
   const std::string provenance = Provenance(request, system);
   if (!request.out.empty()) {
     for (const TracedBranch& b : branches) {

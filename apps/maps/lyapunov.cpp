@@ -9,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -83,6 +84,11 @@ void RunLyapunov(const LyapunovRequest& request) {
     json->Write(j.dump(2) + "\n");
     json->Commit();
     fmt::print("wrote:       {}\n", request.json);
+  }
+  // No exponents is no result: exit status 1, after the stdout line and the
+  // JSON (valid: false) that record why.
+  if (!result.valid) {
+    throw std::runtime_error(fmt::format("Lyapunov exponents not computed: {}", result.message));
   }
 }
 

@@ -146,6 +146,12 @@ void RunReturnMap(const ReturnMapRequest& request) {
     WriteChartPng(request.plot, chart);
     fmt::print("wrote:       {}\n", request.plot);
   }
+  // A fit that did not converge is no fit: exit status 1, after the report
+  // (and the JSON with its termination) that say how it ended.
+  if (fit && fit->termination != MapFitTermination::kConverged) {
+    throw std::runtime_error(fmt::format("the Eq. 18 fit did not converge ({}): {}",
+                                         ToString(fit->termination), fit->message));
+  }
 }
 
 }  // namespace
