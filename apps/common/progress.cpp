@@ -1,10 +1,9 @@
 #include "common/progress.hpp"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cstdio>
-
-#include <fmt/format.h>
 
 #include "impactkit/dynamics/segment.hpp"
 

@@ -1,10 +1,10 @@
 #include "common/system_options.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <charconv>
 #include <string_view>
-
-#include <fmt/format.h>
 
 #include "impactkit/io/system_file.hpp"
 

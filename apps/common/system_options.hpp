@@ -4,11 +4,10 @@
 /// paper's default, then changes by parameter name, the names of
 /// impactkit::ParameterNames (omega, xs, r, A1..AN; m, k, c, n for chains).
 
+#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "impactkit/model/system.hpp"
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/continuation/continuation.hpp"
 #include "common/plot.hpp"
+#include "impactkit/continuation/continuation.hpp"
 
 namespace impactkit::cli {
 

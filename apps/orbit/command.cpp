@@ -1,20 +1,20 @@
 /// `impactkit orbit`: a periodic orbit P(p, q) as a fixed point of the impact
 /// map, with its multipliers (impactkit/orbit.hpp does the work).
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
 #include "commands.hpp"
 #include "common/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
+#include "common/system_options.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
-#include "common/system_options.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -1,13 +1,13 @@
 /// `impactkit simulate`: its flags, mapped onto a SimulateRequest
 /// (simulate/run.hpp does the work).
 
-#include <memory>
-
 #include <fmt/format.h>
 
+#include <memory>
+
 #include "commands.hpp"
-#include "simulate/run.hpp"
 #include "common/system_options.hpp"
+#include "simulate/run.hpp"
 
 namespace impactkit::cli {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "impactkit/analysis/sweep.hpp"
 #include "common/plot.hpp"
+#include "impactkit/analysis/sweep.hpp"
 
 namespace impactkit::cli {
 

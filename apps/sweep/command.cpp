@@ -15,12 +15,12 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
+#include "impactkit/analysis/sweep.hpp"
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
-#include "impactkit/analysis/sweep.hpp"
-#include "common/plot.hpp"
 #include "sweep/chart.hpp"
-#include "common/system_options.hpp"
 
 namespace impactkit::cli {
 namespace {
