@@ -3,20 +3,22 @@
 /// an exit status a script can act on:
 ///
 ///     0  success
-///     1  the run failed: an output could not be written, gnuplot failed,
-///        the simulation could not reach its end
+///     1  the run failed or could not produce what was asked: an output
+///        could not be written, gnuplot failed, the simulation could not
+///        reach its end, an orbit did not converge, a branch could not leave
+///        its start, a fit failed, the Lyapunov exponents were not computed
 ///     2  bad input: unknown flags, values out of range, a bad system file
 
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
 #include <string>
 
-#include <fmt/format.h>
-#include <CLI/CLI.hpp>
-
 #include "commands.hpp"
+#include "common/system_options.hpp"
 #include "impactkit/model/system.hpp"
-#include "system_options.hpp"
 
 namespace {
 
@@ -52,9 +54,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("impactkit ") + IMPACTKIT_VERSION);
   app.require_subcommand(1);
   app.footer(
-      "Exit status: 0 success, 1 the run failed (output, gnuplot, simulation), "
-      "2 bad input.\nDocs: docs/guide.md (tasks), docs/cli.md (commands), docs/system-files.md "
-      "(system files).");
+      "Exit status: 0 success, 1 the run failed or produced no result (output, gnuplot, "
+      "simulation, no convergence), 2 bad input.\n"
+      "Docs: docs/guide.md (tasks), docs/cli.md (commands), docs/system-files.md (system files).");
   impactkit::cli::AddSimulateCommand(app);
   impactkit::cli::AddOrbitCommand(app);
   impactkit::cli::AddContinueCommand(app);

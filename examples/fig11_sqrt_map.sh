@@ -4,9 +4,11 @@
 #   X' = s sqrt(d - X) + λ X  (X <= d),   X' = λ X  (X > d),
 # with the diagonal X' = X. A formula, so gnuplot draws it directly.
 #
-#   examples/fig11_sqrt_map.sh [impactkit binary (unused: a formula)] [figure folder]
+#   examples/fig11_sqrt_map.sh [impactkit binary] [figure folder] [data folder]
 #
-# Default: ./docs/figures. Needs gnuplot.
+# Defaults: ./docs/figures; the binary and the data folder are unused (a
+# formula needs neither), taken so that every figure script is called alike.
+# Needs gnuplot.
 set -euo pipefail
 figures=${2:-./docs/figures}
 mkdir -p "$figures"

@@ -2,13 +2,14 @@
 # Regenerates Wagg & Bishop (2001) Fig. 4(a)-(h): time series of the paper's
 # system from rest, over the paper's time windows, as PNGs (and CSVs).
 #
-#   examples/fig4_time_series.sh [impactkit binary] [output folder]
+#   examples/fig4_time_series.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit and ./out/fig4.
+# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/fig4.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-out=${2:-./out/fig4}
-mkdir -p "$out"
+figures=${2:-./docs/figures}
+data=${3:-./out/fig4}
+mkdir -p "$figures" "$data"
 
 # panel  Ω     window start and end as drawn in the paper
 panels="a 0.1 680 800
@@ -27,7 +28,7 @@ while read -r panel omega start end; do
     print n, m }')
   echo "Fig. 4($panel): Ω = $omega, periods $transient..$((transient + periods))"
   "$impactkit" simulate --omega "$omega" --transient "$transient" --periods "$periods" \
-    --series "$out/fig4$panel.csv" --impacts "$out/fig4$panel-impacts.csv" \
-    --plot "$out/fig4$panel.png" | sed 's/^/    /'
+    --series "$data/fig4$panel.csv" --impacts "$data/fig4$panel-impacts.csv" \
+    --plot "$figures/fig4$panel.png" | sed 's/^/    /'
 done <<< "$panels"
-echo "Figures written to $out/fig4[a-h].png"
+echo "Figures written to $figures/fig4[a-h].png"

@@ -5,32 +5,35 @@
 # Fig. 5(a)-style overlay of the continued branches (lines: stable solid,
 # unstable dashed) on a brute-force sweep (dots).
 #
-#   examples/fig5_continuation.sh [impactkit binary] [output folder]
+#   examples/fig5_continuation.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit and ./out/continuation.
+# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/continuation. The
+# figures are continuation-*.png; the branch CSV/JSON and sweeps are data.
+# Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-out=${2:-./out/continuation}
-mkdir -p "$out"
+figures=${2:-./docs/figures}
+data=${3:-./out/continuation}
+mkdir -p "$figures" "$data"
 
 echo "P(1,1) from Ω = 1 both ways, with the P(2,2) branch at its period doubling and"
 echo "the P(2,1) branch at its grazing:"
 "$impactkit" continue --from 0.5 --to 2.0 --start 1.0 --switch-pd --follow-grazing \
-  --out "$out/p11.csv" --json "$out/p11.json" --plot "$out/p11.png"
+  --out "$data/p11.csv" --json "$data/p11.json" --plot "$figures/continuation-p11.png"
 echo
 echo "P(2,1) from Ω = 0.6 upwards:"
 "$impactkit" continue --omega 0.6 --from 0.6 --to 1.0 \
-  --out "$out/p21.csv" --json "$out/p21.json" --plot "$out/p21.png"
+  --out "$data/p21.csv" --json "$data/p21.json" --plot "$figures/continuation-p21.png"
 echo
 echo "P(1,2) from Ω = 2.0 both ways, with the P(2,4) branch at its period doubling:"
 "$impactkit" continue --from 1.0 --to 3.0 --start 2.0 --switch-pd \
-  --out "$out/p12.csv" --json "$out/p12.json" --plot "$out/p12.png"
+  --out "$data/p12.csv" --json "$data/p12.json" --plot "$figures/continuation-p12.png"
 echo
 echo "Brute-force sweeps for the overlay:"
 "$impactkit" sweep --from 0.80 --to 0.90 --steps 201 --transient 300 --record 30 \
-  --out "$out/sweep-080-090.csv"
+  --out "$data/sweep-080-090.csv"
 "$impactkit" sweep --from 1.55 --to 1.75 --steps 201 --transient 300 --record 30 \
-  --out "$out/sweep-155-175.csv"
+  --out "$data/sweep-155-175.csv"
 
 # Columns of the branch CSVs: omega, arclength, phase1..p, v1..p, ..., stable.
 plot_branch() {  # file p color -> gnuplot plot clauses (solid stable, dashed unstable)
@@ -54,12 +57,12 @@ set xlabel 'Omega'
 set ylabel 'impact velocity v2'
 set title 'Continued branches (lines: stable solid, unstable dashed) over brute-force impacts (dots)'
 plot '$1' using 1:4 with points pt 7 ps 0.25 lc rgb '#777777' title 'sweep', \
-  $(plot_branch "$out/p11.csv" 1 '#1f77b4') \
-  $(plot_branch "$out/p11.graze1.csv" 2 '#2ca02c') \
-  $(plot_branch "$out/p11.pd2.csv" 2 '#9467bd') \
+  $(plot_branch "$data/p11.csv" 1 '#1f77b4') \
+  $(plot_branch "$data/p11.graze1.csv" 2 '#2ca02c') \
+  $(plot_branch "$data/p11.pd2.csv" 2 '#9467bd') \
   1/0 notitle
 GNUPLOT
 }
-overlay "$out/sweep-080-090.csv" "0.80:0.90" "$out/overlay-080-090.png"
-overlay "$out/sweep-155-175.csv" "1.55:1.75" "$out/overlay-155-175.png"
-echo "wrote: $out/overlay-080-090.png $out/overlay-155-175.png"
+overlay "$data/sweep-080-090.csv" "0.80:0.90" "$figures/continuation-overlay-080-090.png"
+overlay "$data/sweep-155-175.csv" "1.55:1.75" "$figures/continuation-overlay-155-175.png"
+echo "wrote: $figures/continuation-overlay-080-090.png $figures/continuation-overlay-155-175.png"

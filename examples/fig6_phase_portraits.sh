@@ -3,29 +3,30 @@
 # large-amplitude motions at Ω = 0.82 (P(2,1)), 1.17 (P(1,1)) and 1.69
 # (P(4,4)); solid x2, dashed x1, the stop at xs marked.
 #
-#   examples/fig6_phase_portraits.sh [impactkit binary] [output folder]
+#   examples/fig6_phase_portraits.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit and ./out/fig6.
+# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/fig6. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-out=${2:-./out/fig6}
-mkdir -p "$out"
+figures=${2:-./docs/figures}
+data=${3:-./out/fig6}
+mkdir -p "$figures" "$data"
 
 for panel in "a 0.82" "b 1.17" "c 1.69"; do
   read -r name omega <<<"$panel"
   # 500 periods of transient, 9 recorded: enough to confirm P(4,4) (2q + 1 periods).
   "$impactkit" simulate --omega "$omega" --transient 500 --periods 9 --samples-per-period 400 \
-    --series "$out/fig6$name.csv" | sed -n 's/^motion: */    Fig. 6('"$name"'), Ω = '"$omega"': /p'
+    --series "$data/fig6$name.csv" | sed -n 's/^motion: */    Fig. 6('"$name"'), Ω = '"$omega"': /p'
   gnuplot <<GNUPLOT
 set terminal pngcairo size 700,600 noenhanced
-set output '$out/fig6$name.png'
+set output '$figures/fig6$name.png'
 set datafile separator ','
 set title 'Fig. 6($name): phase portrait, Omega = $omega'
 set xlabel 'displacement'
 set ylabel 'velocity'
 set arrow from 0.1, graph 0 to 0.1, graph 1 nohead dt 3 lc rgb '#888888'
-plot '$out/fig6$name.csv' using 3:5 with lines lw 2 lc rgb '#1f77b4' title 'x2', \
+plot '$data/fig6$name.csv' using 3:5 with lines lw 2 lc rgb '#1f77b4' title 'x2', \
      '' using 2:4 with lines lw 1 dt 2 lc rgb '#d62728' title 'x1'
 GNUPLOT
 done
-echo "wrote: $out/fig6a.png $out/fig6b.png $out/fig6c.png"
+echo "wrote: $figures/fig6a.png $figures/fig6b.png $figures/fig6c.png"

@@ -1,32 +1,31 @@
 #!/usr/bin/env bash
-# Builds impactkit, then runs the main job on the paper's system: the time
-# series of its Fig. 4 (eight forcing frequencies, with the motion found at
-# each) into ./out/fig4/, the periodic orbits at the paper's sample
-# frequencies with their stability into ./out/orbits/, and one run at
-# Ω = 1.4 in detail into ./out/.
+# Builds impactkit, then runs the main job on the paper's system, everything
+# into ./out/paper/: `impactkit paper` (modal data, resonance peaks, orbits,
+# continued branches with their special points, the Fig. 3 regimes) and
+# every examples/fig*.sh, each called alike — binary, figure folder, data
+# folder — so that the paper's Figs. 2-12 land in out/paper/figures/ and
+# their CSV/JSON in out/paper/data/. About 1-2 minutes after the build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh
-mkdir -p out
+impactkit=./build/apps/impactkit
+out=out/paper
+start=$SECONDS
+mkdir -p "$out"
 echo
-bash examples/fig4_time_series.sh ./build/apps/impactkit out/fig4
-echo
-echo "Periodic orbits (fixed points of the impact map) and their stability:"
-mkdir -p out/orbits
-for omega in 0.6 0.9 1.2 1.4 1.65 1.7 2.0; do
-  ./build/apps/impactkit orbit --omega "$omega" --json "out/orbits/orbit-$omega.json" |
-    sed -n 's/^orbit: *//p' | sed 's/^/    /'
+"$impactkit" paper --out "$out"
+# In figure order (fig2 ... fig12), not the glob's (fig10 before fig2).
+for script in $(printf '%s\n' examples/fig*.sh | sort -V); do
+  echo
+  echo "== $script"
+  bash "$script" "$impactkit" "$out/figures" "$out/data"
 done
 echo
-./build/apps/impactkit simulate --omega 1.4 \
-  --series out/series.csv --impacts out/impacts.csv \
-  --plot out/time-series.png --json out/summary.json
-echo
-echo "Results in $(pwd)/out/:"
-echo "  series.csv       t,x1,x2,v1,v2,stuck over the recorded window"
-echo "  impacts.csv      t,phase,v,x1,x2,v1,v2 for each impact"
-echo "  time-series.png  x1 (dashed) and x2 (solid) against t, stop at xs"
-echo "  summary.json     the summary above, with the system that produced it"
-echo "  fig4/            the paper's Fig. 4(a)-(h) as PNG and CSV"
-echo "  orbits/          each orbit as JSON: impacts, multipliers, stability"
+echo "Results in $(pwd)/$out/ ($((SECONDS - start)) s after the build):"
+echo "  summary.json      the summary above: modes, peaks, orbits, branches, regimes"
+echo "  branch-*.csv      each continued branch, one row per point"
+echo "  fig3-sweep.csv    the Fig. 3 sweep, one row per value"
+echo "  *.png             Figs. 2 and 3 and the continued branches"
+echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh (PNG)"
+echo "  data/             their CSV and JSON"

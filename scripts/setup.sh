@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libsundials-dev libceres-dev libfmt-dev libboost-dev
   catch2 libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev gnuplot-nox
+  clang-format
 )
 
 missing=()

@@ -3,7 +3,8 @@
 #  - `resonance` for the one-mass chain (n = 1) writes the textbook range
 #    2A / sqrt((k - m w^2)^2 + (c w)^2), recomputed here by awk, to 1e-12;
 #  - `lyapunov` writes JSON with 4 negative exponents on the P(1,1) at 1.2,
-#    a positive largest one at 1.77, and valid = false (exit 0) in chatter;
+#    a positive largest one at 1.77, and in chatter valid = false, the
+#    reason on stdout and stderr, and exit status 1;
 #  - `impactmap` writes a provenance line, t,phase,v rows (as many as it
 #    reports, phases in [0, T)); `returnmap --fit` writes pairs below the
 #    bound and the fit as JSON;
@@ -32,8 +33,12 @@ exponents=$(grep -o '"exponents":\[[^]]*\]' <<<"$json")
 [[ $(grep -o -- '-0\.1[0-9]*' <<<"$exponents" | wc -l) -eq 4 ]] || fail "expected 4 exponents near -0.1: $json"
 "$impactkit" lyapunov --omega 1.77 >"$work/out" || fail "lyapunov 1.77 failed"
 grep -q 'positive: chaotic' "$work/out" || fail "1.77 not chaotic: $(cat "$work/out")"
-"$impactkit" lyapunov --omega 0.2 --json "$work/ly.json" >"$work/out" || fail "lyapunov 0.2 exit $?"
-grep -q '"valid": false' "$work/ly.json" || fail "chatter not reported: $(cat "$work/ly.json")"
+status=0
+"$impactkit" lyapunov --omega 0.2 --json "$work/ly.json" >"$work/out" 2>"$work/err" || status=$?
+((status == 1)) || fail "lyapunov 0.2: exit $status, expected 1 (no exponents)"
+grep -q '^impactkit: error: Lyapunov exponents not computed: .*chatter' "$work/err" ||
+  fail "no reason on stderr: $(cat "$work/err")"
+grep -q '"valid": false' "$work/ly.json" || fail "chatter not recorded: $(cat "$work/ly.json")"
 grep -q 'not computed: .*chatter' "$work/out" || fail "no reason printed: $(cat "$work/out")"
 
 "$impactkit" impactmap --omega 1.72 --periods 200 --out "$work/im.csv" >"$work/out" ||

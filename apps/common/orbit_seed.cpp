@@ -1,0 +1,95 @@
+#include "common/orbit_seed.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace impactkit::cli {
+
+void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std::string& group) {
+  command
+      .add_option(
+          "--p", options.p,
+          "Impacts per orbit (with --q); default: those of the motion a simulation settles on")
+      ->type_name("P")
+      ->group(group);
+  command
+      .add_option("--q", options.q,
+                  "Forcing periods per orbit (with --p); default: from the simulation, as --p")
+      ->type_name("Q")
+      ->group(group);
+  command
+      .add_option("--guess", options.guess,
+                  "Initial guess eta = x1..xN without the contact mass, t, v1..vN, just before "
+                  "an impact (v of the contact mass > 0); default: from simulation")
+      ->type_name("X,...,T,V,...")
+      ->delimiter(',')
+      ->group(group);
+  command
+      .add_option("--transient", options.transient,
+                  "Forcing periods simulated from rest before seeding from the motion")
+      ->type_name("N")
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_option("--jacobian", options.jacobian,
+                  "Jacobian of the map: 'analytic' (saltation matrices) or 'fd' (finite "
+                  "differences, the paper's method)")
+      ->check(CLI::IsMember({"analytic", "fd"}))
+      ->capture_default_str()
+      ->group(group);
+  command
+      .add_flag("--no-fallback", options.no_fallback,
+                "Do not try Levenberg-Marquardt when Newton fails")
+      ->group(group);
+}
+
+OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
+                        Eigen::VectorXd* eta) {
+  if (request.transient < 0) throw InvalidInput("--transient must be >= 0");
+  OrbitOptions options;
+  if (request.p.has_value() != request.q.has_value()) {
+    throw InvalidInput("--p and --q go together: give both, or neither to detect them");
+  }
+  if (!request.guess.empty()) {
+    if (!request.p) throw InvalidInput("--guess needs --p and --q");
+    *eta = Eigen::Map<const Eigen::VectorXd>(request.guess.data(),
+                                             static_cast<Eigen::Index>(request.guess.size()));
+  } else {
+    const std::optional<OrbitSeed> seed = SeedFromSimulation(system, request.transient);
+    if (!seed) throw std::runtime_error("the simulated motion has no impacts: no orbit to refine");
+    if (!request.p && (!seed->motion.periodic || seed->motion.sticking)) {
+      throw std::runtime_error(fmt::format(
+          "the simulated motion is {}; give --p and --q (and --guess) to look for an orbit",
+          seed->motion.sticking ? "sticking (an impact map orbit cannot stick)"
+                                : seed->motion.ToString()));
+    }
+    *eta = seed->eta;
+    options.p = static_cast<int>(seed->motion.p);
+    options.q = seed->motion.q;
+  }
+  if (request.p) {
+    options.p = *request.p;
+    options.q = *request.q;
+  }
+  options.jacobian =
+      request.jacobian == "fd" ? JacobianMethod::kFiniteDifference : JacobianMethod::kAnalytic;
+  options.least_squares_fallback = !request.no_fallback;
+  return options;
+}
+
+PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
+                             OrbitOptions* options, OrbitSummary* summary) {
+  Eigen::VectorXd eta;
+  *options = ChooseSeed(system, seed, &eta);
+  PeriodicOrbit orbit;
+  const OrbitSummary result = FindOrbit(system, eta, *options, &orbit);
+  if (result.termination != Termination::kConverged) {
+    throw std::runtime_error(
+        fmt::format("no P({},{}) orbit found: {}", options->p, options->q, result.BriefReport()));
+  }
+  if (summary) *summary = result;
+  return orbit;
+}
+
+}  // namespace impactkit::cli

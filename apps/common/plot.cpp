@@ -1,0 +1,214 @@
+#include "common/plot.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <string_view>
+
+extern char** environ;  // POSIX: the environment gnuplot inherits
+
+namespace impactkit::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A private directory, removed with its contents when it goes out of scope.
+class TemporaryDirectory {
+ public:
+  TemporaryDirectory() {
+    std::string pattern = (fs::temp_directory_path() / "impactkit-plot-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw PlotError(
+          fmt::format("cannot create a temporary directory for gnuplot: {}", std::strerror(errno)));
+    }
+    path_ = pattern;
+  }
+  ~TemporaryDirectory() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TemporaryDirectory(const TemporaryDirectory&) = delete;
+  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+
+  fs::path operator/(std::string_view name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+std::optional<fs::path> FindOnPath(std::string_view program) {
+  const char* path = std::getenv("PATH");
+  std::istringstream directories(path != nullptr ? path : "");
+  for (std::string directory; std::getline(directories, directory, ':');) {
+    const fs::path candidate = fs::path(directory.empty() ? "." : directory) / program;
+    std::error_code error;
+    if (fs::is_regular_file(candidate, error) && ::access(candidate.c_str(), X_OK) == 0) {
+      return candidate;
+    }
+  }
+  return std::nullopt;
+}
+
+void WriteFile(const fs::path& path, std::string_view contents) {
+  std::ofstream out(path, std::ios::binary);
+  out << contents;
+  if (!out.flush()) throw PlotError(fmt::format("cannot write {}", path.string()));
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// A gnuplot double-quoted string literal.
+std::string Quoted(std::string_view text) {
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') quoted += '\\';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+std::string CurveData(const Curve& curve) {
+  std::string data;
+  for (std::size_t i = 0; i < curve.x.size() && i < curve.y.size(); ++i) {
+    fmt::format_to(std::back_inserter(data), "{} {}\n", curve.x[i], curve.y[i]);
+  }
+  return data;
+}
+
+/// One `plot` clause per curve (data in `files`, same order) and per line.
+std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& files) {
+  std::vector<std::string> clauses;
+  for (std::size_t i = 0; i < chart.curves.size(); ++i) {
+    const Curve& curve = chart.curves[i];
+    if (curve.points) {
+      clauses.push_back(fmt::format(
+          "{} using 1:2 with points pointtype 7 pointsize 0.2 linecolor rgb {} title {}",
+          Quoted(files[i].string()), Quoted(curve.color), Quoted(curve.title)));
+      continue;
+    }
+    clauses.push_back(
+        fmt::format("{} using 1:2 with lines dashtype {} linewidth {} linecolor rgb {} title {}",
+                    Quoted(files[i].string()), curve.dashed ? 2 : 1, curve.dashed ? 1.5 : 2.0,
+                    Quoted(curve.color), Quoted(curve.title)));
+  }
+  for (const HorizontalLine& line : chart.lines) {
+    clauses.push_back(
+        fmt::format("{} with lines dashtype 3 linewidth 1.5 linecolor rgb \"#808080\" title {}",
+                    line.y, Quoted(line.title)));
+  }
+  return fmt::format("plot {}\n", fmt::join(clauses, ", \\\n     "));
+}
+
+/// The settings every chart shares: terminal, output, grid, key placement.
+std::string Preamble(int width, int height, const fs::path& output, std::string_view key) {
+  // pngcairo draws antialiased lines and real dashes; the gd-based png
+  // terminal is the fallback that every gnuplot build has.
+  return fmt::format(
+      "set encoding utf8\n"
+      "if (strstrt(GPVAL_TERMINALS, \"pngcairo\") > 0) {{\n"
+      "  set terminal pngcairo size {0},{1} font \"Sans,11\" noenhanced\n"
+      "}} else {{\n"
+      "  set terminal png size {0},{1} noenhanced\n"
+      "}}\n"
+      "set output {2}\n"
+      "set grid\n"
+      "set key {3}\n"
+      "set autoscale xfix\n"
+      "set offsets 0, 0, graph 0.05, graph 0.05\n",
+      width, height, Quoted(output.string()), key);
+}
+
+/// gnuplot's first complaint, as the reason in our one-line error.
+std::string FirstLine(const std::string& text) {
+  const std::size_t start = text.find_first_not_of(" \t\r\n");
+  if (start == std::string::npos) return "no message";
+  return text.substr(start, text.find_first_of("\r\n", start) - start);
+}
+
+/// Runs gnuplot on `script`, its output going to `log`. Throws PlotError.
+void RunGnuplot(const fs::path& script, const fs::path& log) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::string program = "gnuplot", script_path = script.string();
+  char* argv[] = {program.data(), script_path.data(), nullptr};
+  pid_t pid = 0;
+  const int spawned = ::posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) {
+    throw PlotError(fmt::format("cannot start gnuplot: {}", std::strerror(spawned)));
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) throw PlotError(fmt::format("gnuplot: {}", std::strerror(errno)));
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw PlotError(fmt::format("gnuplot failed: {}", FirstLine(ReadFile(log))));
+  }
+}
+
+/// The settings and plot command of one chart of a multiplot.
+std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& files) {
+  return fmt::format(
+      "set title {}\n"
+      "set xlabel {}\n"
+      "set ylabel {}\n"
+      "{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), PlotCommand(chart, files));
+}
+
+}  // namespace
+
+void RequireGnuplot() {
+  if (!FindOnPath("gnuplot")) {
+    throw PlotError(
+        "gnuplot was not found on PATH; install it (Debian: gnuplot-nox) or leave out --plot");
+  }
+}
+
+std::string RenderPng(const LineChart& chart) {
+  return RenderStackedPng({chart}, chart.width, chart.height);
+}
+
+std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height) {
+  RequireGnuplot();
+  const TemporaryDirectory directory;
+  const fs::path image = directory / "chart.png", log = directory / "gnuplot.log";
+  const bool single = charts.size() == 1;
+  std::string script =
+      Preamble(width, height, image, single ? "outside bottom center horizontal" : "top right");
+  if (!single) script += fmt::format("set multiplot layout {},1\n", charts.size());
+  for (std::size_t c = 0; c < charts.size(); ++c) {
+    std::vector<fs::path> files;
+    for (std::size_t i = 0; i < charts[c].curves.size(); ++i) {
+      files.push_back(directory / fmt::format("chart{}-curve{}.dat", c + 1, i + 1));
+      WriteFile(files.back(), CurveData(charts[c].curves[i]));
+    }
+    script += PanelScript(charts[c], files);
+  }
+  if (!single) script += "unset multiplot\n";
+  const fs::path script_path = directory / "chart.gp";
+  WriteFile(script_path, script);
+  RunGnuplot(script_path, log);
+  std::string png = ReadFile(image);
+  if (png.empty()) throw PlotError("gnuplot produced no image");
+  return png;
+}
+
+}  // namespace impactkit::cli

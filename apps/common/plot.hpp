@@ -1,0 +1,57 @@
+#pragma once
+/// \file common/plot.hpp
+/// Line charts through gnuplot: the data and a script go to a private
+/// temporary directory, gnuplot renders a PNG there, and the bytes come
+/// back to the caller, who writes them like any other output (whole or not
+/// at all). pngcairo is used when gnuplot has it, else the plain png terminal.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace impactkit::cli {
+
+/// gnuplot is missing or failed; the message says which, on one line.
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Curve {
+  std::string title;
+  std::vector<double> x;
+  std::vector<double> y;
+  bool dashed = false;
+  std::string color = "#000000";  ///< gnuplot colour, "#rrggbb"
+  /// Draw each (x, y) as a small dot, unjoined (bifurcation diagrams).
+  bool points = false;
+};
+
+/// A constant y across the chart (a stop, a threshold).
+struct HorizontalLine {
+  double y = 0.0;
+  std::string title;
+};
+
+struct LineChart {
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  std::vector<Curve> curves;
+  std::vector<HorizontalLine> lines;
+  int width = 1000;  ///< pixels
+  int height = 600;
+};
+
+/// Throws PlotError unless gnuplot is on PATH: call it before a long run
+/// so that a missing gnuplot is reported before the work, not after.
+void RequireGnuplot();
+
+/// The chart as PNG bytes. Throws PlotError.
+std::string RenderPng(const LineChart& chart);
+
+/// Several charts stacked top to bottom in one PNG of width x height pixels
+/// (the charts' own sizes are ignored), as PNG bytes. Throws PlotError.
+std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height);
+
+}  // namespace impactkit::cli

@@ -1,0 +1,135 @@
+#include "common/system_options.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <string_view>
+
+#include "impactkit/io/system_file.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+/// One parameter change, with the flag it came from for error messages.
+struct Assignment {
+  std::string name;
+  double value = 0.0;
+  std::string origin;  ///< "--set c=0.05", "--omega 1.4", ...
+};
+
+double ParseNumber(std::string_view text, std::string_view origin) {
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  if (error != std::errc() || stop != end) {
+    throw InvalidInput(fmt::format("{}: '{}' is not a number", origin, text));
+  }
+  return value;
+}
+
+Assignment ParseSet(const std::string& text) {
+  const std::string origin = "--set " + text;
+  const std::size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw InvalidInput(
+        fmt::format("{}: expected name=value (e.g. --set c=0.05), got '{}'", origin, text));
+  }
+  return {text.substr(0, equals), ParseNumber(std::string_view(text).substr(equals + 1), origin),
+          origin};
+}
+
+/// All changes the flags ask for, `n` first. A parameter named twice is an
+/// error: which one was meant cannot be guessed.
+std::vector<Assignment> Assignments(const SystemOptions& options) {
+  std::vector<Assignment> all;
+  for (const std::string& text : options.sets) all.push_back(ParseSet(text));
+  if (options.dof) all.push_back({"n", static_cast<double>(*options.dof), "--dof"});
+  if (options.omega) all.push_back({"omega", *options.omega, "--omega"});
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (all[i].name != all[j].name) continue;
+      throw InvalidInput(fmt::format("parameter '{}' is given twice ({} and {})", all[i].name,
+                                     all[j].origin, all[i].origin));
+    }
+  }
+  std::stable_partition(all.begin(), all.end(), [](const Assignment& a) { return a.name == "n"; });
+  return all;
+}
+
+void Apply(const Assignment& assignment, System& system) {
+  if (assignment.name == "n" && !system.chain) {
+    throw InvalidInput(fmt::format(
+        "{}: the number of masses can be changed only for a uniform chain; this system has "
+        "general matrices",
+        assignment.origin));
+  }
+  try {
+    SetParameter(system, assignment.name, assignment.value);
+  } catch (const InvalidInput& error) {
+    throw InvalidInput(fmt::format("{}: {}", assignment.origin, error.what()));
+  }
+}
+
+}  // namespace
+
+void AddSystemOptions(CLI::App& command, SystemOptions& options) {
+  const System paper = PaperSystem();
+  const std::string group = fmt::format("System (default: the paper's, {})", ParameterList(paper));
+  command
+      .add_option("--system", options.file,
+                  "System file, .json or .toml (docs/system-files.md); default: the paper's "
+                  "uniform chain")
+      ->type_name("FILE")
+      ->group(group);
+  command
+      .add_option("--set", options.sets,
+                  "Change a parameter, name=value; repeatable. Names: omega, xs, r, A1..AN, "
+                  "and for chains m, k, c, n (e.g. --set c=0.05 --set A2=0.1)")
+      ->type_name("NAME=VALUE")
+      ->group(group);
+  command
+      .add_option("--omega", options.omega,
+                  fmt::format("Forcing frequency; short for --set omega=W (default {}, or "
+                              "the file's)",
+                              paper.omega))
+      ->type_name("W")
+      ->group(group);
+  command
+      .add_option("--dof", options.dof,
+                  fmt::format("Number of masses of a uniform chain; short for --set n=N "
+                              "(default {}, or the file's)",
+                              paper.Dof()))
+      ->type_name("N")
+      ->group(group);
+}
+
+System ResolveSystem(const SystemOptions& options) {
+  System system = options.file.empty() ? PaperSystem() : ReadSystemFile(options.file);
+  for (const Assignment& assignment : Assignments(options)) Apply(assignment, system);
+  Validate(system);
+  return system;
+}
+
+std::string ParameterList(const System& system) {
+  std::vector<std::string> items;
+  for (const std::string& name : ParameterNames(system)) {
+    items.push_back(fmt::format("{}={}", name, GetParameter(system, name)));
+  }
+  return fmt::format("{}", fmt::join(items, " "));
+}
+
+std::string DescribeSystem(const System& system) {
+  const std::string common =
+      fmt::format("A=({:.6g}), omega={:.6g}, xs={:.6g}, r={:.6g}", fmt::join(system.forcing, ", "),
+                  system.omega, system.stop, system.restitution);
+  if (system.chain) {
+    const ChainParameters& chain = *system.chain;
+    return fmt::format("uniform chain n={} m={:.6g} k={:.6g} c={:.6g}, {}", chain.dof, chain.mass,
+                       chain.stiffness, chain.damping, common);
+  }
+  return fmt::format("general N={} (contact mass {}), {}", system.Dof(), system.contact_dof + 1,
+                     common);
+}
+
+}  // namespace impactkit::cli

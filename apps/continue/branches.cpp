@@ -1,0 +1,234 @@
+#include "continue/branches.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "impactkit/io/csv.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+std::vector<std::string> Columns(const Branch& branch) {
+  std::vector<std::string> columns = {branch.parameter, "arclength"};
+  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("phase{}", i));
+  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("v{}", i));
+  columns.push_back("range_xN");
+  const Eigen::Index multipliers = branch.points.front().orbit.multipliers.size();
+  for (Eigen::Index i = 1; i <= multipliers; ++i) columns.push_back(fmt::format("mod{}", i));
+  for (const char* name : {"stable", "clearance", "depth", "special"}) columns.push_back(name);
+  return columns;
+}
+
+/// Special-point codes of the CSV's `special` column (0: an ordinary point).
+double SpecialCode(const Branch& branch, const BranchPoint& point) {
+  for (const SpecialPoint& s : branch.special_points) {
+    if (s.point.arclength == point.arclength) return 1.0 + static_cast<int>(s.type);
+  }
+  return 0.0;
+}
+
+nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) {
+  nlohmann::json j = {
+      {"type", ToString(s.type)},
+      {"param", s.point.parameter},
+      {"parameter", parameter},
+      {"description", s.Describe(parameter)},
+      {"monitor", s.monitor},
+      {"eta", std::vector<double>(s.point.orbit.eta.data(),
+                                  s.point.orbit.eta.data() + s.point.orbit.eta.size())}};
+  if (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking) {
+    j["vanishing_impact"] =
+        s.vanishing_impact < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.vanishing_impact + 1);
+  } else {
+    j["multiplier"] = {s.multiplier.real(), s.multiplier.imag()};
+  }
+  j["impacts"] = nlohmann::json::array();
+  for (const OrbitImpact& i : s.point.orbit.impacts) {
+    j["impacts"].push_back({{"phase", i.phase}, {"v", i.velocity}});
+  }
+  return j;
+}
+
+std::vector<TracedBranch> SwitchBranches(const System& system, const TracedBranch& main,
+                                         const ContinuationOptions& options,
+                                         BranchSwitches switches, BranchProgress& progress) {
+  std::vector<TracedBranch> born;
+  const std::string& name = options.parameter;
+  for (const SpecialPoint& special : main.branch.special_points) {
+    const bool pd = special.type == SpecialPointType::kPeriodDoubling;
+    const bool graze =
+        special.type == SpecialPointType::kGrazing || special.type == SpecialPointType::kSticking;
+    if (pd && switches.period_doubling) {
+      const std::optional<BranchStart> start =
+          DoubledBranchStart(system, main.branch, special, options);
+      if (!start) continue;
+      ContinuationOptions doubled = options;
+      doubled.orbit.p *= 2;
+      doubled.orbit.q *= 2;
+      doubled.direction = ContinuationDirection::kIncreasing;
+      const std::string label = fmt::format("pd{}", born.size() + 1);
+      born.push_back(
+          {label, "from the " + special.Describe(name),
+           ContinueBranch(*start, doubled, [&](const BranchPoint& p) { progress(label, p); })});
+    }
+    if (graze && switches.grazing) {
+      for (const GrazingSeed& seed : SeedsAtGrazing(system, main.branch, special, options)) {
+        PeriodicOrbit orbit;
+        if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
+            Termination::kConverged) {
+          continue;
+        }
+        ContinuationOptions next = options;
+        next.orbit = seed.orbit;
+        next.direction = ContinuationDirection::kBoth;
+        const std::string label = fmt::format("graze{}", born.size() + 1);
+        born.push_back({label, "seeded at the " + special.Describe(name),
+                        ContinueBranch({seed.system, orbit, {}}, next,
+                                       [&](const BranchPoint& p) { progress(label, p); })});
+        break;  // the seeds on both sides lead to one branch, followed both ways
+      }
+    }
+  }
+  return born;
+}
+
+}  // namespace
+
+BranchProgress::BranchProgress(std::string parameter)
+    : enabled_(::isatty(STDERR_FILENO) == 1), parameter_(std::move(parameter)) {}
+
+BranchProgress::~BranchProgress() {
+  if (drawn_) fmt::print(stderr, "\r\033[K");
+}
+
+void BranchProgress::operator()(const std::string& label, const BranchPoint& point) {
+  ++points_;
+  const auto now = std::chrono::steady_clock::now();
+  if (!enabled_ || now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  drawn_ = true;
+  fmt::print(stderr, "\r\033[Kcontinue {}: {} points, {} = {:.8g}", label, points_, parameter_,
+             point.parameter);
+}
+
+std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbit& start,
+                                        const ContinuationOptions& options, BranchSwitches switches,
+                                        BranchProgress& progress) {
+  std::vector<TracedBranch> branches;
+  branches.push_back({"main", "from the start",
+                      ContinueBranch({system, start, {}}, options,
+                                     [&](const BranchPoint& p) { progress("main", p); })});
+  std::vector<TracedBranch> born =
+      SwitchBranches(system, branches.front(), options, switches, progress);
+  branches.insert(branches.end(), born.begin(), born.end());
+  return branches;
+}
+
+void WriteBranchCsv(const std::string& path, const std::string& provenance, const Branch& branch) {
+  CsvWriter csv(path, provenance, Columns(branch));
+  for (const BranchPoint& point : branch.points) {
+    const PeriodicOrbit& orbit = point.orbit;
+    std::vector<double> row = {point.parameter, point.arclength};
+    for (const OrbitImpact& i : orbit.impacts) row.push_back(i.phase);
+    for (const OrbitImpact& i : orbit.impacts) row.push_back(i.velocity);
+    row.push_back(orbit.contacts.Range());
+    for (const std::complex<double>& m : orbit.multipliers) row.push_back(std::abs(m));
+    row.push_back(orbit.stable ? 1.0 : 0.0);
+    // No interior maximum: the clearance is the whole way down to the
+    // lowest point, reported as the range (never NaN in a table).
+    row.push_back(orbit.contacts.clearance.value_or(orbit.contacts.Range()));
+    row.push_back(std::min(orbit.contacts.slowest_depth, 1e300));
+    row.push_back(SpecialCode(branch, point));
+    csv.WriteRow(row);
+  }
+  csv.Commit();
+}
+
+/// FILE.csv for the main branch, FILE.<label>.csv for the others.
+std::string BranchPath(const std::string& path, const std::string& label) {
+  if (label == "main") return path;
+  const std::size_t dot = path.rfind('.');
+  const bool has_extension = dot != std::string::npos && path.find('/', dot) == std::string::npos;
+  return has_extension ? path.substr(0, dot) + "." + label + path.substr(dot) : path + "." + label;
+}
+
+nlohmann::json BranchJson(const TracedBranch& traced) {
+  const Branch& b = traced.branch;
+  nlohmann::json j = {{"label", traced.label},
+                      {"origin", traced.origin},
+                      {"p", b.p},
+                      {"q", b.q},
+                      {"points", b.points.size()},
+                      {"end_reason", ToString(b.end)},
+                      {"end_message", b.end_message},
+                      {"seconds", b.seconds}};
+  if (b.begin) {
+    j["begin_reason"] = ToString(*b.begin);
+    j["begin_message"] = b.begin_message;
+  }
+  j["param_range"] = {b.points.front().parameter, b.points.back().parameter};
+  j["special_points"] = nlohmann::json::array();
+  for (const SpecialPoint& s : b.special_points)
+    j["special_points"].push_back(SpecialJson(s, b.parameter));
+  return j;
+}
+
+/// The branch as impact velocity against the parameter: stable stretches
+/// solid, unstable dashed, special points marked.
+LineChart BranchChart(const std::vector<TracedBranch>& branches) {
+  static const char* kPalette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf"};
+  LineChart chart;
+  chart.title = "Continued branches: impact velocities";
+  chart.x_label = branches.front().branch.parameter;
+  chart.y_label = "impact velocity";
+  for (std::size_t k = 0; k < branches.size(); ++k) {
+    const Branch& b = branches[k].branch;
+    const std::string color = kPalette[k % 5];
+    for (int i = 0; i < b.p; ++i) {
+      // One curve per stretch of equal stability, so that the pieces join.
+      std::size_t from = 0;
+      while (from + 1 < b.points.size()) {
+        std::size_t to = from + 1;
+        while (to + 1 < b.points.size() && b.points[to].orbit.stable == b.points[from].orbit.stable)
+          ++to;
+        Curve curve;
+        curve.color = color;
+        curve.dashed = !b.points[from].orbit.stable;
+        for (std::size_t n = from; n <= to; ++n) {
+          curve.x.push_back(b.points[n].parameter);
+          curve.y.push_back(b.points[n].orbit.impacts[i].velocity);
+        }
+        if (from == 0 && i == 0)
+          curve.title = fmt::format("P({},{}) {}", b.p, b.q, branches[k].label);
+        chart.curves.push_back(std::move(curve));
+        from = to;
+      }
+    }
+    for (const SpecialPoint& s : b.special_points) {
+      Curve mark;
+      mark.points = true;
+      mark.color = "#d62728";
+      for (const OrbitImpact& i : s.point.orbit.impacts) {
+        mark.x.push_back(s.point.parameter);
+        mark.y.push_back(i.velocity);
+      }
+      chart.curves.push_back(std::move(mark));
+    }
+  }
+  return chart;
+}
+
+void PrintBranch(const TracedBranch& traced) {
+  const Branch& b = traced.branch;
+  fmt::print("branch {}:  P({},{}) {}, {} points, {} from {:.10g} to {:.10g} ({:.3g} s)\n",
+             traced.label, b.p, b.q, traced.origin, b.points.size(), b.parameter,
+             b.points.front().parameter, b.points.back().parameter, b.seconds);
+  if (b.begin) fmt::print("  begins: {} ({})\n", ToString(*b.begin), b.begin_message);
+  for (const SpecialPoint& s : b.special_points) fmt::print("  {}\n", s.Describe(b.parameter));
+  fmt::print("  ends:   {} ({})\n", ToString(b.end), b.end_message);
+}
+
+}  // namespace impactkit::cli

@@ -1,0 +1,219 @@
+/// `impactkit continue`: pseudo-arclength continuation of a P(p, q) branch in
+/// one parameter, its special points, and optionally the branches that
+/// start at them (impactkit/continuation.hpp does the work).
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "commands.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/output.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
+#include "continue/branches.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/system_file.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+struct ContinueRequest {
+  SystemOptions system;
+  OrbitSeedOptions seed;
+  std::string parameter = "omega";
+  std::optional<double> from, to, start;
+  double step = 0.01, min_step = 1e-7, max_step = 0.02;
+  int max_points = 10000;
+  bool switch_period_doubling = false;
+  bool follow_grazing = false;
+  std::string out, json, plot;
+};
+
+ContinuationOptions MakeOptions(const ContinueRequest& request, const OrbitOptions& orbit) {
+  ContinuationOptions options;
+  options.parameter = request.parameter;
+  options.lower = std::min(*request.from, *request.to);
+  options.upper = std::max(*request.from, *request.to);
+  options.direction = request.start                 ? ContinuationDirection::kBoth
+                      : *request.to > *request.from ? ContinuationDirection::kIncreasing
+                                                    : ContinuationDirection::kDecreasing;
+  options.initial_step = request.step;
+  options.min_step = request.min_step;
+  options.max_step = request.max_step;
+  options.max_points = request.max_points;
+  options.orbit = orbit;
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  return options;
+}
+
+std::string ContinueJson(const System& system, const std::vector<TracedBranch>& branches,
+                         const std::string& provenance) {
+  nlohmann::json j = BranchJson(branches.front());
+  j["command"] = provenance;
+  j["branches"] = nlohmann::json::array();
+  for (const TracedBranch& b : branches) j["branches"].push_back(BranchJson(b));
+  j["system"] = nlohmann::json::parse(SystemToJson(system));
+  return j.dump(2) + "\n";
+}
+
+System StartSystem(const ContinueRequest& request) {
+  if (*request.from == *request.to) {
+    throw InvalidInput(fmt::format("--from and --to must differ (both {})", *request.from));
+  }
+  System system = ResolveSystem(request.system);
+  GetParameter(system, request.parameter);  // an unknown name fails here, naming the choices
+  MakeOptions(request, OrbitOptions{});     // and bad bounds or steps before any work
+  const double lower = std::min(*request.from, *request.to);
+  const double upper = std::max(*request.from, *request.to);
+  if (request.start && !(*request.start >= lower && *request.start <= upper)) {
+    throw InvalidInput(fmt::format("--start {} is not between --from and --to", *request.start));
+  }
+  for (double bound : {lower, upper}) {  // both ends valid before any work
+    System at = system;
+    SetParameter(at, request.parameter, bound);
+    try {
+      Validate(at);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("--{} {} = {} is not valid: {}",
+                                     bound == *request.from ? "from" : "to", request.parameter,
+                                     bound, e.what()));
+    }
+  }
+  SetParameter(system, request.parameter, request.start.value_or(*request.from));
+  Validate(system);
+  return system;
+}
+
+std::string Provenance(const ContinueRequest& request, const System& system) {
+  return fmt::format("continue --param {} --from {} --to {}{} {}", request.parameter, *request.from,
+                     *request.to, request.start ? fmt::format(" --start {}", *request.start) : "",
+                     ParameterList(system));
+}
+
+void RunContinue(const ContinueRequest& request) {
+  const System system = StartSystem(request);
+  std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
+  if (!request.json.empty()) json.emplace(request.json);
+  if (!request.plot.empty()) RequireGnuplot();
+  OrbitOptions orbit_options;
+  const PeriodicOrbit start = FindStartOrbit(system, request.seed, &orbit_options);
+  const ContinuationOptions options = MakeOptions(request, orbit_options);
+  fmt::print("system:     {}\n", DescribeSystem(system));
+  fmt::print("start:      P({},{}) at {} = {}, {}\n", start.p, start.q, request.parameter,
+             GetParameter(system, request.parameter), start.stable ? "stable" : "unstable");
+  std::vector<TracedBranch> branches;
+  {
+    BranchProgress progress(request.parameter);
+    branches = TraceBranches(system, start, options,
+                             {request.switch_period_doubling, request.follow_grazing}, progress);
+  }
+  for (const TracedBranch& b : branches) PrintBranch(b);
+  // A branch of one point is no branch: exit status 1 before any output.
+  const Branch& traced = branches.front().branch;
+  if (traced.points.size() < 2) {
+    throw std::runtime_error(
+        fmt::format("the P({},{}) branch could not be continued beyond its start: {} ({})",
+                    traced.p, traced.q, ToString(traced.end), traced.end_message));
+  }
+  const std::string provenance = Provenance(request, system);
+  if (!request.out.empty()) {
+    for (const TracedBranch& b : branches) {
+      WriteBranchCsv(BranchPath(request.out, b.label), provenance, b.branch);
+      fmt::print("wrote:      {}\n", BranchPath(request.out, b.label));
+    }
+  }
+  if (json) {
+    json->Write(ContinueJson(system, branches, "impactkit " + provenance));
+    json->Commit();
+    fmt::print("wrote:      {}\n", request.json);
+  }
+  if (!request.plot.empty()) {
+    WriteChartPng(request.plot, BranchChart(branches));
+    fmt::print("wrote:      {}\n", request.plot);
+  }
+}
+
+}  // namespace
+
+void AddContinueCommand(CLI::App& app) {
+  auto request = std::make_shared<ContinueRequest>();
+  CLI::App* command = app.add_subcommand(
+      "continue",
+      "Follow a periodic orbit P(p,q) as a parameter moves (pseudo-arclength continuation, "
+      "through folds), locating folds, period doublings, Neimark-Sacker points, and the "
+      "grazing or sticking point where the branch ends. The start orbit is found at --from "
+      "(or --start, then followed both ways) as `impactkit orbit` finds it.");
+  AddSystemOptions(*command, request->system);
+  const std::string group = "Continuation";
+  command
+      ->add_option("--param", request->parameter, "Parameter to vary: omega, xs, r, A1.., m, k, c")
+      ->capture_default_str()
+      ->group(group);
+  command->add_option("--from", request->from, "Start value (and one bound) of the parameter")
+      ->required()
+      ->group(group);
+  command->add_option("--to", request->to, "The other bound: the branch first heads there")
+      ->required()
+      ->group(group);
+  command
+      ->add_option("--start", request->start,
+                   "Start value between --from and --to; the branch is then followed both ways "
+                   "(default: start at --from and head for --to)")
+      ->group(group);
+  command->add_option("--step", request->step, "Initial arclength step in (eta, parameter)")
+      ->capture_default_str()
+      ->group(group);
+  command->add_option("--min-step", request->min_step, "Smallest step before giving up")
+      ->capture_default_str()
+      ->group(group);
+  command->add_option("--max-step", request->max_step, "Largest step")
+      ->capture_default_str()
+      ->group(group);
+  command->add_option("--max-points", request->max_points, "Points per direction at most")
+      ->capture_default_str()
+      ->group(group);
+  command
+      ->add_flag("--switch-pd", request->switch_period_doubling,
+                 "At each period doubling, also follow the period-doubled branch P(2p,2q)")
+      ->group(group);
+  command
+      ->add_flag("--follow-grazing", request->follow_grazing,
+                 "At a grazing end, also follow the orbit with one impact more or fewer, "
+                 "where one is found")
+      ->group(group);
+  AddOrbitSeedOptions(*command, request->seed, "Start orbit");
+  command
+      ->add_option("--out", request->out,
+                   "CSV, one row per point: parameter, arclength, phase1.., v1.., range_xN, "
+                   "mod1.. (multiplier moduli), stable, clearance, depth, special (0 none, "
+                   "1 fold, 2 period doubling, 3 Neimark-Sacker, 4 grazing, 5 sticking); "
+                   "other branches go to FILE.<label>.csv")
+      ->type_name("FILE.csv")
+      ->group("Output");
+  command
+      ->add_option("--json", request->json,
+                   "JSON: special_points [{type, param, ...}], end_reason, and every branch")
+      ->type_name("FILE.json")
+      ->group("Output");
+  command
+      ->add_option("--plot", request->plot,
+                   "PNG: impact velocities against the parameter, stable solid, unstable "
+                   "dashed, special points marked (needs gnuplot)")
+      ->type_name("FILE.png")
+      ->group("Output");
+  command->callback([request] { RunContinue(*request); });
+}
+
+}  // namespace impactkit::cli

@@ -1,0 +1,67 @@
+/// The run shared by `impactkit impactmap` and `impactkit returnmap`
+/// (maps/run.hpp); the commands are maps/impactmap.cpp, maps/returnmap.cpp
+/// and maps/lyapunov.cpp.
+
+#include "maps/run.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "common/progress.hpp"
+#include "common/require.hpp"
+#include "common/system_options.hpp"
+
+namespace impactkit::cli {
+
+void AddRunOptions(CLI::App& command, RunOptions& run, int default_periods) {
+  run.periods = default_periods;
+  command.add_option("--transient", run.transient, "Forcing periods run from rest and discarded")
+      ->capture_default_str()
+      ->group("Run");
+  command.add_option("--periods", run.periods, "Forcing periods recorded after the transient")
+      ->capture_default_str()
+      ->group("Run");
+}
+
+void ValidateRun(const RunOptions& run) {
+  Require(run.transient >= 0, fmt::format("--transient must be >= 0, got {}", run.transient));
+  Require(run.periods >= 1, fmt::format("--periods must be >= 1, got {}", run.periods));
+}
+
+RecordedRun RecordImpacts(const System& system, const RunOptions& run) {
+  const Simulator simulator(system);
+  const double period = system.ForcingPeriod();
+  HybridState state = RestState(system);
+  {
+    ProgressLine progress("transient", 0.0, run.transient * period, period);
+    simulator.Run(state, run.transient * period, progress);
+  }
+  ImpactRecorder recorder;
+  ProgressLine progress("recording", state.t, state.t + run.periods * period, period);
+  ObserverList observers;
+  observers.Add(recorder);
+  observers.Add(progress);
+  RecordedRun result;
+  result.summary = simulator.Run(state, state.t + run.periods * period, observers);
+  if (result.summary.status != SimulationStatus::kReachedEnd) {
+    throw std::runtime_error(
+        fmt::format("the simulation stopped early: {}", result.summary.BriefReport()));
+  }
+  result.impacts = recorder.Impacts();
+  result.end = state;
+  return result;
+}
+
+std::string RunProvenance(const std::string& command, const RunOptions& run, const System& system) {
+  return fmt::format("{} --transient {} --periods {} {}", command, run.transient, run.periods,
+                     ParameterList(system));
+}
+
+void PrintRun(const System& system, const RunOptions& run, const RecordedRun& recorded) {
+  fmt::print("system:      {}\n", DescribeSystem(system));
+  fmt::print("run:         from rest, {} periods discarded, {} recorded: {}\n", run.transient,
+             run.periods, recorded.summary.BriefReport());
+}
+
+}  // namespace impactkit::cli

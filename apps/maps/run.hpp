@@ -1,0 +1,44 @@
+#pragma once
+/// \file maps/run.hpp
+/// The run `impactkit impactmap` and `impactkit returnmap` start with: from
+/// rest, `transient` forcing periods discarded, then `periods` recorded,
+/// every impact of the recorded window kept. (`lyapunov` starts from the
+/// last impact of its transient instead.)
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+
+namespace impactkit::cli {
+
+struct RunOptions {
+  int transient = 500;
+  int periods = 5000;
+};
+
+/// Adds --transient and --periods (default `default_periods`) in the group "Run".
+void AddRunOptions(CLI::App& command, RunOptions& run, int default_periods);
+
+/// Throws InvalidInput for a negative transient or no recorded period.
+void ValidateRun(const RunOptions& run);
+
+struct RecordedRun {
+  std::vector<Impact> impacts;
+  SimulationSummary summary;  ///< of the recorded window
+  HybridState end;
+};
+
+/// The run, with a progress line; throws std::runtime_error if the
+/// simulation cannot reach the end of the window.
+RecordedRun RecordImpacts(const System& system, const RunOptions& run);
+
+/// "COMMAND --transient N --periods M omega=... xs=...": what produced a file.
+std::string RunProvenance(const std::string& command, const RunOptions& run, const System& system);
+
+/// The "system:" and "run:" lines of the printed summary.
+void PrintRun(const System& system, const RunOptions& run, const RecordedRun& recorded);
+
+}  // namespace impactkit::cli

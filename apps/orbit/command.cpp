@@ -1,0 +1,103 @@
+/// `impactkit orbit`: a periodic orbit P(p, q) as a fixed point of the impact
+/// map, with its multipliers (impactkit/orbit.hpp does the work).
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
+
+#include "commands.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/system_options.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/system_file.hpp"
+#include "impactkit/orbits/orbit.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+struct OrbitRequest {
+  SystemOptions system;
+  OrbitSeedOptions seed;
+  std::string json;
+};
+
+void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary& summary) {
+  fmt::print("system:      {}\n", DescribeSystem(system));
+  fmt::print("orbit:       P({},{}) at omega = {}, {}\n", orbit.p, orbit.q, orbit.omega,
+             orbit.stable ? "stable" : "unstable");
+  fmt::print("impacts:     phase (t mod T, T = {:.6g})   velocity v{}(t-)\n",
+             system.ForcingPeriod(), system.contact_dof + 1);
+  for (const OrbitImpact& i : orbit.impacts) {
+    fmt::print("             {:<28.12f} {:.12f}\n", i.phase, i.velocity);
+  }
+  fmt::print("multipliers: real                 imag                 modulus\n");
+  for (const std::complex<double>& m : orbit.multipliers) {
+    fmt::print("             {:<+20.12e} {:<+20.12e} {:.12f}\n", m.real(), m.imag(), std::abs(m));
+  }
+  fmt::print("solve:       {}\n", summary.BriefReport());
+}
+
+std::string OrbitJson(const System& system, const PeriodicOrbit& orbit,
+                      const OrbitSummary& summary) {
+  nlohmann::json j;
+  j["p"] = orbit.p;
+  j["q"] = orbit.q;
+  j["omega"] = orbit.omega;
+  j["stable"] = orbit.stable;
+  j["residual"] = orbit.residual;
+  j["iterations"] = summary.iterations;
+  j["least_squares_fallback"] = summary.used_fallback;
+  j["impacts"] = nlohmann::json::array();
+  for (const OrbitImpact& i : orbit.impacts) {
+    j["impacts"].push_back({{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}});
+  }
+  j["multipliers"] = nlohmann::json::array();
+  for (const std::complex<double>& m : orbit.multipliers) {
+    j["multipliers"].push_back({m.real(), m.imag()});
+  }
+  j["eta"] = std::vector<double>(orbit.eta.data(), orbit.eta.data() + orbit.eta.size());
+  j["system"] = nlohmann::json::parse(SystemToJson(system));
+  return j.dump(2) + "\n";
+}
+
+void RunOrbit(const OrbitRequest& request) {
+  const System system = ResolveSystem(request.system);
+  std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
+  if (!request.json.empty()) json.emplace(request.json);
+  OrbitOptions options;
+  OrbitSummary summary;
+  const PeriodicOrbit orbit = FindStartOrbit(system, request.seed, &options, &summary);
+  Print(system, orbit, summary);
+  if (json) {
+    json->Write(OrbitJson(system, orbit, summary));
+    json->Commit();
+    fmt::print("wrote:       {}\n", request.json);
+  }
+}
+
+}  // namespace
+
+void AddOrbitCommand(CLI::App& app) {
+  auto request = std::make_shared<OrbitRequest>();
+  CLI::App* command = app.add_subcommand(
+      "orbit",
+      "Find a periodic orbit P(p,q) (p impacts in q forcing periods) as a fixed point of the "
+      "impact map by Newton's method (KINSOL; Levenberg-Marquardt through Ceres as fallback), "
+      "and its multipliers and stability. Without --p/--q the system is simulated to steady "
+      "state and the motion found there is refined.");
+  AddSystemOptions(*command, request->system);
+  AddOrbitSeedOptions(*command, request->seed, "Orbit");
+  command
+      ->add_option("--json", request->json,
+                   "Write the orbit as JSON: p, q, omega, impacts [{t, phase, v}], multipliers "
+                   "[[re, im]], stable, residual, iterations, eta, system")
+      ->type_name("FILE.json")
+      ->group("Output");
+  command->callback([request] { RunOrbit(*request); });
+}
+
+}  // namespace impactkit::cli

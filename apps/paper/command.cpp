@@ -1,0 +1,326 @@
+/// `impactkit paper`: the paper's whole study on its system in one run —
+/// modal data, resonance peaks, the orbits at its sample frequencies, the
+/// continued branches with every located special point, and the brute-force
+/// diagram's regimes — printed, and written (CSV, JSON, PNG) into one folder.
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "commands.hpp"
+#include "common/orbit_seed.hpp"
+#include "common/output.hpp"
+#include "common/plot.hpp"
+#include "common/system_options.hpp"
+#include "continue/branches.hpp"
+#include "impactkit/analysis/resonance.hpp"
+#include "impactkit/analysis/sweep.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/io/system_file.hpp"
+#include "impactkit/model/modal.hpp"
+#include "sweep/chart.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+struct PaperRequest {
+  std::string out = "out/paper";
+  bool quick = false;
+  int threads = 0;  ///< 0: all cores
+};
+
+/// Resolution of the run: the paper's, or a quick one for tests.
+struct Resolution {
+  int transient;     ///< forcing periods before an orbit is seeded
+  int sweep_values;  ///< Fig. 3 sweep
+  int sweep_transient;
+  int sweep_record;
+  int max_q;  ///< longest period the sweep's classification looks for
+};
+
+Resolution ResolutionFor(bool quick) {
+  return quick ? Resolution{200, 121, 200, 20, 8} : Resolution{500, 2401, 500, 100, 64};
+}
+
+/// "[2/5] orbits at the paper's frequencies" on stderr, after what stdout
+/// has so far.
+void Stage(int k, const std::string& what) {
+  std::fflush(stdout);
+  fmt::print(stderr, "[{}/5] {}\n", k, what);
+}
+
+/// Writes `text` to out/name and says so.
+void WriteFile(const std::filesystem::path& out, const std::string& name, const std::string& text,
+               std::vector<std::string>* written) {
+  WriteWhole(out / name, text);
+  written->push_back(name);
+}
+
+nlohmann::json ModalStage(const System& system) {
+  const ModalData modal = ComputeModalData(system);
+  nlohmann::json j = nlohmann::json::array();
+  fmt::print("modal data:   mode   natural frequency   damping ratio   shape\n");
+  for (Eigen::Index i = 0; i < modal.natural_frequencies.size(); ++i) {
+    std::vector<double> shape(modal.mode_shapes.col(i).data(),
+                              modal.mode_shapes.col(i).data() + modal.mode_shapes.rows());
+    fmt::print("              {:<6} {:<19.9f} {:<15.9f} ({:.6f})\n", i + 1,
+               modal.natural_frequencies(i), modal.damping_ratios(i), fmt::join(shape, ", "));
+    j.push_back({{"frequency", modal.natural_frequencies(i)},
+                 {"damping_ratio", modal.damping_ratios(i)},
+                 {"shape", shape}});
+  }
+  return j;
+}
+
+nlohmann::json ResonanceStage(const System& system, const std::filesystem::path& out,
+                              std::vector<std::string>* written) {
+  const std::vector<ResonancePoint> curve = ResonanceCurve(system, 0.05, 2.5, 2451);
+  nlohmann::json peaks = nlohmann::json::array();
+  for (const ResonancePeak& peak : ResonancePeaks(system, curve)) {
+    fmt::print("resonance:    x{} peaks at omega = {:.6f} (max - min {:.4f}, no stop)\n",
+               peak.dof + 1, peak.omega, peak.range);
+    peaks.push_back({{"dof", peak.dof + 1}, {"omega", peak.omega}, {"range", peak.range}});
+  }
+  LineChart chart;
+  chart.title = "Fig. 2: non-impacting resonance curves";
+  chart.x_label = "omega";
+  chart.y_label = "max - min displacement";
+  for (int i = 0; i < system.Dof(); ++i) {
+    Curve c;
+    c.title = fmt::format("x{}", i + 1);
+    c.dashed = i + 1 < system.Dof();
+    for (const ResonancePoint& p : curve) {
+      c.x.push_back(p.omega);
+      c.y.push_back(p.range(i));
+    }
+    chart.curves.push_back(std::move(c));
+  }
+  WriteFile(out, "fig2-resonance.png", RenderPng(chart), written);
+  return peaks;
+}
+
+/// The paper's sample frequencies (Fig. 4 and §3) and what is found there.
+nlohmann::json OrbitStage(const System& paper, const Resolution& resolution) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (double omega : {0.1, 0.2, 0.4, 0.6, 0.9, 1.2, 1.4, 1.65, 1.7, 2.0}) {
+    System system = paper;
+    system.omega = omega;
+    const std::optional<OrbitSeed> seed = SeedFromSimulation(system, resolution.transient);
+    nlohmann::json row = {{"omega", omega}};
+    std::string line = seed ? seed->motion.ToString() : "non-impacting";
+    if (seed && seed->motion.periodic && !seed->motion.sticking) {
+      OrbitOptions options;
+      options.p = static_cast<int>(seed->motion.p);
+      options.q = seed->motion.q;
+      PeriodicOrbit orbit;
+      if (FindOrbit(system, seed->eta, options, &orbit).termination ==
+          Termination::kConverged) {
+        std::vector<double> v;
+        for (const OrbitImpact& i : orbit.impacts) v.push_back(i.velocity);
+        line = fmt::format("P({},{}) {}, max |multiplier| {:.4f}, impact speeds {:.6f}", orbit.p,
+                           orbit.q, orbit.stable ? "stable" : "unstable",
+                           std::abs(orbit.multipliers(0)), fmt::join(v, ", "));
+        row["p"] = orbit.p;
+        row["q"] = orbit.q;
+        row["stable"] = orbit.stable;
+        row["velocities"] = v;
+        row["max_multiplier_modulus"] = std::abs(orbit.multipliers(0));
+      }
+    }
+    row["motion"] = line;
+    fmt::print("  omega = {:<5} {}\n", omega, line);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// A branch of §3: its start, range and which branches to start from it.
+struct BranchPlan {
+  std::string name;
+  double start, lower, upper;
+  BranchSwitches switches;
+};
+
+nlohmann::json BranchStage(const System& paper, const Resolution& resolution,
+                           const std::filesystem::path& out, std::vector<std::string>* written) {
+  const BranchPlan plans[] = {{"p11", 1.0, 0.5, 2.0, {true, true}},
+                              {"p21", 0.6, 0.4, 1.0, {true, false}},
+                              {"p12", 2.0, 1.0, 3.0, {true, false}}};
+  nlohmann::json j = nlohmann::json::array();
+  std::vector<TracedBranch> all;
+  for (const BranchPlan& plan : plans) {
+    System system = paper;
+    system.omega = plan.start;
+    // The start as `impactkit orbit` finds it; a failure ends the job with
+    // its reason rather than leave a branch out of the summary.
+    OrbitSeedOptions seed;
+    seed.transient = resolution.transient;
+    ContinuationOptions options;
+    const PeriodicOrbit start = FindStartOrbit(system, seed, &options.orbit);
+    options.lower = plan.lower;
+    options.upper = plan.upper;
+    options.direction = ContinuationDirection::kBoth;
+    BranchProgress progress("omega");
+    std::vector<TracedBranch> branches =
+        TraceBranches(system, start, options, plan.switches, progress);
+    for (TracedBranch& b : branches) {
+      b.label = plan.name + "-" + b.label;
+      PrintBranch(b);
+      const std::string csv = "branch-" + b.label + ".csv";
+      WriteBranchCsv((out / csv).string(), "paper branch " + b.label, b.branch);
+      written->push_back(csv);
+      j.push_back(BranchJson(b));
+      all.push_back(std::move(b));
+    }
+  }
+  WriteFile(out, "branches.png", RenderPng(BranchChart(all)), written);
+  return j;
+}
+
+/// What a regime is: the kind, with p and q for periodic motions and q for
+/// sticking ones (P(inf,q) whatever the impacts before the chatter ends).
+std::string RegimeKey(const Classification& c) {
+  switch (c.kind) {
+    case MotionKind::kPeriodic:
+      return fmt::format("P({},{})", c.period.p, c.period.q);
+    case MotionKind::kSticking:
+      return fmt::format("P(inf,{})", c.period.q);
+    default:
+      return ToString(c.kind);
+  }
+}
+
+/// Consecutive values with the same motion, as ranges.
+nlohmann::json Regimes(const SweepResult& sweep) {
+  nlohmann::json regimes = nlohmann::json::array();
+  std::size_t from = 0;
+  for (std::size_t i = 1; i <= sweep.points.size(); ++i) {
+    const std::string key = RegimeKey(sweep.points[from].classification);
+    if (i < sweep.points.size() && RegimeKey(sweep.points[i].classification) == key) continue;
+    regimes.push_back({{"from", sweep.points[from].value},
+                       {"to", sweep.points[i - 1].value},
+                       {"values", i - from},
+                       {"kind", ToString(sweep.points[from].classification.kind)},
+                       {"motion", key}});
+    from = i;
+  }
+  return regimes;
+}
+
+void PrintRegimes(const nlohmann::json& regimes) {
+  int short_runs = 0;
+  for (const nlohmann::json& r : regimes) {
+    if (r["values"].get<std::size_t>() < 3) {
+      ++short_runs;
+      continue;
+    }
+    fmt::print("  omega {:.4f} to {:.4f}  {}\n", r["from"].get<double>(), r["to"].get<double>(),
+               r["motion"].get<std::string>());
+  }
+  if (short_runs > 0) fmt::print("  (and {} windows of one or two values)\n", short_runs);
+}
+
+nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int threads,
+                          const std::filesystem::path& out, std::vector<std::string>* written) {
+  SweepOptions options;
+  options.from = 0.1;
+  options.to = 2.5;
+  options.steps = resolution.sweep_values;
+  options.transient_periods = resolution.sweep_transient;
+  options.recorded_periods = resolution.sweep_record;
+  options.classify.period.max_q = resolution.max_q;
+  options.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const bool tty = ::isatty(STDERR_FILENO) == 1;
+  const SweepResult sweep = RunSweep(paper, options, [&](int done, int total) {
+    if (tty) fmt::print(stderr, "\r\033[K  sweep {}/{}", done, total);
+  });
+  if (tty) fmt::print(stderr, "\r\033[K");
+  fmt::print("  {}\n", sweep.BriefReport());
+  const nlohmann::json regimes = Regimes(sweep);
+  PrintRegimes(regimes);
+  CsvWriter csv(out / "fig3-sweep.csv",
+                "paper sweep omega 0.1..2.5; kind 0 periodic, 1 sticking, 2 chaotic, "
+                "3 non_impacting, 4 unresolved",
+                {"omega", "kind", "p", "q", "range_xN_max", "impacts"});
+  for (const SweepPoint& p : sweep.points) {
+    const MotionPeriod& period = p.classification.period;
+    const double range = p.range_contact.empty()
+                             ? 0.0
+                             : *std::max_element(p.range_contact.begin(), p.range_contact.end());
+    csv.WriteRow(std::vector<double>{p.value, static_cast<double>(p.classification.kind),
+                                     static_cast<double>(period.p), static_cast<double>(period.q),
+                                     range, static_cast<double>(p.impacts.size())});
+  }
+  csv.Commit();
+  written->push_back("fig3-sweep.csv");
+  WriteFile(out, "fig3-bifurcation.png",
+            RenderStackedPng(SweepCharts(paper, options, sweep), 1000, 900), written);
+  return regimes;
+}
+
+void RunPaper(const PaperRequest& request) {
+  if (request.threads < 0) throw InvalidInput("--threads must be >= 0 (0: all cores)");
+  RequireGnuplot();
+  const auto start = std::chrono::steady_clock::now();
+  const std::filesystem::path out = request.out;
+  std::filesystem::create_directories(out);
+  const Resolution resolution = ResolutionFor(request.quick);
+  const System paper = PaperSystem(1.0);
+  std::vector<std::string> written;
+  nlohmann::json summary;
+  summary["system"] = nlohmann::json::parse(SystemToJson(paper));
+  summary["quick"] = request.quick;
+
+  fmt::print("system:       {} (Wagg & Bishop 2001)\n", DescribeSystem(paper));
+  Stage(1, "modal data and resonance curves");
+  summary["modes"] = ModalStage(paper);
+  summary["resonance_peaks"] = ResonanceStage(paper, out, &written);
+  Stage(2, "orbits at the paper's frequencies");
+  fmt::print("orbits (from a simulation from rest, refined as fixed points of the impact map):\n");
+  summary["orbits"] = OrbitStage(paper, resolution);
+  Stage(3, "continued branches");
+  fmt::print("branches (pseudo-arclength continuation in omega):\n");
+  summary["branches"] = BranchStage(paper, resolution, out, &written);
+  Stage(4, "brute-force bifurcation diagram (Fig. 3)");
+  fmt::print("brute-force diagram, omega 0.1 to 2.5 ({} values):\n", resolution.sweep_values);
+  summary["regimes"] = SweepStage(paper, resolution, request.threads, out, &written);
+  Stage(5, "summary");
+  summary["seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  WriteFile(out, "summary.json", summary.dump(2) + "\n", &written);
+  fmt::print("wrote into {}: {}\n", std::filesystem::absolute(out).string(),
+             fmt::join(written, ", "));
+  fmt::print("time:         {:.1f} s\n", summary["seconds"].get<double>());
+}
+
+}  // namespace
+
+void AddPaperCommand(CLI::App& app) {
+  auto request = std::make_shared<PaperRequest>();
+  CLI::App* command = app.add_subcommand(
+      "paper",
+      "The paper's study on its system in one run: modal data, resonance peaks (Fig. 2), the "
+      "orbits at its sample frequencies with their stability, the P(1,1), P(2,1) and P(1,2) "
+      "branches continued in omega with the branches born at their period doublings and "
+      "grazings, and the brute-force diagram (Fig. 3) with its regimes. Prints a summary and "
+      "writes CSV, JSON and PNG files into one folder.");
+  command->add_option("--out", request->out, "Output folder (created if missing)")
+      ->capture_default_str();
+  command->add_flag("--quick", request->quick,
+                    "Reduced resolution (121 sweep values, short transients), for tests");
+  command->add_option("--threads", request->threads, "Threads of the sweep (0: all cores)")
+      ->capture_default_str();
+  command->callback([request] { RunPaper(*request); });
+}
+
+}  // namespace impactkit::cli

@@ -1,0 +1,109 @@
+#include "simulate/output.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+
+#include "common/plot.hpp"
+#include "simulate/summary.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+std::vector<std::string> Numbered(const std::string& prefix, int count) {
+  std::vector<std::string> names;
+  for (int i = 1; i <= count; ++i) names.push_back(prefix + std::to_string(i));
+  return names;
+}
+
+/// `first`, then x1..xN and v1..vN, then `last`.
+std::vector<std::string> StateColumns(std::vector<std::string> first, int dof,
+                                      const std::vector<std::string>& last) {
+  for (const auto& names : {Numbered("x", dof), Numbered("v", dof), last}) {
+    first.insert(first.end(), names.begin(), names.end());
+  }
+  return first;
+}
+
+void AppendState(std::vector<double>& row, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+  row.insert(row.end(), x.begin(), x.end());
+  row.insert(row.end(), v.begin(), v.end());
+}
+
+/// The paper's Fig. 4 style: the contact mass solid and dark, the others
+/// dashed in distinct colours, the stop as a dotted line.
+LineChart TimeSeriesChart(const SimulateResult& result) {
+  static constexpr std::array<const char*, 6> kPalette = {"#1f77b4", "#d62728", "#2ca02c",
+                                                          "#9467bd", "#ff7f0e", "#8c564b"};
+  const System& system = result.system;
+  LineChart chart;
+  chart.title =
+      fmt::format("impactkit simulate: Ω = {:.6g}, xs = {:.6g}, r = {:.6g}: {}", system.omega,
+                  system.stop, system.restitution, MotionLabel(result.analysis));
+  chart.x_label = "t";
+  chart.y_label = "displacement";
+  const std::vector<Sample>& samples = result.recorders.series->Samples();
+  for (int i = 0, other = 0; i < system.Dof(); ++i) {
+    Curve curve;
+    curve.title = fmt::format("x{}", i + 1);
+    curve.dashed = i != system.contact_dof;
+    if (curve.dashed) curve.color = kPalette[other++ % kPalette.size()];
+    for (const Sample& sample : samples) {
+      curve.x.push_back(sample.t);
+      curve.y.push_back(sample.x(i));
+    }
+    chart.curves.push_back(std::move(curve));
+  }
+  chart.lines.push_back({system.stop, fmt::format("stop xs = {:.6g}", system.stop)});
+  return chart;
+}
+
+}  // namespace
+
+SimulateOutputs::SimulateOutputs(const SimulateRequest& request, const System& system,
+                                 std::string provenance)
+    : provenance_(std::move(provenance)) {
+  const int dof = system.Dof();
+  if (!request.series.empty()) {
+    series_.emplace(request.series, provenance_, StateColumns({"t"}, dof, {"stuck"}));
+  }
+  if (!request.impacts.empty()) {
+    impacts_.emplace(request.impacts, provenance_, StateColumns({"t", "phase", "v"}, dof, {}));
+  }
+  if (!request.plot.empty()) plot_.emplace(request.plot);
+  if (!request.json.empty()) json_.emplace(request.json);
+}
+
+void SimulateOutputs::Write(const SimulateResult& result) {
+  // Everything is written to the temporaries first and committed last, so a
+  // failure (gnuplot, a full disk) leaves no partial set of files either.
+  if (series_) WriteSeries(result);
+  if (impacts_) WriteImpacts(result);
+  if (plot_) plot_->Write(RenderPng(TimeSeriesChart(result)));
+  if (json_) json_->Write(SummaryJson(result, provenance_) + "\n");
+  if (series_) series_->Commit();
+  if (impacts_) impacts_->Commit();
+  if (plot_) plot_->Commit();
+  if (json_) json_->Commit();
+}
+
+void SimulateOutputs::WriteSeries(const SimulateResult& result) {
+  std::vector<double> row;
+  for (const Sample& sample : result.recorders.series->Samples()) {
+    row.assign({sample.t});
+    AppendState(row, sample.x, sample.v);
+    row.push_back(sample.stuck ? 1.0 : 0.0);
+    series_->WriteRow(row);
+  }
+}
+
+void SimulateOutputs::WriteImpacts(const SimulateResult& result) {
+  std::vector<double> row;
+  for (const Impact& impact : result.recorders.steady.Impacts()) {
+    row.assign({impact.t, impact.phase, impact.velocity});
+    AppendState(row, impact.x, impact.v);
+    impacts_->WriteRow(row);
+  }
+}
+
+}  // namespace impactkit::cli

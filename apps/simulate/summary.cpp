@@ -1,0 +1,148 @@
+#include "simulate/summary.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "impactkit/io/system_file.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+/// "no impacts", "1 impact", "3 impacts".
+std::string Count(long n, const std::string& noun) {
+  if (n == 0) return "no " + noun + "s";
+  return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+}
+
+/// The fewest recorded periods that let DetectPeriod search up to its max_q.
+long PeriodsForFullSearch() { return 2L * PeriodOptions{}.max_q; }
+
+std::string ImpactLine(const SimulateResult& result) {
+  const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
+  if (impacts.empty()) return "none";
+  const auto [slowest, fastest] =
+      std::minmax_element(impacts.begin(), impacts.end(),
+                          [](const Impact& a, const Impact& b) { return a.velocity < b.velocity; });
+  return fmt::format("{} ({:.6g} per forcing period), speed {:.6g} to {:.6g}", impacts.size(),
+                     result.analysis.impacts_per_period, slowest->velocity, fastest->velocity);
+}
+
+std::string WrittenFiles(const SimulateRequest& request) {
+  std::vector<std::string> files;
+  for (const auto* path : {&request.series, &request.impacts, &request.plot, &request.json}) {
+    if (!path->empty()) files.push_back(path->string());
+  }
+  return files.empty() ? "nothing (ask with --series, --impacts, --plot, --json)"
+                       : fmt::format("{}", fmt::join(files, ", "));
+}
+
+std::vector<double> ToVector(const Eigen::VectorXd& v) { return {v.begin(), v.end()}; }
+
+Json StateJson(const HybridState& state) {
+  return {
+      {"t", state.t}, {"x", ToVector(state.x)}, {"v", ToVector(state.v)}, {"stuck", state.stuck}};
+}
+
+Json RunJson(const SimulateResult& result) {
+  const SimulateRequest& request = result.request;
+  Json run = {{"transient_periods", request.transient},
+              {"periods", request.periods},
+              {"samples_per_period", request.samples_per_period},
+              {"chatter", ToString(request.chatter)}};
+  if (request.chatter == ChatterMethod::kThreshold) {
+    run["chatter_threshold"] = SimulationOptionsOf(request).chatter_threshold;
+  }
+  run["initial_state"] = StateJson(result.initial_state);
+  return run;
+}
+
+Json MotionJson(const WindowAnalysis& analysis) {
+  const MotionPeriod& motion = analysis.motion;
+  Json json = {{"label", MotionLabel(analysis)},
+               {"description", DescribeMotion(analysis)},
+               {"periodic", motion.periodic},
+               {"searched_q", analysis.searched_q}};
+  if (motion.periodic) {
+    json["p"] = motion.p;
+    json["q"] = motion.q;
+    json["sticking"] = motion.sticking;
+    json["mismatch"] = motion.mismatch;
+  }
+  return json;
+}
+
+}  // namespace
+
+std::string MotionLabel(const WindowAnalysis& analysis) {
+  return analysis.motion.periodic ? analysis.motion.ToString()
+                                  : fmt::format("no period up to q = {}", analysis.searched_q);
+}
+
+std::string DescribeMotion(const WindowAnalysis& analysis) {
+  const MotionPeriod& motion = analysis.motion;
+  if (motion.periodic && motion.sticking) {
+    return fmt::format("{} sticking (chatter ends at the stop; repeats every {})",
+                       motion.ToString(), Count(motion.q, "forcing period"));
+  }
+  if (motion.periodic) {
+    return fmt::format("{} ({} in {})", motion.ToString(), Count(motion.p, "impact"),
+                       Count(motion.q, "forcing period"));
+  }
+  if (analysis.searched_q == 0) return "undetermined (record at least 2 forcing periods)";
+  // Either the transient has not died out yet or the period is long (or
+  // there is none: chaos); say how to tell.
+  std::string hint = "a longer --transient lets transients decay";
+  if (analysis.searched_q < PeriodOptions{}.max_q) {
+    hint += fmt::format("; --periods {} looks up to q = {}", PeriodsForFullSearch(),
+                        PeriodOptions{}.max_q);
+  }
+  return fmt::format("{} in the recorded window ({})", MotionLabel(analysis), hint);
+}
+
+std::string SummaryText(const SimulateResult& result) {
+  const Window& window = result.window;
+  const WindowAnalysis& analysis = result.analysis;
+  std::string text;
+  auto line = [&](const char* key, const std::string& value) {
+    text += fmt::format("{:<10}{}\n", key, value);
+  };
+  line("system:", DescribeSystem(result.system));
+  line("window:", fmt::format("t = {:.6g} to {:.6g} (forcing periods {} to {}, T = {:.6g})",
+                              window.begin, window.end, window.first_period,
+                              window.first_period + window.periods, window.period));
+  line("impacts:", ImpactLine(result));
+  line("sticking:", fmt::format("{:.3g}% of the window, {} chatter sequence{}",
+                                100.0 * analysis.sticking_fraction, analysis.chatter_sequences,
+                                analysis.chatter_sequences == 1 ? "" : "s"));
+  line("motion:", DescribeMotion(analysis));
+  line("run time:", fmt::format("{:.3g} s", result.elapsed_seconds));
+  line("wrote:", WrittenFiles(result.request));
+  return text;
+}
+
+std::string SummaryJson(const SimulateResult& result, const std::string& provenance) {
+  const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
+  const Window& window = result.window;
+  Json json = {{"command", provenance}, {"impactkit_version", IMPACTKIT_VERSION}};
+  json["system"] = Json::parse(SystemToJson(result.system));
+  json["run"] = RunJson(result);
+  json["window"] = {{"t_begin", window.begin},
+                    {"t_end", window.end},
+                    {"forcing_period", window.period},
+                    {"first_period", window.first_period},
+                    {"periods", window.periods}};
+  json["impacts"] = {{"count", impacts.size()},
+                     {"per_forcing_period", result.analysis.impacts_per_period}};
+  json["sticking_fraction"] = result.analysis.sticking_fraction;
+  json["chatter_sequences"] = result.analysis.chatter_sequences;
+  json["motion"] = MotionJson(result.analysis);
+  json["final_state"] = StateJson(result.final_state);
+  json["elapsed_seconds"] = result.elapsed_seconds;
+  return json.dump(2);
+}
+
+}  // namespace impactkit::cli
