@@ -148,7 +148,7 @@ void RunReturnMap(const ReturnMapRequest& request) {
   }
   // A fit that did not converge is no fit: exit status 1, after the report
   // (and the JSON with its termination) that say how it ended.
-  if (fit && fit->termination != MapFitTermination::kConverged) {
+  if (fit && fit->termination != Termination::kConverged) {
     throw std::runtime_error(fmt::format("the Eq. 18 fit did not converge ({}): {}",
                                          ToString(fit->termination), fit->message));
   }
