@@ -71,6 +71,18 @@ void Apply(const Assignment& assignment, System& system) {
   }
 }
 
+/// "omega (forcing frequency, > 0), ..., and for chains m (mass, > 0), ...",
+/// from the model's parameter table.
+std::string ParameterHelp() {
+  std::vector<std::string> any, chain;
+  for (const ParameterSpec& spec : ParameterTable()) {
+    const std::string name = spec.get ? std::string(spec.name) : fmt::format("{0}1..{0}N", spec.name);
+    (spec.chain_only ? chain : any)
+        .push_back(fmt::format("{} ({}, {})", name, spec.meaning, spec.range));
+  }
+  return fmt::format("{}; for chains {}", fmt::join(any, ", "), fmt::join(chain, ", "));
+}
+
 }  // namespace
 
 void AddSystemOptions(CLI::App& command, SystemOptions& options) {
@@ -84,8 +96,9 @@ void AddSystemOptions(CLI::App& command, SystemOptions& options) {
       ->group(group);
   command
       .add_option("--set", options.sets,
-                  "Change a parameter, name=value; repeatable. Names: omega, xs, r, A1..AN, "
-                  "and for chains m, k, c, n (e.g. --set c=0.05 --set A2=0.1)")
+                  fmt::format("Change a parameter, name=value; repeatable (e.g. --set c=0.05 "
+                              "--set A2=0.1). Names: {}",
+                              ParameterHelp()))
       ->type_name("NAME=VALUE")
       ->group(group);
   command

@@ -22,18 +22,19 @@ std::vector<std::string> Columns(const Branch& branch) {
   return columns;
 }
 
-/// Special-point codes of the CSV's `special` column (0: an ordinary point).
-double SpecialCode(const Branch& branch, const BranchPoint& point) {
+/// The CSV's `special` column: the special point's type by name, empty for
+/// an ordinary point.
+std::string SpecialName(const Branch& branch, const BranchPoint& point) {
   for (const SpecialPoint& s : branch.special_points) {
-    if (s.point.arclength == point.arclength) return 1.0 + static_cast<int>(s.type);
+    if (s.point.arclength == point.arclength) return ToString(s.type);
   }
-  return 0.0;
+  return "";
 }
 
 nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) {
   nlohmann::json j = {
       {"type", ToString(s.type)},
-      {"param", s.point.parameter},
+      {"param", s.parameter},
       {"parameter", parameter},
       {"description", s.Describe(parameter)},
       {"monitor", s.monitor},
@@ -141,8 +142,7 @@ void WriteBranchCsv(const std::string& path, const std::string& provenance, cons
     // lowest point, reported as the range (never NaN in a table).
     row.push_back(orbit.contacts.clearance.value_or(orbit.contacts.Range()));
     row.push_back(std::min(orbit.contacts.slowest_depth, 1e300));
-    row.push_back(SpecialCode(branch, point));
-    csv.WriteRow(row);
+    csv.WriteRow(row, std::vector<std::string>{SpecialName(branch, point)});
   }
   csv.Commit();
 }
@@ -212,7 +212,7 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
       mark.points = true;
       mark.color = "#d62728";
       for (const OrbitImpact& i : s.point.orbit.impacts) {
-        mark.x.push_back(s.point.parameter);
+        mark.x.push_back(s.parameter);
         mark.y.push_back(i.velocity);
       }
       chart.curves.push_back(std::move(mark));

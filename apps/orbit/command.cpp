@@ -23,9 +23,11 @@ struct OrbitRequest {
   SystemOptions system;
   OrbitSeedOptions seed;
   std::string json;
+  bool check_jacobian = false;
 };
 
-void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary& summary) {
+void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary& summary,
+           JacobianMethod summary_jacobian) {
   fmt::print("system:      {}\n", DescribeSystem(system));
   fmt::print("orbit:       P({},{}) at omega = {}, {}\n", orbit.p, orbit.q, orbit.omega,
              orbit.stable ? "stable" : "unstable");
@@ -38,11 +40,12 @@ void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary&
   for (const std::complex<double>& m : orbit.multipliers) {
     fmt::print("             {:<+20.12e} {:<+20.12e} {:.12f}\n", m.real(), m.imag(), std::abs(m));
   }
+  fmt::print("jacobian:    {}\n", ToString(summary_jacobian));
   fmt::print("solve:       {}\n", summary.BriefReport());
 }
 
-std::string OrbitJson(const System& system, const PeriodicOrbit& orbit,
-                      const OrbitSummary& summary) {
+nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
+                         const OrbitSummary& summary) {
   nlohmann::json j;
   j["p"] = orbit.p;
   j["q"] = orbit.q;
@@ -61,7 +64,7 @@ std::string OrbitJson(const System& system, const PeriodicOrbit& orbit,
   }
   j["eta"] = std::vector<double>(orbit.eta.data(), orbit.eta.data() + orbit.eta.size());
   j["system"] = nlohmann::json::parse(SystemToJson(system));
-  return j.dump(2) + "\n";
+  return j;
 }
 
 void RunOrbit(const OrbitRequest& request) {
@@ -71,9 +74,22 @@ void RunOrbit(const OrbitRequest& request) {
   OrbitOptions options;
   OrbitSummary summary;
   const PeriodicOrbit orbit = FindStartOrbit(system, request.seed, &options, &summary);
-  Print(system, orbit, summary);
+  Print(system, orbit, summary, options.jacobian);
+  std::optional<JacobianComparison> check;
+  if (request.check_jacobian) {
+    check = CompareJacobians(ImpactMap(system, options.map), orbit.eta, orbit.p);
+    fmt::print("check:       analytic vs finite-difference Jacobian: largest difference {:.3e} "
+               "({:.3e} relative to its largest entry)\n",
+               check->max_difference, check->max_relative_difference);
+  }
   if (json) {
-    json->Write(OrbitJson(system, orbit, summary));
+    nlohmann::json j = OrbitJson(system, orbit, summary);
+    j["jacobian"] = ToString(options.jacobian);
+    if (check) {
+      j["jacobian_check"] = {{"max_difference", check->max_difference},
+                             {"max_relative_difference", check->max_relative_difference}};
+    }
+    json->Write(j.dump(2) + "\n");
     json->Commit();
     fmt::print("wrote:       {}\n", request.json);
   }
@@ -94,8 +110,14 @@ void AddOrbitCommand(CLI::App& app) {
   command
       ->add_option("--json", request->json,
                    "Write the orbit as JSON: p, q, omega, impacts [{t, phase, v}], multipliers "
-                   "[[re, im]], stable, residual, iterations, eta, system")
+                   "[[re, im]], stable, residual, iterations, eta, system, jacobian (the method), "
+                   "jacobian_check (with --check-jacobian)")
       ->type_name("FILE.json")
+      ->group("Output");
+  command
+      ->add_flag("--check-jacobian", request->check_jacobian,
+                 "Also form the finite-difference Jacobian at the orbit and print its largest "
+                 "difference from the analytic one")
       ->group("Output");
   command->callback([request] { RunOrbit(*request); });
 }

@@ -33,6 +33,23 @@ void CsvWriter::WriteRow(std::span<const double> values) {
   if (buffer_.size() >= kFlushBytes) Flush();
 }
 
+void CsvWriter::WriteRow(std::span<const double> values, std::span<const std::string> labels) {
+  if (values.size() + labels.size() != columns_) {
+    throw std::invalid_argument(fmt::format("a row of {} needs {} values, got {}", Path().string(),
+                                            columns_, values.size() + labels.size()));
+  }
+  for (const std::string& label : labels) {
+    if (label.find_first_of(",\r\n\"") != std::string::npos) {
+      throw std::invalid_argument(fmt::format("a CSV label must have no comma, quote or line "
+                                              "break, got '{}'",
+                                              label));
+    }
+  }
+  fmt::format_to(std::back_inserter(buffer_), "{}{}{}\n", fmt::join(values, ","),
+                 values.empty() || labels.empty() ? "" : ",", fmt::join(labels, ","));
+  if (buffer_.size() >= kFlushBytes) Flush();
+}
+
 void CsvWriter::Commit() {
   Flush();
   file_.Commit();

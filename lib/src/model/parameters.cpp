@@ -50,7 +50,7 @@ constexpr std::array<ParameterSpec, 8> kTable = {{
      [](System& s, double v) { s.stop = v; }},
     {"r", "coefficient of restitution", "in [0, 1]", false,
      [](const System& s) { return s.restitution; }, [](System& s, double v) { s.restitution = v; }},
-    {"A", "forcing amplitude on mass i (A1 … AN)", "finite", false, nullptr, nullptr},
+    {"A", "forcing amplitude on mass i", "finite", false, nullptr, nullptr},
     {"m", "mass", "> 0", true, [](const System& s) { return s.chain->mass; },
      [](System& s, double v) { RebuildChain(s, [&](ChainParameters& c) { c.mass = v; }); }},
     {"k", "stiffness", "> 0", true, [](const System& s) { return s.chain->stiffness; },

@@ -32,6 +32,10 @@ class CsvWriter {
   /// One row: exactly as many values as there are columns (else
   /// std::invalid_argument). Throws OutputError if writing fails.
   void WriteRow(std::span<const double> values);
+  /// A row whose last columns are text: `values`, then `labels` (names
+  /// without commas or line breaks; empty for none), as many in all as
+  /// there are columns (else std::invalid_argument).
+  void WriteRow(std::span<const double> values, std::span<const std::string> labels);
   /// Writes what is buffered and moves the file into place.
   void Commit();
 
