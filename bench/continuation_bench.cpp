@@ -37,8 +37,7 @@ int main() {
   if (!seed) return 1;
   OrbitOptions orbit_options;
   PeriodicOrbit start;
-  if (FindOrbit(system, seed->eta, orbit_options, &start).termination !=
-      Termination::kConverged) {
+  if (FindOrbit(system, seed->eta, orbit_options, &start).termination != Termination::kConverged) {
     return 1;
   }
   ContinuationOptions options;

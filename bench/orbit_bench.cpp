@@ -4,11 +4,9 @@
 ///
 ///   ./build/bench/orbit_bench
 
-
 #include <fmt/format.h>
 
 #include "cpu_time.hpp"
-
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/orbits/orbit.hpp"
 
@@ -42,7 +40,10 @@ void Measure(const System& system, const Eigen::VectorXd& seed, int p, int q,
 int main() {
   fmt::print("| orbit | Jacobian | Newton iterations | residual | microseconds per solve |\n");
   fmt::print("|---|---|---|---|---|\n");
-  struct Case { double omega; int p, q; };
+  struct Case {
+    double omega;
+    int p, q;
+  };
   for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{1.7, 4, 4}}) {
     const System system = PaperSystem(c.omega);
     const std::optional<OrbitSeed> seed = SeedFromSimulation(system);

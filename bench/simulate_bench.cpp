@@ -7,14 +7,13 @@
 ///
 ///   ./build/bench/simulate_bench [periods]      (default 10000)
 
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <functional>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "cpu_time.hpp"
-
 #include "cvode_impacts.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
@@ -64,7 +63,8 @@ std::vector<double> PeerImpacts(const System& s, double t_end, const Options& op
 }
 
 /// Largest |difference| over the first `count` impact times.
-double MaxDifference(const std::vector<double>& a, const std::vector<double>& b, std::size_t count) {
+double MaxDifference(const std::vector<double>& a, const std::vector<double>& b,
+                     std::size_t count) {
   if (a.size() < count || b.size() < count) return INFINITY;
   double worst = 0.0;
   for (std::size_t i = 0; i < count; ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
@@ -99,16 +99,20 @@ void CompareWithPeers(double omega, int periods) {
     return PeerImpacts(s, t, o, reference::OdeintImpacts);
   };
   const double our_error = MaxDifference(exact, cvode_at(1e-13, t_check), 50);
-  const double cvode_tol = LoosestAccurateTolerance(exact, [&](double tol) { return cvode_at(tol, t_check); });
-  const double odeint_tol = LoosestAccurateTolerance(exact, [&](double tol) { return odeint_at(tol, t_check); });
+  const double cvode_tol =
+      LoosestAccurateTolerance(exact, [&](double tol) { return cvode_at(tol, t_check); });
+  const double odeint_tol =
+      LoosestAccurateTolerance(exact, [&](double tol) { return odeint_at(tol, t_check); });
 
   const Timed ours = Measure([&] { return OurImpacts(s, t_end); });
   const Timed cvode = Measure([&] { return cvode_at(cvode_tol, t_end); });
   const Timed odeint = Measure([&] { return odeint_at(odeint_tol, t_end); });
   auto rate = [](const Timed& t) { return t.times.size() / t.seconds; };
-  fmt::print("| {:4} | {:8} | {:>10.0f} | {:>10.0f} (tol {:.0e}) | {:>10.0f} (tol {:.0e}) | {:>5.1f}x | {:.1e} |\n",
-             omega, ours.times.size(), rate(ours), rate(cvode), cvode_tol, rate(odeint), odeint_tol,
-             rate(ours) / std::max(rate(cvode), rate(odeint)), our_error);
+  fmt::print(
+      "| {:4} | {:8} | {:>10.0f} | {:>10.0f} (tol {:.0e}) | {:>10.0f} (tol {:.0e}) | {:>5.1f}x | "
+      "{:.1e} |\n",
+      omega, ours.times.size(), rate(ours), rate(cvode), cvode_tol, rate(odeint), odeint_tol,
+      rate(ours) / std::max(rate(cvode), rate(odeint)), our_error);
 }
 
 void ScalingWithDof(int periods) {
@@ -134,7 +138,9 @@ int main(int argc, char** argv) {
   }
   fmt::print("{} forcing periods from rest, paper system; rates in impacts per CPU-second\n\n",
              periods);
-  fmt::print("| Ω | impacts | impactkit | CVODE | Odeint DOPRI5 | speed-up vs faster peer | our max |Δt| vs CVODE 1e-13 (first 50) |\n");
+  fmt::print(
+      "| Ω | impacts | impactkit | CVODE | Odeint DOPRI5 | speed-up vs faster peer | our max |Δt| "
+      "vs CVODE 1e-13 (first 50) |\n");
   fmt::print("|---|---|---|---|---|---|---|\n");
   for (double omega : {1.4, 0.6, 1.75}) CompareWithPeers(omega, periods);
   ScalingWithDof(periods / 10);

@@ -8,7 +8,7 @@ int main() {
   using namespace impactkit;
   const System system = PaperSystem(/*omega=*/0.6);
   const Simulator simulator(system);
-  HybridState state = RestState(system);  // x = v = 0 at t = 0
+  HybridState state = RestState(system);               // x = v = 0 at t = 0
   simulator.Run(state, 200 * system.ForcingPeriod());  // transient
 
   ImpactRecorder impacts;

@@ -12,8 +12,7 @@ int main() {
   const std::optional<OrbitSeed> seed = SeedFromSimulation(system);
   if (!seed) return EXIT_FAILURE;
   PeriodicOrbit start;
-  if (FindOrbit(system, seed->eta, OrbitOptions{}, &start).termination !=
-      Termination::kConverged) {
+  if (FindOrbit(system, seed->eta, OrbitOptions{}, &start).termination != Termination::kConverged) {
     return EXIT_FAILURE;
   }
 

@@ -1,16 +1,16 @@
 #include "cvode_impacts.hpp"
 
-#include <cmath>
-#include <memory>
-#include <stdexcept>
-#include <string>
-#include <type_traits>
-
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 
 #include "oscillator_model.hpp"
 
@@ -181,10 +181,9 @@ ReferenceRun CvodeImpacts(const System& s, Eigen::VectorXd x0, Eigen::VectorXd v
   return sequence.Finish(cvode.t(), cvode.State(), cvode.rhs_evaluations());
 }
 
-void CvodeLinearFlow(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C,
-                     const Eigen::MatrixXd& K, const Eigen::VectorXd& A,
-                     const Eigen::VectorXd& f0, double omega, double t0, Eigen::VectorXd& x,
-                     Eigen::VectorXd& v, double t1, double rtol, double atol) {
+void CvodeLinearFlow(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K,
+                     const Eigen::VectorXd& A, const Eigen::VectorXd& f0, double omega, double t0,
+                     Eigen::VectorXd& x, Eigen::VectorXd& v, double t1, double rtol, double atol) {
   if (t1 == t0) return;  // CVODE rejects a zero-length interval
   const LinearOscillator oscillator(M, C, K, A, f0, omega);
   Cvode cvode(oscillator, t0, oscillator.StackState(x, v), rtol, atol, 0.0);

@@ -41,9 +41,9 @@ ReferenceRun CvodeImpacts(const System& s, Eigen::VectorXd x0, Eigen::VectorXd v
 
 /// Integrates the smooth linear system M x'' + C x' + K x = A cos(Ω t) + f0
 /// (no stop) from (x, v) at t0 to t1 in place; t1 < t0 integrates backwards.
-void CvodeLinearFlow(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C,
-                     const Eigen::MatrixXd& K, const Eigen::VectorXd& A,
-                     const Eigen::VectorXd& f0, double omega, double t0, Eigen::VectorXd& x,
-                     Eigen::VectorXd& v, double t1, double rtol = 1e-12, double atol = 1e-14);
+void CvodeLinearFlow(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, const Eigen::MatrixXd& K,
+                     const Eigen::VectorXd& A, const Eigen::VectorXd& f0, double omega, double t0,
+                     Eigen::VectorXd& x, Eigen::VectorXd& v, double t1, double rtol = 1e-12,
+                     double atol = 1e-14);
 
 }  // namespace impactkit::reference

@@ -1,10 +1,9 @@
 #include "odeint_impacts.hpp"
 
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <optional>
 #include <vector>
-
-#include <boost/numeric/odeint.hpp>
 
 #include "oscillator_model.hpp"
 
@@ -14,8 +13,7 @@ namespace {
 namespace odeint = boost::numeric::odeint;
 
 using State = std::vector<double>;
-using Stepper =
-    decltype(odeint::make_dense_output(0.0, 0.0, odeint::runge_kutta_dopri5<State>()));
+using Stepper = decltype(odeint::make_dense_output(0.0, 0.0, odeint::runge_kutta_dopri5<State>()));
 
 // Only a first guess: the step controller corrects it within a few steps.
 constexpr double kInitialStep = 1e-4;
@@ -72,8 +70,8 @@ double LocateCrossing(const Stepper& stepper, const ImpactSequence& sequence, do
 // Steps on to the next impact before t_end: returns its time, with the state
 // just before it in y; or nullopt, with the state at t_end in y.
 std::optional<double> NextImpact(Stepper& stepper, const CountingRhs& rhs,
-                                 const ImpactSequence& sequence, double t_end,
-                                 double crossing_tol, State& y) {
+                                 const ImpactSequence& sequence, double t_end, double crossing_tol,
+                                 State& y) {
   while (true) {
     stepper.do_step(rhs);
     if (CrossedStop(stepper, sequence)) {

@@ -22,8 +22,7 @@ void Require(bool ok, const std::string& what) {
 }  // namespace
 
 LinearOscillator::LinearOscillator(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
-                                   const Eigen::MatrixXd& stiffness,
-                                   const Eigen::VectorXd& forcing,
+                                   const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing,
                                    const Eigen::VectorXd& constant_force, double omega)
     : omega_(omega) {
   const Eigen::Index n = mass.rows();
@@ -81,8 +80,7 @@ Eigen::VectorXd LinearOscillator::StackState(const Eigen::VectorXd& x,
 }
 
 ImpactSequence::ImpactSequence(const System& system, const LinearOscillator& oscillator,
-                               long max_impacts, double min_interimpact,
-                               double position_tolerance)
+                               long max_impacts, double min_interimpact, double position_tolerance)
     : oscillator_(oscillator),
       contact_dof_(system.contact_dof),
       velocity_index_(oscillator.Dof() + system.contact_dof),

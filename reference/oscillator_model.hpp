@@ -5,9 +5,8 @@
 /// so that agreement with it is evidence): the smooth vector field in
 /// first-order form, and the impact law with its bookkeeping.
 
-#include <vector>
-
 #include <Eigen/Dense>
+#include <vector>
 
 #include "impactkit/model/system.hpp"
 #include "reference_run.hpp"
@@ -73,8 +72,7 @@ class ImpactSequence {
 
   /// The run's result, ending at (t, y). Call once, at the end: it hands
   /// over the recorded impacts.
-  ReferenceRun Finish(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
-                      long rhs_evaluations);
+  ReferenceRun Finish(double t, const Eigen::Ref<const Eigen::VectorXd>& y, long rhs_evaluations);
 
  private:
   bool NextFlightUnresolvable(double t, const Eigen::Ref<const Eigen::VectorXd>& y) const;

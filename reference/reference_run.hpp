@@ -3,9 +3,8 @@
 /// What a reference integrator returns: the impacts it found and where it
 /// stopped. Shared by cvode_impacts.hpp and odeint_impacts.hpp.
 
-#include <vector>
-
 #include <Eigen/Dense>
+#include <vector>
 
 namespace impactkit::reference {
 

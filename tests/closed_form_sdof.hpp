@@ -57,6 +57,7 @@
 /// whose eigenvalues are the orbit's multipliers. ([∂G/∂τ' e2] has
 /// determinant -u', invertible for u' > 0.)
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,8 +66,6 @@
 #include <numbers>
 #include <stdexcept>
 #include <vector>
-
-#include <Eigen/Dense>
 
 namespace impactkit::testing {
 
@@ -102,8 +101,7 @@ inline Eigen::Matrix2d SdofTransition(const SdofParameters& p, double s) {
   const double a = p.DecayRate(), wd = p.DampedFrequency(), wn2 = p.k / p.m;
   const double e = std::exp(-a * s), cs = std::cos(wd * s), sn = std::sin(wd * s);
   Eigen::Matrix2d phi;
-  phi << cs + a / wd * sn, sn / wd,
-         -wn2 / wd * sn,   cs - a / wd * sn;
+  phi << cs + a / wd * sn, sn / wd, -wn2 / wd * sn, cs - a / wd * sn;
   return e * phi;
 }
 
@@ -169,8 +167,10 @@ inline std::vector<SdofP11> SdofP11Solutions(const SdofParameters& p) {
   // Cancellation-free roots.
   const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
   std::vector<double> roots;
-  if (q != 0.0) roots = {q / qa, qc / q};
-  else roots = {0.0};
+  if (q != 0.0)
+    roots = {q / qa, qc / q};
+  else
+    roots = {0.0};
   if (disc == 0.0) roots.resize(1);
   std::sort(roots.begin(), roots.end());
   for (double u : roots) {
@@ -231,7 +231,7 @@ inline std::array<std::complex<double>, 2> Eigenvalues2(const Eigen::Matrix2d& j
 /// The result of sampling x(t) over the open flight (τ, τ+T).
 struct SdofFlightCheck {
   double max_excess = -std::numeric_limits<double>::infinity();  ///< max of x - xs
-  double max_time = 0.0;  ///< where the max was sampled
+  double max_time = 0.0;                                         ///< where the max was sampled
   /// First sample time with x > xs (NaN if none): an extra contact lies in
   /// (first_contact - T/samples, first_contact].
   double first_contact = std::numeric_limits<double>::quiet_NaN();
@@ -246,7 +246,8 @@ inline SdofFlightCheck SdofCheckFlight(const SdofParameters& p, const SdofP11& o
   const Eigen::Vector2d z = Eigen::Vector2d(p.xs, -p.r * o.u) - SdofSteadyState(p, o.tau);
   for (int i = 1; i < samples; ++i) {
     const double t = o.tau + period * i / samples;
-    const double excess = SdofSteadyState(p, t)(0) + SdofTransition(p, t - o.tau).row(0).dot(z) - p.xs;
+    const double excess =
+        SdofSteadyState(p, t)(0) + SdofTransition(p, t - o.tau).row(0).dot(z) - p.xs;
     if (excess > check.max_excess) {
       check.max_excess = excess;
       check.max_time = t;

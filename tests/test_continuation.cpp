@@ -11,10 +11,10 @@
 
 #include "closed_form_sdof.hpp"
 #include "cvode_impacts.hpp"
-#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using namespace impactkit;
 
@@ -27,8 +27,7 @@ PeriodicOrbit Orbit(const System& system, int p, int q) {
   options.p = p;
   options.q = q;
   PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination ==
-          Termination::kConverged);
+  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged);
   return orbit;
 }
 
@@ -370,23 +369,24 @@ TEST_CASE("test functions vanish at their bifurcations and names round-trip", "[
   CHECK(ns.type == SpecialPointType::kNeimarkSacker);
   CHECK(ns.distance(std::polar(1.0, 0.7)) < 1e-15);
   CHECK(ns.distance(std::complex<double>(2.0, 0.0)) > ns.max_distance);  // real: a neutral saddle
-  for (SpecialPointType type :
-       {SpecialPointType::kFold, SpecialPointType::kPeriodDoubling,
-        SpecialPointType::kNeimarkSacker, SpecialPointType::kGrazing, SpecialPointType::kSticking}) {
+  for (SpecialPointType type : {SpecialPointType::kFold, SpecialPointType::kPeriodDoubling,
+                                SpecialPointType::kNeimarkSacker, SpecialPointType::kGrazing,
+                                SpecialPointType::kSticking}) {
     CHECK(SpecialPointTypeFromName(ToString(type)) == type);
   }
   CHECK_FALSE(SpecialPointTypeFromName("cusp").has_value());
 }
 
-TEST_CASE("continuation: a vanishing impact is located by its defining equation where the slope "
-          "is small", "[continuation]") {
+TEST_CASE(
+    "continuation: a vanishing impact is located by its defining equation where the slope "
+    "is small",
+    "[continuation]") {
   // N = 1, m = 2, k = 3, c = 0.1, A = 1.2, xs = 0.05, r = 0.75: the P(1,1)
   // impact vanishes where the non-impacting amplitude |A / (k − mΩ² + icΩ)|
   // equals xs. The depth alone left an error of 3.4e-4 here.
-  const System system = GeneralSystem(Eigen::MatrixXd::Constant(1, 1, 2.0),
-                                      Eigen::MatrixXd::Constant(1, 1, 0.1),
-                                      Eigen::MatrixXd::Constant(1, 1, 3.0),
-                                      Eigen::VectorXd::Constant(1, 1.2), 1.5, 0.05, 0.75);
+  const System system = GeneralSystem(
+      Eigen::MatrixXd::Constant(1, 1, 2.0), Eigen::MatrixXd::Constant(1, 1, 0.1),
+      Eigen::MatrixXd::Constant(1, 1, 3.0), Eigen::VectorXd::Constant(1, 1.2), 1.5, 0.05, 0.75);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}},
                                        Options(1.5, 6.0, 1, 1, ContinuationDirection::kIncreasing));
   REQUIRE(branch.end == BranchEnd::kGrazing);
@@ -427,8 +427,8 @@ TEST_CASE("continuation: a doubled branch ends where it meets the orbit it doubl
   const SpecialPoint* pd = Find(p11, SpecialPointType::kPeriodDoubling, 1.6, 1.62);
   REQUIRE(pd != nullptr);
   CHECK_THAT(meet.parameter, Catch::Matchers::WithinAbs(pd->parameter, 1e-8));
-  CHECK(PrimitivePeriod(ImpactMap(At(system, "omega", meet.parameter)), meet.point.orbit.eta, 2,
-                        2, 1e-6)
+  CHECK(PrimitivePeriod(ImpactMap(At(system, "omega", meet.parameter)), meet.point.orbit.eta, 2, 2,
+                        1e-6)
             .p == 1);
 
   // Started on P(1,1) traversed twice, the branch is followed as P(1,1).

@@ -1,7 +1,6 @@
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
-
-#include <catch2/catch.hpp>
 
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/flow.hpp"
@@ -21,7 +20,8 @@ struct FreeOscillator {
   Eigen::VectorXd z0;
 
   explicit FreeOscillator(double amplitude)
-      : z0(flow.Transient(0.0, Eigen::VectorXd::Constant(1, amplitude), Eigen::VectorXd::Zero(1))) {}
+      : z0(flow.Transient(0.0, Eigen::VectorXd::Constant(1, amplitude), Eigen::VectorXd::Zero(1))) {
+  }
 
   Signal Gap(double stop) const {
     return flow.Output(flow.Prepare({one, 0.0 * one, 0.0, -stop}), 0.0, z0);
@@ -54,7 +54,8 @@ TEST_CASE("a near-grazing crossing that a fixed-step sign check misses is found"
 TEST_CASE("a trajectory that stays below the stop has no crossing", "[events]") {
   const FreeOscillator oscillator(1.0);
   for (double gap : {1e-3, 1e-9, 1e-13}) {
-    CHECK_FALSE(FirstUpcrossing(oscillator.Gap(1.0 + gap), 0.5, 20.0, EventOptions{1e-13, 2 * kPi}));
+    CHECK_FALSE(
+        FirstUpcrossing(oscillator.Gap(1.0 + gap), 0.5, 20.0, EventOptions{1e-13, 2 * kPi}));
   }
 }
 

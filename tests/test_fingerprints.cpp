@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <cstring>
 
-#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using namespace impactkit;
 
@@ -99,8 +99,7 @@ std::uint64_t OrbitHash(const System& system, int p, int q) {
   options.p = p;
   options.q = q;
   PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination ==
-          Termination::kConverged);
+  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged);
   BitHash hash;
   hash.Add(orbit.eta);
   hash.Add(orbit.jacobian);

@@ -1,7 +1,6 @@
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
-
-#include <catch2/catch.hpp>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "cvode_impacts.hpp"
@@ -23,8 +22,8 @@ struct Regime {
 };
 
 Regime Chain(const char* name, int n, double c, double omega) {
-  const System s = UniformChain({n, 1.0, 1.0, c}, Eigen::VectorXd::LinSpaced(n, 0.5, 0.1), omega,
-                                0.1, 0.7);
+  const System s =
+      UniformChain({n, 1.0, 1.0, c}, Eigen::VectorXd::LinSpaced(n, 0.5, 0.1), omega, 0.1, 0.7);
   return {name, s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(n), omega};
 }
 
@@ -41,11 +40,15 @@ Regime NonProportional() {
 std::vector<Regime> Regimes() {
   Regime stuck = Chain("1-DOF with constant force (stuck subsystem)", 1, 0.2, 0.7);
   stuck.f0 = Eigen::VectorXd::Constant(1, 0.1);
-  return {Chain("1-DOF under-damped", 1, 0.1, 1.3),  Chain("1-DOF over-damped", 1, 3.0, 0.4),
+  return {Chain("1-DOF under-damped", 1, 0.1, 1.3),
+          Chain("1-DOF over-damped", 1, 3.0, 0.4),
           Chain("1-DOF critically damped", 1, 2.0, 0.9),
-          Chain("2-DOF paper", 2, 0.1, 1.4),         Chain("2-DOF over-damped", 2, 8.0, 1.4),
-          Chain("5-DOF under-damped", 5, 0.1, 0.9),  Chain("5-DOF over-damped", 5, 10.0, 0.9),
-          NonProportional(),                         stuck};
+          Chain("2-DOF paper", 2, 0.1, 1.4),
+          Chain("2-DOF over-damped", 2, 8.0, 1.4),
+          Chain("5-DOF under-damped", 5, 0.1, 0.9),
+          Chain("5-DOF over-damped", 5, 10.0, 0.9),
+          NonProportional(),
+          stuck};
 }
 
 }  // namespace
@@ -84,8 +87,8 @@ TEST_CASE("1-DOF closed forms: critical damping and the steady amplitude", "[flo
   const LinearFlow critical(one, 2.0 * one, one, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1),
                             1.0);
   const double x0 = 0.3, v0 = -1.1;
-  const Eigen::VectorXd z0 = critical.Transient(0.0, Eigen::VectorXd::Constant(1, x0),
-                                                Eigen::VectorXd::Constant(1, v0));
+  const Eigen::VectorXd z0 =
+      critical.Transient(0.0, Eigen::VectorXd::Constant(1, x0), Eigen::VectorXd::Constant(1, v0));
   Eigen::VectorXd x, v;
   for (double t : {0.5, 2.0, 9.0}) {
     critical.State(0.0, z0, t, &x, &v);
@@ -108,8 +111,8 @@ TEST_CASE("signal derivative bounds hold everywhere after their start", "[flow]"
     INFO(r.name);
     const LinearFlow flow(r.m, r.c, r.k, r.a, r.f0, r.omega);
     const Eigen::Index n = r.m.rows();
-    const Eigen::VectorXd z0 = flow.Transient(0.0, Eigen::VectorXd::Constant(n, 0.2),
-                                              Eigen::VectorXd::Constant(n, -0.3));
+    const Eigen::VectorXd z0 =
+        flow.Transient(0.0, Eigen::VectorXd::Constant(n, 0.2), Eigen::VectorXd::Constant(n, -0.3));
     LinearOutput last{Eigen::RowVectorXd::Unit(n, n - 1), Eigen::RowVectorXd::Zero(n), 0.1, -0.1};
     const Signal w = flow.Output(flow.Prepare(last), 0.0, z0);
     Eigen::VectorXd x, v;

@@ -1,11 +1,10 @@
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <complex>
 
-#include <catch2/catch.hpp>
-
-#include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/impact_map.hpp"
 
 using Catch::Matchers::WithinAbs;
 using namespace impactkit;
@@ -66,7 +65,10 @@ Eigen::MatrixXd StroboscopicMonodromy(const SteadyOrbit& o, int q) {
 }  // namespace
 
 TEST_CASE("the map's fixed points are the simulated orbits", "[impact_map]") {
-  struct Case { double omega; int p, q; };
+  struct Case {
+    double omega;
+    int p, q;
+  };
   for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{2.0, 1, 2}, Case{1.7, 4, 4}}) {
     INFO("omega = " << c.omega);
     const SteadyOrbit o = Steady(c.omega);
@@ -81,7 +83,10 @@ TEST_CASE("the map's fixed points are the simulated orbits", "[impact_map]") {
 
 TEST_CASE("analytic and finite-difference Jacobians agree, and match the stroboscopic map",
           "[impact_map]") {
-  struct Case { double omega; int p, q; };
+  struct Case {
+    double omega;
+    int p, q;
+  };
   for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{2.0, 1, 2}}) {
     INFO("omega = " << c.omega << ", P(" << c.p << "," << c.q << ")");
     const SteadyOrbit o = Steady(c.omega);

@@ -1,6 +1,7 @@
 /// Tests of the io area: system files (JSON, TOML), CSV tables and
 /// whole-or-nothing output files.
 
+#include <catch2/catch.hpp>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -12,16 +13,14 @@
 #include <string>
 #include <vector>
 
-#include <catch2/catch.hpp>
-
 #include "impactkit/io/csv.hpp"
-#include "impactkit/model/modal.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
+#include "impactkit/model/modal.hpp"
 
 using Catch::Matchers::Contains;
-using Catch::Matchers::StartsWith;
 using Catch::Matchers::Equals;
+using Catch::Matchers::StartsWith;
 using namespace impactkit;
 namespace fs = std::filesystem;
 
@@ -363,8 +362,7 @@ TEST_CASE("every error in a system file is one line naming the file and the fiel
 
 // nlohmann reports a number that overflows a double as out_of_range.406, not
 // as a parse_error; it must still come out as InvalidInput naming the file.
-TEST_CASE("a JSON number too large for a double is an InvalidInput naming the file",
-          "[io]") {
+TEST_CASE("a JSON number too large for a double is an InvalidInput naming the file", "[io]") {
   const std::string message = MessageOf<InvalidInput>(
       [] { ParseSystem(R"({"omega": 1e400})", SystemFileFormat::kJson, "bad.json"); });
   CHECK_THAT(message, StartsWith("bad.json:") && Contains("1e400"));
@@ -385,9 +383,9 @@ TEST_CASE("a key given twice, or nesting far beyond a system file's, is refused"
   // 100,000 levels (200 kB) once overflowed the stack; the depth is checked
   // while parsing, before any of it is built.
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-  CHECK_THAT(MessageOf<InvalidInput>(
-                 [&] { ParseSystem(deep, SystemFileFormat::kJson, "deep.json"); }),
-             Equals("deep.json: invalid JSON: nested deeper than 16 levels"));
+  CHECK_THAT(
+      MessageOf<InvalidInput>([&] { ParseSystem(deep, SystemFileFormat::kJson, "deep.json"); }),
+      Equals("deep.json: invalid JSON: nested deeper than 16 levels"));
 }
 
 // A key with a line break (legal in a JSON string or a quoted TOML key) is

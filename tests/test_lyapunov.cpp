@@ -5,9 +5,9 @@
 
 #include "impactkit/analysis/lyapunov.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

@@ -4,9 +4,9 @@
 #include <random>
 
 #include "impactkit/analysis/map_fit.hpp"
-#include "impactkit/model/system.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/system.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

@@ -1,11 +1,10 @@
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
-#include <catch2/catch.hpp>
-
 #include "impactkit/model/modal.hpp"
-#include "impactkit/model/system.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/model/system.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;

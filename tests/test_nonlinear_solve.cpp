@@ -1,3 +1,4 @@
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -5,8 +6,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
 
 #if __has_include(<unistd.h>)
 #include <unistd.h>
@@ -119,7 +118,7 @@ TEST_CASE("Newton through KINSOL converges quadratically to the tolerance", "[so
   INFO(s.BriefReport());
   CHECK(s.termination == Termination::kConverged);
   CHECK(s.residual_norm <= 1e-11);
-  CHECK(s.iterations <= 8);  // 5 observed
+  CHECK(s.iterations <= 8);                       // 5 observed
   CHECK(s.jacobian_evaluations == s.iterations);  // exact Newton: a fresh Jacobian each time
   CHECK(s.residual_evaluations >= s.iterations + 1);
   CHECK_THAT(x(0), WithinAbs(root(0), 1e-12));
@@ -170,8 +169,7 @@ TEST_CASE("a linear system is solved in one Newton iteration, far from the guess
   }
 }
 
-TEST_CASE("a residual that fails in part of the domain makes Newton shorten its step",
-          "[solve]") {
+TEST_CASE("a residual that fails in part of the domain makes Newton shorten its step", "[solve]") {
   // atan(x), but F cannot be evaluated for x < -1 (returns false, or NaN).
   // The full Newton step from 1.5 lands at 1.5 - atan(1.5)(1 + 1.5²) =
   // -1.694: KINSOL must halve it (-0.097) and go on from there.

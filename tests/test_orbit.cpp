@@ -1,6 +1,5 @@
-#include <cmath>
-
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/orbits/orbit.hpp"
@@ -29,7 +28,10 @@ PeriodicOrbit Solve(double omega, int p, int q, double offset, OrbitSummary* sum
 }  // namespace
 
 TEST_CASE("Newton finds the paper's orbits from seeds 1e-2 away", "[orbit]") {
-  struct Case { double omega; int p, q; };
+  struct Case {
+    double omega;
+    int p, q;
+  };
   for (const Case& c : {Case{0.9, 1, 1}, Case{0.6, 2, 1}, Case{2.0, 1, 2}, Case{1.4, 1, 1}}) {
     INFO("omega = " << c.omega);
     OrbitSummary summary;
@@ -130,7 +132,6 @@ TEST_CASE("the finite-difference Jacobian's multipliers are reported when it is 
     CHECK(std::abs(fd.multipliers(i) - analytic.multipliers(i)) < 1e-6);
   }
   const JacobianComparison comparison = CompareJacobians(map, fd.eta, 1);
-  CHECK(comparison.max_difference ==
-        (fd.jacobian - analytic.jacobian).cwiseAbs().maxCoeff());
+  CHECK(comparison.max_difference == (fd.jacobian - analytic.jacobian).cwiseAbs().maxCoeff());
   CHECK(comparison.max_relative_difference < 1e-6);
 }

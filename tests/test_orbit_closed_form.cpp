@@ -13,12 +13,11 @@
 // Its 2 x 2 Jacobian comes from implicit differentiation of
 //     G(τ, u, τ', u') = (xs, u') - y_p(τ') - Φ(τ' - τ) [(xs, -r u) - y_p(τ)] = 0.
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
-#include <vector>
-
-#include <catch2/catch.hpp>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/orbits/orbit.hpp"
@@ -52,8 +51,9 @@ struct Orbit11 {
 std::vector<Orbit11> ClosedFormOrbits(const Sdof& s) {
   const Eigen::Matrix2d phi = s.Phi(s.Period());
   const Eigen::Vector2d e2(0, 1);
-  const Eigen::Vector2d d =
-      (Eigen::Matrix2d::Identity() - phi).lu().solve((Eigen::Matrix2d::Identity() + s.r * phi) * e2);
+  const Eigen::Vector2d d = (Eigen::Matrix2d::Identity() - phi)
+                                .lu()
+                                .solve((Eigen::Matrix2d::Identity() + s.r * phi) * e2);
   const double x = s.Amplitude();
   const double qa = d(0) * d(0) + d(1) * d(1) / (s.omega * s.omega);
   const double qb = 2 * s.xs * d(0), qc = s.xs * s.xs - x * x;
@@ -76,8 +76,8 @@ Eigen::Matrix2d ClosedFormJacobian(const Sdof& s, const Orbit11& o) {
   const Eigen::Matrix2d phi = s.Phi(s.Period());
   const Eigen::Vector2d start = Eigen::Vector2d(s.xs, -s.r * o.u) - s.Steady(o.tau);
   Eigen::Matrix2d dg_next, dg_now;
-  dg_next.col(0) = -s.SteadyRate(t1) - s.B() * phi * start;  // ∂G/∂τ'
-  dg_next.col(1) = Eigen::Vector2d(0, 1);                    // ∂G/∂u'
+  dg_next.col(0) = -s.SteadyRate(t1) - s.B() * phi * start;         // ∂G/∂τ'
+  dg_next.col(1) = Eigen::Vector2d(0, 1);                           // ∂G/∂u'
   dg_now.col(0) = s.B() * phi * start + phi * s.SteadyRate(o.tau);  // ∂G/∂τ
   dg_now.col(1) = s.r * phi * Eigen::Vector2d(0, 1);                // ∂G/∂u
   return -dg_next.lu().solve(dg_now);
@@ -102,8 +102,8 @@ TEST_CASE("N = 1: the P(1,1) orbit and its multipliers match the closed form", "
     for (double r : {0.7, 0.8}) {
       for (double omega : {1.2, 1.6, 2.1, 2.6}) {
         const Sdof s{1.0, 1.0, 0.1, 0.5, xs, r, omega};
-        const System system = UniformChain({1, s.m, s.k, s.c}, Eigen::VectorXd::Constant(1, s.a),
-                                           omega, xs, r);
+        const System system =
+            UniformChain({1, s.m, s.k, s.c}, Eigen::VectorXd::Constant(1, s.a), omega, xs, r);
         const ImpactMap map(system);
         for (const Orbit11& o : ClosedFormOrbits(s)) {
           INFO("xs = " << xs << ", r = " << r << ", omega = " << omega << ", u = " << o.u);
@@ -112,8 +112,7 @@ TEST_CASE("N = 1: the P(1,1) orbit and its multipliers match the closed form", "
           if (LargestGapInside(s, o) > 1e-9) {
             // Not a true orbit: it would pass through the stop. The map must
             // find the earlier contact instead of returning after T.
-            CHECK((image.status != MapStatus::kOk ||
-                   image.eta(0) < o.tau + s.Period() - 1e-6));
+            CHECK((image.status != MapStatus::kOk || image.eta(0) < o.tau + s.Period() - 1e-6));
             ++checked_rejections;
             continue;
           }

@@ -4,13 +4,12 @@
 // the rejection of solutions that would pass through the stop.
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
 #include <string>
-#include <vector>
-
-#include <catch2/catch.hpp>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "closed_form_sdof.hpp"
 #include "impactkit/orbits/impact_map.hpp"
@@ -38,10 +37,10 @@ std::vector<Case> Cases() {
       for (double omega : {1.2, 1.6, 2.1, 2.6}) cases.push_back({xs, r, omega, true});
     }
   }
-  for (const Case& c : {Case{0.1, 0.8, 1.1, false}, Case{0.1, 0.7, 2.3, false},
-                        Case{0.1, 0.7, 2.4, false}, Case{0.2, 0.7, 1.9, false},
-                        Case{0.2, 0.8, 1.9, false}, Case{0.1, 0.7, 0.6, false},
-                        Case{0.2, 0.8, 0.8, false}, Case{0.1, 0.7, 0.9, false}}) {
+  for (const Case& c :
+       {Case{0.1, 0.8, 1.1, false}, Case{0.1, 0.7, 2.3, false}, Case{0.1, 0.7, 2.4, false},
+        Case{0.2, 0.7, 1.9, false}, Case{0.2, 0.8, 1.9, false}, Case{0.1, 0.7, 0.6, false},
+        Case{0.2, 0.8, 0.8, false}, Case{0.1, 0.7, 0.9, false}}) {
     cases.push_back(c);
   }
   return cases;

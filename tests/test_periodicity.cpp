@@ -36,10 +36,10 @@ TEST_CASE("the paper's periodic motions are recognised", "[periodicity]") {
     double omega;
     const char* motion;
   };
-  for (const Expected& e : {Expected{0.2, "P(inf,1)"}, Expected{0.4, "P(4,1)"},
-                            Expected{0.6, "P(2,1)"}, Expected{0.9, "P(1,1)"},
-                            Expected{1.4, "P(1,1)"}, Expected{1.7, "P(4,4)"},
-                            Expected{2.0, "P(1,2)"}}) {
+  for (const Expected& e :
+       {Expected{0.2, "P(inf,1)"}, Expected{0.4, "P(4,1)"}, Expected{0.6, "P(2,1)"},
+        Expected{0.9, "P(1,1)"}, Expected{1.4, "P(1,1)"}, Expected{1.7, "P(4,4)"},
+        Expected{2.0, "P(1,2)"}}) {
     INFO("omega = " << e.omega);
     CHECK(SteadyPeriod(e.omega).ToString() == e.motion);
   }
@@ -48,7 +48,8 @@ TEST_CASE("the paper's periodic motions are recognised", "[periodicity]") {
 TEST_CASE("a non-repeating window is not called periodic", "[periodicity]") {
   std::vector<Sample> strobe;
   for (int k = 0; k < 20; ++k) {
-    strobe.push_back(Sample{double(k), Eigen::Vector2d(std::sin(k * 1.0), 0.0), Eigen::Vector2d::Zero(), false});
+    strobe.push_back(
+        Sample{double(k), Eigen::Vector2d(std::sin(k * 1.0), 0.0), Eigen::Vector2d::Zero(), false});
   }
   CHECK_FALSE(DetectPeriod(strobe, {}, {}).periodic);
 }

@@ -1,6 +1,5 @@
-#include <cmath>
-
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"

@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/analysis/resonance.hpp"
+#include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 
 using Catch::Matchers::WithinAbs;

@@ -1,7 +1,6 @@
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
-
-#include <catch2/catch.hpp>
 
 #include "cvode_impacts.hpp"
 #include "impactkit/hybrid/recorders.hpp"
@@ -28,8 +27,8 @@ class ImpactLawChecker : public Observer {
     Eigen::VectorXd x, v;
     if (pending_speed_ >= 0 && !segment.Stuck()) {
       segment.StateAt(segment.Begin(), &x, &v);
-      worst_rebound_error_ = std::max(worst_rebound_error_,
-                                      std::abs(v(s_.contact_dof) + s_.restitution * pending_speed_));
+      worst_rebound_error_ = std::max(
+          worst_rebound_error_, std::abs(v(s_.contact_dof) + s_.restitution * pending_speed_));
     }
     pending_speed_ = -1.0;
     const double dt = s_.ForcingPeriod() / 4000.0;
@@ -89,7 +88,8 @@ TEST_CASE("elastic, undamped, unforced: energy conserved across 1000 impacts", "
   Simulator simulator(s);
   while (impacts.Impacts().size() < 1000) summary = simulator.Run(state, state.t + 100.0, impacts);
   double worst = 0.0;
-  for (const Impact& i : impacts.Impacts()) worst = std::max(worst, std::abs(Energy(s, i.x, i.v) - e0));
+  for (const Impact& i : impacts.Impacts())
+    worst = std::max(worst, std::abs(Energy(s, i.x, i.v) - e0));
   CHECK(worst <= 1e-9 * e0);
   CHECK(std::abs(Energy(s, state.x, state.v) - e0) <= 1e-9 * e0);
 }
@@ -127,8 +127,8 @@ TEST_CASE("first 50 impacts from rest match CVODE with rootfinding", "[simulate]
 
 TEST_CASE("a single mass against the stop (N = 1) sticks and releases", "[simulate]") {
   // The stuck subsystem of one mass is empty: Fs = A cos Ωt - k xs.
-  const System s = UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 0.3, 0.1,
-                                0.5);
+  const System s =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 0.3, 0.1, 0.5);
   struct Releases : Observer {
     std::vector<double> times;
     void OnRelease(double, double t) override { times.push_back(t); }
@@ -239,8 +239,7 @@ TEST_CASE("bad run arguments are rejected", "[simulate]") {
   CHECK_THROWS_AS(simulator.Run(state, 1.0), InvalidInput);
 }
 
-TEST_CASE("sticking in general form: 3 masses, general M, contact force at release",
-          "[simulate]") {
+TEST_CASE("sticking in general form: 3 masses, general M, contact force at release", "[simulate]") {
   // Non-diagonal M: the contact force includes the coupling through M⁻¹.
   System s = UniformChain({3, 1.0, 1.0, 0.1}, Eigen::Vector3d(0.5, 0.0, 0.0), 0.2, 0.1, 0.7);
   s.mass(1, 2) = s.mass(2, 1) = 0.2;

@@ -5,10 +5,10 @@
 
 #include "impactkit/analysis/classify.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/analysis/sweep.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
-#include "impactkit/analysis/sweep.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
@@ -119,8 +119,7 @@ TEST_CASE("sweep classification agrees with the orbits Newton finds", "[sweep]")
     orbit_options.p = expected[k].p;
     orbit_options.q = expected[k].q;
     PeriodicOrbit orbit;
-    REQUIRE(FindOrbit(s, seed->eta, orbit_options, &orbit).termination ==
-            Termination::kConverged);
+    REQUIRE(FindOrbit(s, seed->eta, orbit_options, &orbit).termination == Termination::kConverged);
     REQUIRE(orbit.stable);
     CHECK(point.classification.kind == MotionKind::kPeriodic);
     CHECK(point.classification.period.p == orbit.p);

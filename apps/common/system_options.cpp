@@ -76,7 +76,8 @@ void Apply(const Assignment& assignment, System& system) {
 std::string ParameterHelp() {
   std::vector<std::string> any, chain;
   for (const ParameterSpec& spec : ParameterTable()) {
-    const std::string name = spec.get ? std::string(spec.name) : fmt::format("{0}1..{0}N", spec.name);
+    const std::string name =
+        spec.get ? std::string(spec.name) : fmt::format("{0}1..{0}N", spec.name);
     (spec.chain_only ? chain : any)
         .push_back(fmt::format("{} ({}, {})", name, spec.meaning, spec.range));
   }

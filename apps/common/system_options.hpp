@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/model/system.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/model/system.hpp"
 
 namespace impactkit::cli {
 

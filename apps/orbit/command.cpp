@@ -78,9 +78,10 @@ void RunOrbit(const OrbitRequest& request) {
   std::optional<JacobianComparison> check;
   if (request.check_jacobian) {
     check = CompareJacobians(ImpactMap(system, options.map), orbit.eta, orbit.p);
-    fmt::print("check:       analytic vs finite-difference Jacobian: largest difference {:.3e} "
-               "({:.3e} relative to its largest entry)\n",
-               check->max_difference, check->max_relative_difference);
+    fmt::print(
+        "check:       analytic vs finite-difference Jacobian: largest difference {:.3e} "
+        "({:.3e} relative to its largest entry)\n",
+        check->max_difference, check->max_relative_difference);
   }
   if (json) {
     nlohmann::json j = OrbitJson(system, orbit, summary);

@@ -123,8 +123,7 @@ nlohmann::json OrbitStage(const System& paper, const Resolution& resolution) {
       options.p = static_cast<int>(seed->motion.p);
       options.q = seed->motion.q;
       PeriodicOrbit orbit;
-      if (FindOrbit(system, seed->eta, options, &orbit).termination ==
-          Termination::kConverged) {
+      if (FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged) {
         std::vector<double> v;
         for (const OrbitImpact& i : orbit.impacts) v.push_back(i.velocity);
         line = fmt::format("P({},{}) {}, max |multiplier| {:.4f}, impact speeds {:.6f}", orbit.p,

@@ -6,10 +6,10 @@
 ///
 ///     impactkit_impact_speeds OMEGA TRANSIENT PERIODS
 
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"

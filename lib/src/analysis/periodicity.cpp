@@ -1,9 +1,9 @@
 #include "impactkit/analysis/periodicity.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 namespace impactkit {
 namespace {
@@ -30,8 +30,7 @@ double Mismatch(const std::vector<Sample>& strobe, int q, double scale) {
 }
 
 long CountIn(const std::vector<double>& times, double begin, double end) {
-  return std::count_if(times.begin(), times.end(),
-                       [&](double t) { return t >= begin && t < end; });
+  return std::count_if(times.begin(), times.end(), [&](double t) { return t >= begin && t < end; });
 }
 
 }  // namespace
@@ -41,7 +40,8 @@ std::string MotionPeriod::ToString() const {
   return sticking ? fmt::format("P(inf,{})", q) : fmt::format("P({},{})", p, q);
 }
 
-MotionPeriod DetectPeriod(const std::vector<Sample>& strobe, const std::vector<double>& impact_times,
+MotionPeriod DetectPeriod(const std::vector<Sample>& strobe,
+                          const std::vector<double>& impact_times,
                           const std::vector<double>& chatter_end_times,
                           const PeriodOptions& options) {
   MotionPeriod result;

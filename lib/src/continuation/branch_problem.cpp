@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit::detail {
 namespace {

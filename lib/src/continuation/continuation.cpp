@@ -1,5 +1,4 @@
 #include "impactkit/continuation/continuation.hpp"
-#include "impactkit/model/parameters.hpp"
 
 #include <fmt/format.h>
 
@@ -10,6 +9,7 @@
 
 #include "continuation/branch_problem.hpp"
 #include "continuation/vanishing_impact.hpp"
+#include "impactkit/model/parameters.hpp"
 
 namespace impactkit {
 namespace {
@@ -327,8 +327,11 @@ class BranchTracer {
   /// their impacts renumbered.
   void EndAtBranchPoint(const BranchPoint& from, const BranchPoint& next, HalfBranch* half) const {
     const Eigen::VectorXd direction = from.repeat_gap;
-    const BranchPoint located = PrimitiveBifurcation(from, next).value_or(IllinoisZero(
-        from, next, [&](const BranchPoint& point) { return point.repeat_gap.dot(direction); }));
+    const BranchPoint located =
+        PrimitiveBifurcation(from, next)
+            .value_or(IllinoisZero(from, next, [&](const BranchPoint& point) {
+              return point.repeat_gap.dot(direction);
+            }));
     Accept(located, half);
     SpecialPoint special;
     special.type = SpecialPointType::kBranchPoint;
@@ -337,11 +340,11 @@ class BranchTracer {
     special.monitor = located.repeat_gap.cwiseAbs().maxCoeff();
     half->special_points.push_back(special);
     half->end = BranchEnd::kBranchPoint;
-    half->end_message = special.Describe(problem_.Parameter()) +
-                        fmt::format(": the orbit is P({},{}) traversed {} times",
-                                    problem_.p() / problem_.RepeatDivisor(),
-                                    problem_.q() / problem_.RepeatDivisor(),
-                                    problem_.RepeatDivisor());
+    half->end_message =
+        special.Describe(problem_.Parameter()) +
+        fmt::format(": the orbit is P({},{}) traversed {} times",
+                    problem_.p() / problem_.RepeatDivisor(),
+                    problem_.q() / problem_.RepeatDivisor(), problem_.RepeatDivisor());
   }
 
   /// The special point of a located zero of test function `test`, with its
@@ -366,7 +369,6 @@ class BranchTracer {
     }
     return special;
   }
-
 
   /// The real eigenvector of D P for its eigenvalue nearest -1, unit length.
   static Eigen::VectorXd FlipEigenvector(const Eigen::MatrixXd& jacobian) {
@@ -531,8 +533,7 @@ std::string SpecialPoint::Describe(const std::string& parameter_name) const {
                : fmt::format("{} (impact {} vanishes; depth {:.1e})", where, vanishing_impact + 1,
                              monitor);
   }
-  return fmt::format("{} (multiplier {:.9f}{:+.9f}i)", where, multiplier.real(),
-                     multiplier.imag());
+  return fmt::format("{} (multiplier {:.9f}{:+.9f}i)", where, multiplier.real(), multiplier.imag());
 }
 
 bool ContinuationOptions::IsValid(std::string* error) const {

@@ -67,7 +67,8 @@ const std::array<TestFunction, kBifurcationTestCount>& BifurcationTests() { retu
 std::array<double, kBifurcationTestCount> EvaluateBifurcationTests(
     const Eigen::MatrixXd& jacobian, const Eigen::VectorXcd& multipliers) {
   std::array<double, kBifurcationTestCount> values;
-  for (std::size_t i = 0; i < kTests.size(); ++i) values[i] = kTests[i].value(jacobian, multipliers);
+  for (std::size_t i = 0; i < kTests.size(); ++i)
+    values[i] = kTests[i].value(jacobian, multipliers);
   return values;
 }
 

@@ -97,7 +97,8 @@ double SlopeLowerBound(const Point& a, const Point& b, double bound) {
 
 /// The tolerance for time t: the requested one, or a few ulps of t.
 double TimeTolerance(double t, const EventOptions& options) {
-  return std::max(options.time_tolerance, 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t));
+  return std::max(options.time_tolerance,
+                  4.0 * std::numeric_limits<double>::epsilon() * std::abs(t));
 }
 
 /// The root of w in [a, b], where w(a) < 0 <= w(b) and w' > 0: Newton on the

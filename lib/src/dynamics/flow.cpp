@@ -1,12 +1,12 @@
 #include "impactkit/dynamics/flow.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "impactkit/core/errors.hpp"
 
@@ -89,8 +89,7 @@ BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
   for (std::size_t i = 0; i + 1 < reals.size(); i += 2) {
     d.basis.col(col) = vectors.col(reals[i]).real();
     d.basis.col(col + 1) = vectors.col(reals[i + 1]).real();
-    d.blocks.block<2, 2>(0, col) << lambda(reals[i]).real(), 0.0, 0.0,
-        lambda(reals[i + 1]).real();
+    d.blocks.block<2, 2>(0, col) << lambda(reals[i]).real(), 0.0, 0.0, lambda(reals[i + 1]).real();
     col += 2;
   }
   return d;
@@ -147,8 +146,8 @@ double ModeBasis::Envelope(double alpha, double gamma, const Decay& d) const {
     return std::min(generic, d.own * std::sqrt(alpha * alpha + ratio * ratio));
   }
   if (beta2 < 0) {
-    const double split = 0.5 * (std::abs(alpha + gamma / root) * d.slow +
-                                std::abs(alpha - gamma / root) * d.fast);
+    const double split =
+        0.5 * (std::abs(alpha + gamma / root) * d.slow + std::abs(alpha - gamma / root) * d.fast);
     return std::min(generic, split);
   }
   return generic;
@@ -158,9 +157,8 @@ double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
   return Envelope(alpha, gamma, DecayFrom(tau_from));
 }
 
-Signal::Signal(const std::vector<ModeBasis>* modes, double omega, double t0,
-               Eigen::VectorXd alpha, Eigen::VectorXd gamma, std::complex<double> forced,
-               double constant)
+Signal::Signal(const std::vector<ModeBasis>* modes, double omega, double t0, Eigen::VectorXd alpha,
+               Eigen::VectorXd gamma, std::complex<double> forced, double constant)
     : modes_(modes),
       omega_(omega),
       t0_(t0),
@@ -180,8 +178,7 @@ void Signal::ValueAndSlope(double t, double* value, double* slope) const {
   ValueSlopeCurvature(t, value, slope, &curvature);
 }
 
-void Signal::ValueSlopeCurvature(double t, double* value, double* slope,
-                                 double* curvature) const {
+void Signal::ValueSlopeCurvature(double t, double* value, double* slope, double* curvature) const {
   const double tau = t - t0_;
   double w = constant_, dw = 0.0, d2w = 0.0;
   const auto& modes = *modes_;
@@ -303,7 +300,8 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
 
     // Steady response of this block: (iΩ - B_j) Z_j = b_j, B_j z_c = -f_j.
     const Eigen::Matrix2cd resolvent =
-        std::complex<double>(0.0, omega) * Eigen::Matrix2cd::Identity() - block.cast<std::complex<double>>();
+        std::complex<double>(0.0, omega) * Eigen::Matrix2cd::Identity() -
+        block.cast<std::complex<double>>();
     const std::complex<double> resolvent_det = resolvent.determinant();
     const Eigen::Vector2d bj = modal_b.segment<2>(2 * j);
     if (std::abs(resolvent_det) <= 1e-12 * std::max(omega * omega, std::abs(det))) {
@@ -362,7 +360,8 @@ PreparedOutput LinearFlow::Prepare(const LinearOutput& output) const {
   l << output.wx, output.wv;
   PreparedOutput p;
   p.modal_weights = l * basis_;
-  p.forced = (p.modal_weights.cast<std::complex<double>>() * steady_forced_).value() + output.cos_amplitude;
+  p.forced = (p.modal_weights.cast<std::complex<double>>() * steady_forced_).value() +
+             output.cos_amplitude;
   p.constant = p.modal_weights.dot(steady_constant_) + output.offset;
   return p;
 }

@@ -1,9 +1,9 @@
 #include "impactkit/io/csv.hpp"
 
+#include <fmt/format.h>
+
 #include <iterator>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace impactkit {
 namespace {
@@ -40,9 +40,10 @@ void CsvWriter::WriteRow(std::span<const double> values, std::span<const std::st
   }
   for (const std::string& label : labels) {
     if (label.find_first_of(",\r\n\"") != std::string::npos) {
-      throw std::invalid_argument(fmt::format("a CSV label must have no comma, quote or line "
-                                              "break, got '{}'",
-                                              label));
+      throw std::invalid_argument(
+          fmt::format("a CSV label must have no comma, quote or line "
+                      "break, got '{}'",
+                      label));
     }
   }
   fmt::format_to(std::back_inserter(buffer_), "{}{}{}\n", fmt::join(values, ","),

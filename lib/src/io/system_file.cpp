@@ -1,17 +1,17 @@
 #include "impactkit/io/system_file.hpp"
-#include "impactkit/model/parameters.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <sstream>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
+#include "impactkit/model/parameters.hpp"
 #include "io/toml_json.hpp"
 
 namespace impactkit {

@@ -1,10 +1,10 @@
 #include "io/toml_json.hpp"
 
-#include <algorithm>
-#include <string>
-
 #include <fmt/format.h>
 #include <toml++/toml.h>
+
+#include <algorithm>
+#include <string>
 
 #include "impactkit/model/system.hpp"
 

@@ -3,9 +3,8 @@
 /// TOML documents as JSON values: system files come in both syntaxes, and
 /// converting TOML's tree to JSON's lets one schema reader serve both.
 
-#include <string_view>
-
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 namespace impactkit {
 

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 
-
 namespace impactkit {
 namespace {
 
@@ -195,8 +194,8 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
   if (!problem.Residual(eta, &u)) {
     const MapResult image = map.Apply(eta, options.p, false);
     summary.termination = Termination::kFailure;
-    summary.message = fmt::format("the map failed at the seed after {} of {} impacts: {}", image.impacts_done, options.p,
-                                  ToString(image.status));
+    summary.message = fmt::format("the map failed at the seed after {} of {} impacts: {}",
+                                  image.impacts_done, options.p, ToString(image.status));
     return summary;
   }
   SolveSummary solve = SolveNewton(residual, jacobian, options.newton, &eta);

@@ -1,13 +1,14 @@
 /// What the two nonlinear solvers share: options, summaries, the guarded
 /// callbacks, and the one convergence test (max |F| at the returned point).
 
-#include <cmath>
-#include <utility>
+#include "impactkit/solvers/nonlinear_solve.hpp"
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <utility>
+
 #include "impactkit/core/errors.hpp"
-#include "impactkit/solvers/nonlinear_solve.hpp"
 #include "solvers/nonlinear_solve_common.hpp"
 
 namespace impactkit {
@@ -67,8 +68,8 @@ GuardedProblem::Outcome GuardedProblem::EvaluateResidual(const double* x) {
   }
   if (!ok) return Outcome::kNotEvaluable;
   if (f_.size() != n_) {
-    return Hold(std::make_exception_ptr(InvalidInput(fmt::format(
-        "the residual must have the size of x, {}, but has size {}", n_, f_.size()))));
+    return Hold(std::make_exception_ptr(InvalidInput(
+        fmt::format("the residual must have the size of x, {}, but has size {}", n_, f_.size()))));
   }
   if (!f_.allFinite()) return Outcome::kNotEvaluable;
   const double norm = f_.cwiseAbs().maxCoeff();

@@ -1,11 +1,11 @@
 /// Levenberg–Marquardt through Ceres: the only translation unit that
 /// includes Ceres (it is heavy to compile).
 
-#include <algorithm>
-#include <chrono>
-
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
 
 #include "impactkit/solvers/nonlinear_solve.hpp"
 #include "solvers/nonlinear_solve_common.hpp"

@@ -14,16 +14,16 @@
 ///  - steps are capped at mxnewtstep, by default 1000 |x0| but at least 1
 ///    (so 1 from x0 = 0), and five capped steps in a row end the solve.
 
-#include <algorithm>
-#include <chrono>
-#include <new>
-#include <stdexcept>
-
 #include <fmt/format.h>
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <chrono>
+#include <new>
+#include <stdexcept>
 
 #include "impactkit/solvers/nonlinear_solve.hpp"
 #include "solvers/nonlinear_solve_common.hpp"
@@ -33,17 +33,18 @@ namespace {
 
 using Outcome = GuardedProblem::Outcome;
 
-Eigen::Map<Eigen::VectorXd> View(N_Vector v) {
-  return {N_VGetArrayPointer(v), N_VGetLength(v)};
-}
+Eigen::Map<Eigen::VectorXd> View(N_Vector v) { return {N_VGetArrayPointer(v), N_VGetLength(v)}; }
 
 /// KINSOL's callback convention: 0 success, > 0 recoverable (shorten the
 /// step), < 0 stop now.
 int ToKinsol(Outcome outcome) {
   switch (outcome) {
-    case Outcome::kOk: return 0;
-    case Outcome::kNotEvaluable: return 1;
-    case Outcome::kAbort: return -1;
+    case Outcome::kOk:
+      return 0;
+    case Outcome::kNotEvaluable:
+      return 1;
+    case Outcome::kAbort:
+      return -1;
   }
   return -1;
 }
@@ -115,27 +116,48 @@ class KinsolSession {
 /// KINGetReturnFlagName (6.4) answers "NONE" for the F-failure flags.
 std::string FlagName(int flag) {
   switch (flag) {
-    case KIN_SUCCESS: return "KIN_SUCCESS";
-    case KIN_INITIAL_GUESS_OK: return "KIN_INITIAL_GUESS_OK";
-    case KIN_STEP_LT_STPTOL: return "KIN_STEP_LT_STPTOL";
-    case KIN_WARNING: return "KIN_WARNING";
-    case KIN_MEM_NULL: return "KIN_MEM_NULL";
-    case KIN_ILL_INPUT: return "KIN_ILL_INPUT";
-    case KIN_NO_MALLOC: return "KIN_NO_MALLOC";
-    case KIN_MEM_FAIL: return "KIN_MEM_FAIL";
-    case KIN_LINESEARCH_NONCONV: return "KIN_LINESEARCH_NONCONV";
-    case KIN_MAXITER_REACHED: return "KIN_MAXITER_REACHED";
-    case KIN_MXNEWT_5X_EXCEEDED: return "KIN_MXNEWT_5X_EXCEEDED";
-    case KIN_LINESEARCH_BCFAIL: return "KIN_LINESEARCH_BCFAIL";
-    case KIN_LINSOLV_NO_RECOVERY: return "KIN_LINSOLV_NO_RECOVERY";
-    case KIN_LINIT_FAIL: return "KIN_LINIT_FAIL";
-    case KIN_LSETUP_FAIL: return "KIN_LSETUP_FAIL";
-    case KIN_LSOLVE_FAIL: return "KIN_LSOLVE_FAIL";
-    case KIN_SYSFUNC_FAIL: return "KIN_SYSFUNC_FAIL";
-    case KIN_FIRST_SYSFUNC_ERR: return "KIN_FIRST_SYSFUNC_ERR";
-    case KIN_REPTD_SYSFUNC_ERR: return "KIN_REPTD_SYSFUNC_ERR";
-    case KIN_VECTOROP_ERR: return "KIN_VECTOROP_ERR";
-    case KIN_CONTEXT_ERR: return "KIN_CONTEXT_ERR";
+    case KIN_SUCCESS:
+      return "KIN_SUCCESS";
+    case KIN_INITIAL_GUESS_OK:
+      return "KIN_INITIAL_GUESS_OK";
+    case KIN_STEP_LT_STPTOL:
+      return "KIN_STEP_LT_STPTOL";
+    case KIN_WARNING:
+      return "KIN_WARNING";
+    case KIN_MEM_NULL:
+      return "KIN_MEM_NULL";
+    case KIN_ILL_INPUT:
+      return "KIN_ILL_INPUT";
+    case KIN_NO_MALLOC:
+      return "KIN_NO_MALLOC";
+    case KIN_MEM_FAIL:
+      return "KIN_MEM_FAIL";
+    case KIN_LINESEARCH_NONCONV:
+      return "KIN_LINESEARCH_NONCONV";
+    case KIN_MAXITER_REACHED:
+      return "KIN_MAXITER_REACHED";
+    case KIN_MXNEWT_5X_EXCEEDED:
+      return "KIN_MXNEWT_5X_EXCEEDED";
+    case KIN_LINESEARCH_BCFAIL:
+      return "KIN_LINESEARCH_BCFAIL";
+    case KIN_LINSOLV_NO_RECOVERY:
+      return "KIN_LINSOLV_NO_RECOVERY";
+    case KIN_LINIT_FAIL:
+      return "KIN_LINIT_FAIL";
+    case KIN_LSETUP_FAIL:
+      return "KIN_LSETUP_FAIL";
+    case KIN_LSOLVE_FAIL:
+      return "KIN_LSOLVE_FAIL";
+    case KIN_SYSFUNC_FAIL:
+      return "KIN_SYSFUNC_FAIL";
+    case KIN_FIRST_SYSFUNC_ERR:
+      return "KIN_FIRST_SYSFUNC_ERR";
+    case KIN_REPTD_SYSFUNC_ERR:
+      return "KIN_REPTD_SYSFUNC_ERR";
+    case KIN_VECTOROP_ERR:
+      return "KIN_VECTOROP_ERR";
+    case KIN_CONTEXT_ERR:
+      return "KIN_CONTEXT_ERR";
   }
   return fmt::format("KINSOL flag {}", flag);
 }

@@ -11,11 +11,11 @@
 #include <exception>
 #include <optional>
 
-#include "impactkit/model/system.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 int main(int argc, char** argv) {
   using namespace impactkit;

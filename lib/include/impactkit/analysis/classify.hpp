@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "impactkit/analysis/lyapunov.hpp"
-#include "impactkit/model/system.hpp"
 #include "impactkit/analysis/periodicity.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/system.hpp"
 
 namespace impactkit {
 

@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/impact_map.hpp"
 
 namespace impactkit {
 

@@ -3,9 +3,8 @@
 /// A starting point for FindOrbit (orbit.hpp) from a steady simulation: the
 /// last impact of the recorded window, with the period the window showed.
 
-#include <optional>
-
 #include <Eigen/Dense>
+#include <optional>
 
 #include "impactkit/analysis/periodicity.hpp"
 #include "impactkit/model/system.hpp"

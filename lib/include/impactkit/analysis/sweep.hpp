@@ -41,8 +41,8 @@
 #include <vector>
 
 #include "impactkit/analysis/classify.hpp"
-#include "impactkit/model/system.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/system.hpp"
 
 namespace impactkit {
 

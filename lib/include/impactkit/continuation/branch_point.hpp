@@ -2,9 +2,8 @@
 /// \file branch_point.hpp
 /// One corrected point of a branch of periodic orbits.
 
-#include <array>
-
 #include <Eigen/Dense>
+#include <array>
 
 #include "impactkit/continuation/test_functions.hpp"
 #include "impactkit/orbits/orbit.hpp"

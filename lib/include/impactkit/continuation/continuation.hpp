@@ -36,9 +36,9 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/model/system.hpp"
 #include "impactkit/continuation/branch_point.hpp"
 #include "impactkit/continuation/test_functions.hpp"
+#include "impactkit/model/system.hpp"
 #include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit {

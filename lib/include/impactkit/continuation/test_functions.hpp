@@ -11,13 +11,12 @@
 /// Continuation watches each for a sign change between consecutive points
 /// and locates its zero; the two-parameter code follows the same list.
 
+#include <Eigen/Dense>
 #include <array>
 #include <complex>
 #include <optional>
 #include <string>
 #include <string_view>
-
-#include <Eigen/Dense>
 
 namespace impactkit {
 

@@ -23,10 +23,9 @@
 /// exponential sum (Signal) whose derivatives of every order have the same
 /// form, with computable bounds: the basis of event detection (events.hpp).
 
+#include <Eigen/Dense>
 #include <complex>
 #include <vector>
-
-#include <Eigen/Dense>
 
 namespace impactkit {
 
@@ -61,9 +60,8 @@ class Signal {
  public:
   friend class LinearFlow;
   Signal() = default;
-  Signal(const std::vector<ModeBasis>* modes, double omega, double t0,
-         Eigen::VectorXd alpha, Eigen::VectorXd gamma, std::complex<double> forced,
-         double constant);
+  Signal(const std::vector<ModeBasis>* modes, double omega, double t0, Eigen::VectorXd alpha,
+         Eigen::VectorXd gamma, std::complex<double> forced, double constant);
 
   double Value(double t) const;
   /// w(t) and w'(t) in one pass (they share the transcendental calls).
@@ -153,10 +151,10 @@ class LinearFlow {
   double omega_ = 0.0;
   double fastest_rate_ = 0.0;
   std::vector<ModeBasis> modes_;
-  Eigen::MatrixXd basis_;          ///< V: y = V z, columns in pairs per mode
-  Eigen::MatrixXd inverse_basis_;  ///< W = V⁻¹
-  Eigen::MatrixXd shifted_blocks_; ///< 2 x 2n: per mode, B_j + a_j I
-  Eigen::VectorXcd steady_forced_; ///< Z: z_p(t) = Re(Z e^{iΩt}) + z_c
+  Eigen::MatrixXd basis_;           ///< V: y = V z, columns in pairs per mode
+  Eigen::MatrixXd inverse_basis_;   ///< W = V⁻¹
+  Eigen::MatrixXd shifted_blocks_;  ///< 2 x 2n: per mode, B_j + a_j I
+  Eigen::VectorXcd steady_forced_;  ///< Z: z_p(t) = Re(Z e^{iΩt}) + z_c
   Eigen::VectorXd steady_constant_;
   Eigen::MatrixXd system_matrix_;
 };

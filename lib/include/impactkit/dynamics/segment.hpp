@@ -14,8 +14,8 @@ class Segment {
  public:
   /// `flow` is the free flow (n = N) or, when `stuck`, the stuck subsystem
   /// (n = N - 1, the contact DOF removed and held at `stop`).
-  Segment(const LinearFlow& flow, double t0, const Eigen::VectorXd& z0, double begin,
-          double end, bool stuck, int contact_dof, double stop);
+  Segment(const LinearFlow& flow, double t0, const Eigen::VectorXd& z0, double begin, double end,
+          bool stuck, int contact_dof, double stop);
 
   double Begin() const { return begin_; }
   double End() const { return end_; }

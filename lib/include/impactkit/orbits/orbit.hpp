@@ -11,16 +11,15 @@
 /// point (the multipliers); the orbit is stable when all lie inside the unit
 /// circle. Unstable orbits are found as readily as stable ones.
 
+#include <Eigen/Dense>
 #include <complex>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-
 #include "impactkit/orbits/impact_map.hpp"
-#include "impactkit/solvers/nonlinear_solve.hpp"
 #include "impactkit/orbits/orbit_contacts.hpp"
+#include "impactkit/solvers/nonlinear_solve.hpp"
 
 namespace impactkit {
 
@@ -55,13 +54,13 @@ struct PeriodicOrbit {
   int p = 0;
   int q = 0;
   double omega = 0.0;
-  Eigen::VectorXd eta;              ///< the fixed point, τ in [0, T)
-  std::vector<OrbitImpact> impacts; ///< the p impacts from eta on, in time order
-  Eigen::MatrixXd jacobian;         ///< D P_I^p at eta
-  Eigen::VectorXcd multipliers;     ///< eigenvalues of `jacobian`, by decreasing modulus
-  bool stable = false;              ///< every |multiplier| < 1
-  double residual = 0.0;            ///< max |U(eta)|
-  OrbitContacts contacts;           ///< extent in x_c and the grazing monitors
+  Eigen::VectorXd eta;               ///< the fixed point, τ in [0, T)
+  std::vector<OrbitImpact> impacts;  ///< the p impacts from eta on, in time order
+  Eigen::MatrixXd jacobian;          ///< D P_I^p at eta
+  Eigen::VectorXcd multipliers;      ///< eigenvalues of `jacobian`, by decreasing modulus
+  bool stable = false;               ///< every |multiplier| < 1
+  double residual = 0.0;             ///< max |U(eta)|
+  OrbitContacts contacts;            ///< extent in x_c and the grazing monitors
 };
 
 /// The orbit P(p, q) through the fixed point `eta` of P_I^p: impacts,

@@ -9,11 +9,10 @@
 /// max_i |F_i| at the returned point, whatever the library's own tests said;
 /// a point where F is not finite never counts.
 
+#include <Eigen/Dense>
 #include <functional>
 #include <limits>
 #include <string>
-
-#include <Eigen/Dense>
 
 #include "impactkit/core/termination.hpp"
 
@@ -49,8 +48,8 @@ struct NewtonOptions {
 
 /// Summary::iterations counts Newton iterations, or LM steps tried.
 struct SolveSummary : Summary {
-  int residual_evaluations = 0;  ///< calls of the user's residual
-  int jacobian_evaluations = 0;  ///< calls of the user's Jacobian
+  int residual_evaluations = 0;                                    ///< calls of the user's residual
+  int jacobian_evaluations = 0;                                    ///< calls of the user's Jacobian
   double residual_norm = std::numeric_limits<double>::infinity();  ///< max |F(x)| at the returned x
 
   /// One line: termination, max|F|, counts, time and message.
