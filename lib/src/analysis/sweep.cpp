@@ -18,14 +18,21 @@
 namespace impactkit {
 namespace {
 
-/// `system` with the swept parameter set to `value`, validated.
+/// Throws InvalidInput(`what`) prefixed with where in the sweep it arose.
+[[noreturn]] void ThrowAt(const std::string& name, double value, const InvalidInput& error) {
+  throw InvalidInput(fmt::format("sweep of {} at {}: {}", name, value, error.what()));
+}
+
+/// `system` with the swept parameter set to `value`, its parameters checked
+/// up front; the resonances are rejected where each value's simulator
+/// decomposes its flows (once per value).
 System SystemAt(const System& base, const std::string& name, double value) {
   System system = base;
   SetParameter(system, name, value);
   try {
-    Validate(system);
+    ValidateParameters(system);
   } catch (const InvalidInput& error) {
-    throw InvalidInput(fmt::format("sweep of {} at {}: {}", name, value, error.what()));
+    ThrowAt(name, value, error);
   }
   return system;
 }
@@ -56,10 +63,18 @@ HybridState FixedState(const SweepPlan& plan, int k) {
   return state;
 }
 
+Simulator SimulatorAt(const System& system, const SweepOptions& options) {
+  try {
+    return Simulator(system, options.simulation);
+  } catch (const InvalidInput& error) {
+    ThrowAt(options.parameter, GetParameter(system, options.parameter), error);
+  }
+}
+
 class ValueRun {
  public:
   ValueRun(const System& system, const SweepOptions& options)
-      : simulator_(system, options.simulation), period_(system.ForcingPeriod()) {}
+      : simulator_(SimulatorAt(system, options)), period_(system.ForcingPeriod()) {}
 
   /// Advances to period `k` (t = k T); false if the simulator stopped early.
   bool RunTo(HybridState& state, int k, Observer* observer) {

@@ -576,7 +576,7 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
                       options.lower, options.upper));
   for (double bound : {options.lower, options.upper}) {
     try {
-      problem.SystemAt(bound);
+      Validate(problem.SystemAt(bound));
     } catch (const InvalidInput& e) {
       throw InvalidInput(
           fmt::format("the bound {} = {} is not valid: {}", options.parameter, bound, e.what()));

@@ -33,8 +33,7 @@ TimeSeriesRecorder::TimeSeriesRecorder(double t_first, double dt) : t_first_(t_f
 void TimeSeriesRecorder::OnSegment(const Segment& segment) {
   // A grid time that equals Begin() up to rounding belongs to this segment
   // (evaluating the closed form a few ulps outside it is harmless).
-  const long first_inside =
-      static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_ - 1e-9));
+  const long first_inside = static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_ - 1e-9));
   next_ = std::max(next_, first_inside);
   for (double t = t_first_ + next_ * dt_; t <= segment.End(); t = t_first_ + (++next_) * dt_) {
     Sample s;
@@ -76,7 +75,8 @@ void ExtremaRecorder::OnSegment(const Segment& segment) {
         SignChanges(position.Derivative(), segment.Begin(), segment.End(), options);
     times.push_back(segment.Begin());
     times.push_back(segment.End());
-    for (double t : times) Include(static_cast<long>(std::floor(t / period_)), i, position.Value(t));
+    for (double t : times)
+      Include(static_cast<long>(std::floor(t / period_)), i, position.Value(t));
     // A period boundary inside the segment closes one period and opens the next.
     for (long k = static_cast<long>(std::ceil(segment.Begin() / period_));
          k * period_ <= segment.End(); ++k) {

@@ -1,15 +1,14 @@
 #include "impactkit/hybrid/simulator.hpp"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <optional>
 
-#include <fmt/format.h>
-
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/segment.hpp"
-#include "dynamics/subsystem.hpp"
 
 namespace impactkit {
 
@@ -19,10 +18,14 @@ std::string ToString(ChatterMethod method) {
 
 std::string ToString(SimulationStatus status) {
   switch (status) {
-    case SimulationStatus::kReachedEnd: return "reached end";
-    case SimulationStatus::kEventLimit: return "event limit reached";
-    case SimulationStatus::kStopped: return "stopped by observer";
-    case SimulationStatus::kStalled: return "stalled: events repeat at one instant";
+    case SimulationStatus::kReachedEnd:
+      return "reached end";
+    case SimulationStatus::kEventLimit:
+      return "event limit reached";
+    case SimulationStatus::kStopped:
+      return "stopped by observer";
+    case SimulationStatus::kStalled:
+      return "stalled: events repeat at one instant";
   }
   return "unknown";
 }
@@ -39,134 +42,50 @@ bool SimulationOptions::IsValid(std::string* error) const {
     return fail(fmt::format("chatter_threshold must be finite and > 0, got {}", chatter_threshold));
   }
   if (!(event_time_tolerance > 0 && event_time_tolerance < 1e-3)) {
-    return fail(fmt::format("event_time_tolerance must be in (0, 1e-3), got {}",
-                            event_time_tolerance));
+    return fail(
+        fmt::format("event_time_tolerance must be in (0, 1e-3), got {}", event_time_tolerance));
   }
   if (max_events < 1) return fail(fmt::format("max_events must be >= 1, got {}", max_events));
   return true;
 }
 
 std::string SimulationSummary::BriefReport() const {
-  return fmt::format("{}: {} impacts, {} chatter sequences ended, {} releases, stuck {:.6g} time "
-                     "units, {:.3g} s",
-                     ToString(status), impacts, chatter_jumps, releases, stuck_time,
-                     elapsed_seconds);
+  return fmt::format(
+      "{}: {} impacts, {} chatter sequences ended, {} releases, stuck {:.6g} time "
+      "units, {:.3g} s",
+      ToString(status), impacts, chatter_jumps, releases, stuck_time, elapsed_seconds);
 }
 
-/// Everything that depends only on the system: both flows, decomposed once,
-/// and the outputs the event loop evaluates.
+/// The hybrid system (both modes' flows, decomposed once) and the options.
 struct Simulator::Impl {
-  System system;
+  std::shared_ptr<const HybridSystem> hybrid;
   SimulationOptions options;
   EventOptions event_options;
-  LinearFlow free_flow;
-  LinearFlow stuck_flow;
-  PreparedOutput gap;             ///< x_c - xs, free flight
-  LinearOutput contact_force;     ///< Fs, stuck subsystem
-  PreparedOutput release_witness; ///< -Fs, stuck subsystem
-  Eigen::RowVectorXd inverse_mass_row;  ///< e_cᵀ M⁻¹
-  Eigen::MatrixXd inverse_mass;
-  double time_scale = 1.0;
 
-  Impl(const System& s, const SimulationOptions& o);
-  /// a_c and its rate of change in free flight, using `force` and
-  /// `acceleration` (size N) as scratch.
-  double FreeAcceleration(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
-                          Eigen::VectorXd* force, Eigen::VectorXd* acceleration,
-                          double* jerk) const;
-  double ContactForce(double t, const Eigen::VectorXd& xs, const Eigen::VectorXd& vs) const;
+  Impl(std::shared_ptr<const HybridSystem> h, const SimulationOptions& o)
+      : hybrid(std::move(h)), options(o) {
+    std::string error;
+    if (!options.IsValid(&error)) throw InvalidInput(error);
+    event_options.time_tolerance = options.event_time_tolerance;
+    event_options.time_scale = hybrid->TimeScale();
+  }
 };
-
-namespace {
-
-/// Fs = row c of (A cos Ωt - C v - K x - M a) with x_c = xs, v_c = a_c = 0 and
-/// a the accelerations of the stuck subsystem: linear in its state.
-LinearOutput ContactForceOutput(const System& s) {
-  const int c = s.contact_dof;
-  const Eigen::MatrixXd ms = WithoutIndex(s.mass, c);
-  const Eigen::RowVectorXd coupling =
-      WithoutIndex(Eigen::VectorXd(s.mass.row(c).transpose()), c).transpose() * ms.inverse();
-  auto row = [&](const Eigen::MatrixXd& m) {
-    return Eigen::RowVectorXd(WithoutIndex(Eigen::VectorXd(m.row(c).transpose()), c).transpose());
-  };
-  auto column = [&](const Eigen::MatrixXd& m) {
-    return WithoutIndex(Eigen::VectorXd(m.col(c)), c);
-  };
-  LinearOutput f;
-  f.wx = -row(s.stiffness) + coupling * WithoutIndex(s.stiffness, c);
-  f.wv = -row(s.damping) + coupling * WithoutIndex(s.damping, c);
-  f.cos_amplitude = s.forcing(c) - coupling.dot(WithoutIndex(s.forcing, c));
-  f.offset = (-s.stiffness(c, c) + coupling.dot(column(s.stiffness))) * s.stop;
-  return f;
-}
-
-LinearOutput Negated(LinearOutput output) {
-  output.wx = -output.wx;
-  output.wv = -output.wv;
-  output.cos_amplitude = -output.cos_amplitude;
-  output.offset = -output.offset;
-  return output;
-}
-
-}  // namespace
-
-Simulator::Impl::Impl(const System& s, const SimulationOptions& o) : system(s), options(o) {
-  Validate(system);
-  std::string error;
-  if (!options.IsValid(&error)) throw InvalidInput(error);
-  const int n = s.Dof(), c = s.contact_dof;
-  free_flow = LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(n),
-                         s.omega);
-  stuck_flow = LinearFlow(WithoutIndex(s.mass, c), WithoutIndex(s.damping, c),
-                          WithoutIndex(s.stiffness, c), WithoutIndex(s.forcing, c),
-                          -WithoutIndex(Eigen::VectorXd(s.stiffness.col(c)), c) * s.stop,
-                          s.omega);
-  LinearOutput gap_output{Eigen::RowVectorXd::Unit(n, c), Eigen::RowVectorXd::Zero(n), 0.0,
-                          -s.stop};
-  gap = free_flow.Prepare(gap_output);
-  contact_force = ContactForceOutput(s);
-  release_witness = stuck_flow.Prepare(Negated(contact_force));
-  inverse_mass = s.mass.inverse();
-  inverse_mass_row = inverse_mass.row(c);
-  time_scale = free_flow.ShortestPeriod();
-  event_options.time_tolerance = options.event_time_tolerance;
-  event_options.time_scale = time_scale;
-}
-
-double Simulator::Impl::FreeAcceleration(double t, const Eigen::VectorXd& x,
-                                         const Eigen::VectorXd& v, Eigen::VectorXd* force,
-                                         Eigen::VectorXd* acceleration, double* jerk) const {
-  const double wt = system.omega * t;
-  force->noalias() = -system.damping * v;
-  force->noalias() -= system.stiffness * x;
-  *force += system.forcing * std::cos(wt);
-  acceleration->noalias() = inverse_mass * *force;
-  // d/dt of the force: -A Ω sin Ωt - C a - K v.
-  force->noalias() = -system.damping * *acceleration;
-  force->noalias() -= system.stiffness * v;
-  *force -= system.forcing * (system.omega * std::sin(wt));
-  *jerk = inverse_mass_row.dot(*force);
-  return (*acceleration)(system.contact_dof);
-}
-
-double Simulator::Impl::ContactForce(double t, const Eigen::VectorXd& xs,
-                                     const Eigen::VectorXd& vs) const {
-  return contact_force.wx.dot(xs) + contact_force.wv.dot(vs) +
-         contact_force.cos_amplitude * std::cos(system.omega * t) + contact_force.offset;
-}
 
 namespace {
 
 /// One run: the loop of simulate.hpp's pseudocode over a hybrid state.
 class HybridRun {
  public:
-  HybridRun(const Simulator::Impl& impl, HybridState& state, double t_end, Observer& observer)
-      : impl_(impl),
+  HybridRun(const HybridSystem& hybrid, const SimulationOptions& options,
+            const EventOptions& events, HybridState& state, double t_end, Observer& observer)
+      : hybrid_(hybrid),
+        options_(options),
+        events_(events),
         state_(state),
         t_end_(t_end),
         observer_(observer),
-        force_scratch_(impl.system.Dof()),
-        acceleration_scratch_(impl.system.Dof()) {}
+        force_scratch_(hybrid_.GetSystem().Dof()),
+        acceleration_scratch_(hybrid_.GetSystem().Dof()) {}
 
   SimulationSummary Execute();
 
@@ -181,7 +100,9 @@ class HybridRun {
     return summary_.impacts + summary_.releases + summary_.chatter_jumps;
   }
 
-  const Simulator::Impl& impl_;
+  const HybridSystem& hybrid_;
+  const SimulationOptions& options_;
+  const EventOptions& events_;
   HybridState& state_;
   const double t_end_;
   Observer& observer_;
@@ -199,7 +120,7 @@ SimulationSummary HybridRun::Execute() {
   const auto start = std::chrono::steady_clock::now();
   stick_begin_ = state_.t;
   while (state_.t < t_end_) {
-    if (Events() >= impl_.options.max_events) {
+    if (Events() >= options_.max_events) {
       summary_.status = SimulationStatus::kEventLimit;
       break;
     }
@@ -222,18 +143,18 @@ SimulationSummary HybridRun::Execute() {
 }
 
 void HybridRun::FreePhase() {
-  const System& s = impl_.system;
+  const System& s = hybrid_.GetSystem();
+  const LinearFlow& flow = hybrid_.FreeFlow();
   const int c = s.contact_dof;
   const double t0 = state_.t;
-  const Eigen::VectorXd z0 = impl_.free_flow.Transient(t0, state_.x, state_.v);
-  impl_.free_flow.Output(impl_.gap, t0, z0, &witness_);
+  const Eigen::VectorXd z0 = flow.Transient(t0, state_.x, state_.v);
+  flow.Output(hybrid_.Gap(), t0, z0, &witness_);
   const bool pressing_now = state_.x(c) == s.stop && state_.v(c) > 0;
   const std::optional<double> te =
-      pressing_now ? std::optional<double>(t0)
-                   : FirstUpcrossing(witness_, t0, t_end_, impl_.event_options);
+      pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, t_end_, events_);
   const double end = te.value_or(t_end_);
-  if (end > t0) observer_.OnSegment(Segment(impl_.free_flow, t0, z0, t0, end, false, c, s.stop));
-  impl_.free_flow.State(t0, z0, end, &state_.x, &state_.v);
+  if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, false, c, s.stop));
+  flow.State(t0, z0, end, &state_.x, &state_.v);
   state_.t = end;
   if (!te) return;
   state_.x(c) = s.stop;
@@ -241,7 +162,7 @@ void HybridRun::FreePhase() {
 }
 
 void HybridRun::ApplyImpact(double te, double speed) {
-  const System& s = impl_.system;
+  const System& s = hybrid_.GetSystem();
   const int c = s.contact_dof;
   impact_.t = te;
   impact_.phase = s.Phase(te);
@@ -250,13 +171,14 @@ void HybridRun::ApplyImpact(double te, double speed) {
   impact_.v = state_.v;
   observer_.OnImpact(impact_);
   ++summary_.impacts;
-  state_.v(c) = -s.restitution * speed;
+  state_.v(c) = speed;
+  hybrid_.GetStop().Reset(state_.v);
   const double previous = last_impact_;
   last_impact_ = te;
   if (state_.v(c) == 0.0) {
     LandAtStop();
-  } else if (impl_.options.chatter == ChatterMethod::kThreshold) {
-    if (te - previous < impl_.options.chatter_threshold) JumpToAccumulation(te, te);
+  } else if (options_.chatter == ChatterMethod::kThreshold) {
+    if (te - previous < options_.chatter_threshold) JumpToAccumulation(te, te);
   } else if (const std::optional<double> t_star = AccumulationTime(te, speed)) {
     JumpToAccumulation(te, std::min(t_end_, *t_star));
   }
@@ -269,31 +191,31 @@ void HybridRun::ApplyImpact(double te, double speed) {
 /// time scale and the acceleration barely changes over it (the geometric
 /// model's premise); otherwise keep simulating impacts one by one.
 std::optional<double> HybridRun::AccumulationTime(double te, double speed) {
-  const System& s = impl_.system;
-  if (s.restitution >= 1.0) return std::nullopt;
+  const double r = hybrid_.GetStop().Restitution();
+  if (r >= 1.0) return std::nullopt;
   double jerk;
-  const double a = impl_.FreeAcceleration(te, state_.x, state_.v, &force_scratch_,
-                                          &acceleration_scratch_, &jerk);
+  const double a = hybrid_.ContactAcceleration(te, state_.x, state_.v, &jerk, &force_scratch_,
+                                               &acceleration_scratch_);
   if (!(a > 0)) return std::nullopt;
-  const double span = 2.0 * s.restitution * speed / (a * (1.0 - s.restitution));
-  if (span > impl_.options.chatter_span * impl_.time_scale || std::abs(jerk) * span > 0.01 * a) {
+  const double span = 2.0 * r * speed / (a * (1.0 - r));
+  if (span > options_.chatter_span * hybrid_.TimeScale() || std::abs(jerk) * span > 0.01 * a) {
     return std::nullopt;
   }
   return te + span;
 }
 
 void HybridRun::JumpToAccumulation(double te, double t_star) {
-  const System& s = impl_.system;
+  const System& s = hybrid_.GetSystem();
+  const LinearFlow& held = hybrid_.StuckFlow();
   const int c = s.contact_dof;
   if (t_star > te) {
-    const Eigen::VectorXd z0 = impl_.stuck_flow.Transient(te, WithoutIndex(state_.x, c),
-                                                          WithoutIndex(state_.v, c));
-    observer_.OnSegment(Segment(impl_.stuck_flow, te, z0, te, t_star, true, c, s.stop));
+    const Eigen::VectorXd z0 = held.Transient(te, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
+    observer_.OnSegment(Segment(held, te, z0, te, t_star, true, c, s.stop));
     summary_.stuck_time += t_star - te;
     Eigen::VectorXd xs, vs;
-    impl_.stuck_flow.State(te, z0, t_star, &xs, &vs);
-    state_.x = EmbedAtStop(xs, c, s.stop);
-    state_.v = EmbedAtStop(vs, c, 0.0);
+    held.State(te, z0, t_star, &xs, &vs);
+    state_.x = hybrid_.Full(xs, s.stop);
+    state_.v = hybrid_.Full(vs, 0.0);
   }
   state_.t = t_star;
   state_.v(c) = 0.0;
@@ -303,30 +225,30 @@ void HybridRun::JumpToAccumulation(double te, double t_star) {
 }
 
 void HybridRun::LandAtStop() {
-  const int c = impl_.system.contact_dof;
-  state_.x(c) = impl_.system.stop;
-  state_.v(c) = 0.0;
-  state_.stuck = impl_.ContactForce(state_.t, WithoutIndex(state_.x, c),
-                                    WithoutIndex(state_.v, c)) > 0;
+  const System& s = hybrid_.GetSystem();
+  state_.x(s.contact_dof) = s.stop;
+  state_.v(s.contact_dof) = 0.0;
+  state_.stuck =
+      Stop::Holds(hybrid_.ContactForce(state_.t, hybrid_.Held(state_.x), hybrid_.Held(state_.v)));
   if (state_.stuck) stick_begin_ = state_.t;
 }
 
 void HybridRun::StuckPhase() {
-  const System& s = impl_.system;
+  const System& s = hybrid_.GetSystem();
+  const LinearFlow& held = hybrid_.StuckFlow();
   const int c = s.contact_dof;
   const double t0 = state_.t;
-  const Eigen::VectorXd z0 =
-      impl_.stuck_flow.Transient(t0, WithoutIndex(state_.x, c), WithoutIndex(state_.v, c));
-  impl_.stuck_flow.Output(impl_.release_witness, t0, z0, &witness_);
+  const Eigen::VectorXd z0 = held.Transient(t0, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
+  held.Output(hybrid_.Release(), t0, z0, &witness_);
   const std::optional<double> tr = witness_.Value(t0) >= 0
                                        ? std::optional<double>(t0)
-                                       : FirstUpcrossing(witness_, t0, t_end_, impl_.event_options);
+                                       : FirstUpcrossing(witness_, t0, t_end_, events_);
   const double end = tr.value_or(t_end_);
-  if (end > t0) observer_.OnSegment(Segment(impl_.stuck_flow, t0, z0, t0, end, true, c, s.stop));
+  if (end > t0) observer_.OnSegment(Segment(held, t0, z0, t0, end, true, c, s.stop));
   Eigen::VectorXd xs, vs;
-  impl_.stuck_flow.State(t0, z0, end, &xs, &vs);
-  state_.x = EmbedAtStop(xs, c, s.stop);
-  state_.v = EmbedAtStop(vs, c, 0.0);
+  held.State(t0, z0, end, &xs, &vs);
+  state_.x = hybrid_.Full(xs, s.stop);
+  state_.v = hybrid_.Full(vs, 0.0);
   state_.t = end;
   summary_.stuck_time += end - t0;
   if (!tr) return;
@@ -338,18 +260,21 @@ void HybridRun::StuckPhase() {
 }  // namespace
 
 Simulator::Simulator(const System& system, const SimulationOptions& options)
-    : impl_(std::make_unique<Impl>(system, options)) {}
+    : Simulator(std::make_shared<const HybridSystem>(system), options) {}
+Simulator::Simulator(std::shared_ptr<const HybridSystem> hybrid, const SimulationOptions& options)
+    : impl_(std::make_unique<Impl>(std::move(hybrid), options)) {}
 Simulator::~Simulator() = default;
 Simulator::Simulator(Simulator&&) noexcept = default;
 Simulator& Simulator::operator=(Simulator&&) noexcept = default;
 
 SimulationSummary Simulator::Run(HybridState& state, double t_end, Observer& observer) const {
-  ValidateState(impl_->system, state);
+  ValidateState(impl_->hybrid->GetSystem(), state);
   if (!(std::isfinite(t_end) && t_end >= state.t)) {
     throw InvalidInput(fmt::format("the end time must be finite and >= the start time {}, got {}",
                                    state.t, t_end));
   }
-  return HybridRun(*impl_, state, t_end, observer).Execute();
+  return HybridRun(*impl_->hybrid, impl_->options, impl_->event_options, state, t_end, observer)
+      .Execute();
 }
 
 SimulationSummary Simulator::Run(HybridState& state, double t_end) const {
@@ -357,14 +282,7 @@ SimulationSummary Simulator::Run(HybridState& state, double t_end) const {
   return Run(state, t_end, none);
 }
 
-const System& Simulator::GetSystem() const { return impl_->system; }
-const SimulationOptions& Simulator::Options() const { return impl_->options; }
-const LinearFlow& Simulator::FreeFlow() const { return impl_->free_flow; }
-
-double Simulator::ContactForce(const HybridState& state) const {
-  const int c = impl_->system.contact_dof;
-  return impl_->ContactForce(state.t, WithoutIndex(state.x, c), WithoutIndex(state.v, c));
-}
+const System& Simulator::GetSystem() const { return impl_->hybrid->GetSystem(); }
 
 SimulationSummary Simulate(const System& system, const SimulationOptions& options,
                            HybridState& state, double t_end, Observer& observer) {

@@ -1,10 +1,10 @@
 #include "impactkit/model/parameters.hpp"
 
-#include <array>
-#include <cmath>
-
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+
+#include <array>
+#include <cmath>
 
 namespace impactkit {
 namespace {
@@ -37,8 +37,8 @@ void SetDof(System& s, double value) {
   // The modal decomposition costs O(N³): n = 1000 takes seconds, more
   // would look like a hang.
   if (!(std::isfinite(value) && value >= 1 && value == std::floor(value) && value <= 1000)) {
-    throw InvalidInput(fmt::format(
-        "n (number of masses) must be a whole number in [1, 1000], got {}", value));
+    throw InvalidInput(
+        fmt::format("n (number of masses) must be a whole number in [1, 1000], got {}", value));
   }
   RebuildChain(s, [&](ChainParameters& c) { c.dof = static_cast<int>(value); });
 }

@@ -1,13 +1,14 @@
 #include "impactkit/model/system.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <cmath>
 #include <numbers>
 
-#include "impactkit/dynamics/flow.hpp"
 #include "dynamics/subsystem.hpp"
-#include "model/validate_parameters.hpp"
-#include <fmt/format.h>
-#include <fmt/ranges.h>
+#include "impactkit/dynamics/flow.hpp"
+#include "model/stuck_subsystem.hpp"
 
 namespace impactkit {
 namespace {
@@ -19,11 +20,10 @@ void RequireFinite(const Eigen::MatrixXd& m, const std::string& name) {
 void RequireSquare(const Eigen::MatrixXd& m, int n, const std::string& name) {
   Require(m.rows() == n && m.cols() == n,
           fmt::format("{} must be {} x {} (N = {}), got {} x {}", name, n, n, n,
-                 static_cast<int>(m.rows()), static_cast<int>(m.cols())));
+                      static_cast<int>(m.rows()), static_cast<int>(m.cols())));
   RequireFinite(m, name);
   const double scale = m.cwiseAbs().maxCoeff();
-  Require((m - m.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale,
-          name + " must be symmetric");
+  Require((m - m.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale, name + " must be symmetric");
 }
 
 /// Smallest eigenvalue of a symmetric matrix.
@@ -62,9 +62,8 @@ void ValidateMatrices(const System& s) {
 
 void ValidateScalars(const System& s) {
   const int n = s.Dof();
-  Require(s.forcing.size() == n,
-          fmt::format("A (forcing) must have N = {} entries, got {}", n,
-                 static_cast<int>(s.forcing.size())));
+  Require(s.forcing.size() == n, fmt::format("A (forcing) must have N = {} entries, got {}", n,
+                                             static_cast<int>(s.forcing.size())));
   Require(s.forcing.allFinite(), "A (forcing) has a NaN or infinite entry");
   Require(std::isfinite(s.omega) && s.omega > 0,
           fmt::format("omega (forcing frequency) must be finite and > 0, got {}", s.omega));
@@ -78,14 +77,12 @@ void ValidateScalars(const System& s) {
 /// The subsystem that moves while the contact mass sticks must have a
 /// bounded steady response too.
 void ValidateStuckSubsystem(const System& s) {
-  const int c = s.contact_dof;
+  const detail::StuckSubsystem stuck = detail::StuckSubsystemOf(s);
   try {
-    LinearFlow(WithoutIndex(s.mass, c), WithoutIndex(s.damping, c), WithoutIndex(s.stiffness, c),
-               WithoutIndex(s.forcing, c),
-               -WithoutIndex(Eigen::VectorXd(s.stiffness.col(c)), c) * s.stop, s.omega);
+    LinearFlow(stuck.mass, stuck.damping, stuck.stiffness, stuck.forcing, stuck.constant_force,
+               s.omega);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format("stuck subsystem (mass {} held at the stop): {}", c + 1,
-                                   e.what()));
+    throw InvalidInput(detail::StuckSubsystemError(s, e.what()));
   }
 }
 
@@ -113,9 +110,9 @@ System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing
   // Values are checked by Validate(); only the shape is needed to build.
   Require(chain.dof >= 1, fmt::format("n (number of masses) must be >= 1, got {}", chain.dof));
   const Eigen::MatrixXd e = ChainCouplingMatrix(chain.dof);
-  System s = GeneralSystem(chain.mass * Eigen::MatrixXd::Identity(chain.dof, chain.dof),
-                           chain.damping * e, chain.stiffness * e, forcing, omega, stop,
-                           restitution);
+  System s =
+      GeneralSystem(chain.mass * Eigen::MatrixXd::Identity(chain.dof, chain.dof), chain.damping * e,
+                    chain.stiffness * e, forcing, omega, stop, restitution);
   s.chain = chain;
   return s;
 }
@@ -125,9 +122,8 @@ System PaperSystem(double omega) {
 }
 
 System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
-                     const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing,
-                     double omega, double stop, double restitution,
-                     std::optional<int> contact_dof) {
+                     const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing, double omega,
+                     double stop, double restitution, std::optional<int> contact_dof) {
   System s;
   s.mass = mass;
   s.damping = damping;
@@ -163,17 +159,32 @@ HybridState RestState(const System& s) {
 
 void ValidateState(const System& s, const HybridState& state) {
   const int n = s.Dof();
-  Require(state.x.size() == n && state.v.size() == n,
-          fmt::format("the initial state must have N = {} positions and {} velocities, got {} and {}",
-                 n, n, static_cast<int>(state.x.size()), static_cast<int>(state.v.size())));
+  Require(
+      state.x.size() == n && state.v.size() == n,
+      fmt::format("the initial state must have N = {} positions and {} velocities, got {} and {}",
+                  n, n, static_cast<int>(state.x.size()), static_cast<int>(state.v.size())));
   Require(std::isfinite(state.t) && state.x.allFinite() && state.v.allFinite(),
           "the initial state has a NaN or infinite entry");
   const int c = s.contact_dof;
   Require(state.x(c) <= s.stop,
           fmt::format("initial x{} = {} is beyond the stop xs = {}; it must be <= xs", c + 1,
-                 state.x(c), s.stop));
+                      state.x(c), s.stop));
   Require(!state.stuck || (state.x(c) == s.stop && state.v(c) == 0.0),
           fmt::format("a stuck initial state needs x{} = xs and v{} = 0", c + 1, c + 1));
 }
 
+namespace detail {
+
+StuckSubsystem StuckSubsystemOf(const System& s) {
+  const int c = s.contact_dof;
+  return {WithoutIndex(s.mass, c), WithoutIndex(s.damping, c), WithoutIndex(s.stiffness, c),
+          WithoutIndex(s.forcing, c),
+          -WithoutIndex(Eigen::VectorXd(s.stiffness.col(c)), c) * s.stop};
+}
+
+std::string StuckSubsystemError(const System& s, const std::string& why) {
+  return fmt::format("stuck subsystem (mass {} held at the stop): {}", s.contact_dof + 1, why);
+}
+
+}  // namespace detail
 }  // namespace impactkit

@@ -4,9 +4,8 @@
 
 #include <cmath>
 
-#include "impactkit/dynamics/events.hpp"
 #include "dynamics/subsystem.hpp"
-#include "model/validate_parameters.hpp"
+#include "impactkit/dynamics/events.hpp"
 
 namespace impactkit {
 
@@ -38,131 +37,122 @@ bool ImpactMapOptions::IsValid(std::string* error) const {
 }
 
 ImpactMap::ImpactMap(const System& system, const ImpactMapOptions& options)
-    : system_(system), options_(options) {
-  // The flow built below rejects a forced undamped resonance; the stuck
-  // subsystem plays no part in the map.
-  ValidateParameters(system_);
+    : ImpactMap(std::make_shared<const HybridSystem>(system), options) {}
+
+ImpactMap::ImpactMap(std::shared_ptr<const HybridSystem> hybrid, const ImpactMapOptions& options)
+    : hybrid_(std::move(hybrid)), options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw InvalidInput(error);
-  const int n = system_.Dof();
-  flow_ = LinearFlow(system_.mass, system_.damping, system_.stiffness, system_.forcing,
-                     Eigen::VectorXd::Zero(n), system_.omega);
-  gap_ = flow_.Prepare({Eigen::RowVectorXd::Unit(n, system_.contact_dof),
-                        Eigen::RowVectorXd::Zero(n), 0.0, -system_.stop});
-  inverse_mass_ = system_.mass.inverse();
-  time_scale_ = flow_.ShortestPeriod();
 }
 
 Eigen::VectorXd ImpactMap::ToEta(double t, const Eigen::VectorXd& x,
                                  const Eigen::VectorXd& v) const {
-  const int n = system_.Dof();
+  const int n = GetSystem().Dof();
   Eigen::VectorXd eta(2 * n);
-  eta << WithoutIndex(x, system_.contact_dof), t, v;
+  eta << WithoutIndex(x, GetSystem().contact_dof), t, v;
   return eta;
 }
 
 HybridState ImpactMap::ToState(const Eigen::VectorXd& eta) const {
-  const int n = system_.Dof();
+  const int n = GetSystem().Dof();
   HybridState state;
   state.t = eta(n - 1);
-  state.x = EmbedAtStop(eta.head(n - 1), system_.contact_dof, system_.stop);
+  state.x = EmbedAtStop(eta.head(n - 1), GetSystem().contact_dof, GetSystem().stop);
   state.v = eta.tail(n);
   return state;
 }
 
 void ImpactMap::ValidateEta(const Eigen::VectorXd& eta) const {
-  const int n = system_.Dof();
+  const int n = GetSystem().Dof();
   if (eta.size() != 2 * n) {
     throw InvalidInput(
         fmt::format("an impact state eta = (x without x{}, t, v1..v{}) has {} entries, got {}",
-                    system_.contact_dof + 1, n, 2 * n, eta.size()));
+                    GetSystem().contact_dof + 1, n, 2 * n, eta.size()));
   }
   if (!eta.allFinite()) throw InvalidInput("the impact state has a NaN or infinite entry");
-  const double speed = eta(n + system_.contact_dof);
+  const double speed = eta(n + GetSystem().contact_dof);
   if (!(speed > 0)) {
     throw InvalidInput(fmt::format(
         "not an impact state: v{} = {} must be > 0 (the speed towards the stop just before impact)",
-        system_.contact_dof + 1, speed));
+        GetSystem().contact_dof + 1, speed));
   }
 }
 
-Eigen::VectorXd ImpactMap::VectorField(double t, const Eigen::VectorXd& x,
-                                       const Eigen::VectorXd& v) const {
-  const int n = system_.Dof();
-  Eigen::VectorXd f(2 * n);
-  f << v, inverse_mass_ * (system_.forcing * std::cos(system_.omega * t) - system_.damping * v -
-                           system_.stiffness * x);
-  return f;
+Eigen::MatrixXd ImpactMap::ResetInEta() const {
+  const int n = GetSystem().Dof(), c = GetSystem().contact_dof;
+  Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n, 2 * n);  // ∂y(τ−)/∂η
+  for (int j = 0, k = 0; j < n; ++j) {
+    if (j != c) embedding(j, k++) = 1.0;
+  }
+  embedding.bottomRightCorner(n, n).setIdentity();
+  return hybrid_->GetStop().ResetJacobian(n) * embedding;
 }
 
 Eigen::VectorXd ImpactMap::FlightTransient(const Eigen::VectorXd& eta) const {
   ValidateEta(eta);
   const HybridState before = ToState(eta);
   Eigen::VectorXd v_after = before.v;
-  v_after(system_.contact_dof) *= -system_.restitution;
-  return flow_.Transient(before.t, before.x, v_after);
+  hybrid_->GetStop().Reset(v_after);
+  return hybrid_->FreeFlow().Transient(before.t, before.x, v_after);
 }
 
 HybridState ImpactMap::FlightState(const Eigen::VectorXd& eta, double t) const {
   const Eigen::VectorXd z0 = FlightTransient(eta);
   HybridState state;
   state.t = t;
-  flow_.State(eta(TimeIndex()), z0, t, &state.x, &state.v);
+  hybrid_->FreeFlow().State(eta(TimeIndex()), z0, t, &state.x, &state.v);
   return state;
 }
 
 Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof) const {
-  const int n = system_.Dof();
+  const int n = GetSystem().Dof();
   if (dof < 0 || dof >= n) {
     throw InvalidInput(fmt::format("coordinate index {} out of range 0..{}", dof, n - 1));
   }
   const Eigen::VectorXd z0 = FlightTransient(eta);
+  const LinearFlow& flow = hybrid_->FreeFlow();
   const PreparedOutput coordinate =
-      flow_.Prepare({Eigen::RowVectorXd::Unit(n, dof), Eigen::RowVectorXd::Zero(n), 0.0, 0.0});
-  return flow_.Output(coordinate, eta(TimeIndex()), z0);
+      flow.Prepare({Eigen::RowVectorXd::Unit(n, dof), Eigen::RowVectorXd::Zero(n), 0.0, 0.0});
+  return flow.Output(coordinate, eta(TimeIndex()), z0);
 }
 
 bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::MatrixXd* jacobian,
                      MapStatus* status) const {
-  const int n = system_.Dof(), c = system_.contact_dof;
+  const System& system = GetSystem();
+  const LinearFlow& flow = hybrid_->FreeFlow();
+  const int n = system.Dof(), c = system.contact_dof;
   const HybridState before = ToState(eta);
   const double t = before.t;
   Eigen::VectorXd v_after = before.v;
-  v_after(c) = -system_.restitution * before.v(c);
+  hybrid_->GetStop().Reset(v_after);
 
-  const Eigen::VectorXd z0 = flow_.Transient(t, before.x, v_after);
-  const Signal gap = flow_.Output(gap_, t, z0);
-  const EventOptions events{1e-13, time_scale_};
+  const Eigen::VectorXd z0 = flow.Transient(t, before.x, v_after);
+  const Signal gap = flow.Output(hybrid_->Gap(), t, z0);
+  const EventOptions events{1e-13, hybrid_->TimeScale()};
   const auto te =
-      FirstUpcrossing(gap, t, t + options_.max_flight_periods * system_.ForcingPeriod(), events);
+      FirstUpcrossing(gap, t, t + options_.max_flight_periods * system.ForcingPeriod(), events);
   if (!te) {
     *status = MapStatus::kNoImpact;
     return false;
   }
   Eigen::VectorXd x, v;
-  flow_.State(t, z0, *te, &x, &v);
-  x(c) = system_.stop;
+  flow.State(t, z0, *te, &x, &v);
+  x(c) = system.stop;
   const double speed = v(c);
   if (!(speed > options_.min_speed)) {
-    const Eigen::VectorXd f = VectorField(*te, x, v);
+    const Eigen::VectorXd f = hybrid_->VectorField(*te, x, v);
     *status = f(n + c) > 0 ? MapStatus::kChatter : MapStatus::kGrazing;
     return false;
   }
   *next = ToEta(*te, x, v);
   if (!jacobian) return true;
 
-  // G = ∂y(t')/∂η at fixed t': restitution, then the flow from (y+, τ).
-  Eigen::MatrixXd restitution_in = Eigen::MatrixXd::Zero(2 * n, 2 * n);  // dy+ / dη
-  for (int j = 0, k = 0; j < n; ++j) {
-    if (j != c) restitution_in(j, k++) = 1.0;
-  }
-  restitution_in.bottomRightCorner(n, n).setIdentity();
-  restitution_in(n + c, n + c) = -system_.restitution;
-  const Eigen::MatrixXd transition = flow_.Transition(*te - t);
-  Eigen::MatrixXd g = transition * restitution_in;
-  g.col(n - 1) = -transition * VectorField(t, before.x, v_after);
+  // G = ∂y(t')/∂η at fixed t': the reset, then the flow from (y+, τ).
+  const Eigen::MatrixXd transition = flow.Transition(*te - t);
+  Eigen::MatrixXd g = transition * ResetInEta();
+  g.col(n - 1) = -transition * hybrid_->VectorField(t, before.x, v_after);
   // Saltation at the next impact.
-  const Eigen::VectorXd f_arrival = VectorField(*te, x, v);
+  const Eigen::VectorXd f_arrival = hybrid_->VectorField(*te, x, v);
   const Eigen::RowVectorXd dte = -g.row(c) / speed;
   const Eigen::MatrixXd dy = g + f_arrival * dte;
   jacobian->resize(2 * n, 2 * n);
@@ -196,8 +186,8 @@ MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian
 Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p,
                                                const ImpactMap& below, const ImpactMap& above,
                                                double delta) const {
-  const int n = system_.Dof(), c = system_.contact_dof;
-  const double stop_rate = (above.system_.stop - below.system_.stop) / delta;
+  const int n = GetSystem().Dof(), c = GetSystem().contact_dof;
+  const double stop_rate = (above.GetSystem().stop - below.GetSystem().stop) / delta;
   Eigen::VectorXd derivative = Eigen::VectorXd::Zero(2 * n);
   Eigen::VectorXd at = eta;
   for (int k = 0; k < p; ++k) {
@@ -209,7 +199,7 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
     rate << (high.x - low.x) / delta, (high.v - low.v) / delta;
     const HybridState arrival = ToState(step.eta);
     const double dt = -(rate(c) - stop_rate) / arrival.v(c);
-    const Eigen::VectorXd dy = rate + VectorField(t, arrival.x, arrival.v) * dt;
+    const Eigen::VectorXd dy = rate + hybrid_->VectorField(t, arrival.x, arrival.v) * dt;
     Eigen::VectorXd partial(2 * n);
     partial << WithoutIndex(Eigen::VectorXd(dy.head(n)), c), dt, dy.tail(n);
     derivative = step.jacobian * derivative + partial;
@@ -225,7 +215,7 @@ Eigen::MatrixXd ImpactMap::FiniteDifferenceJacobian(const Eigen::VectorXd& eta, 
   for (Eigen::Index j = 0; j < dim; ++j) {
     // τ is an absolute time: its natural scale is the forcing period, not |τ|.
     const double scale =
-        j == TimeIndex() ? system_.ForcingPeriod() : std::max(1.0, std::abs(eta(j)));
+        j == TimeIndex() ? GetSystem().ForcingPeriod() : std::max(1.0, std::abs(eta(j)));
     const double h = relative_step * scale;
     Eigen::VectorXd plus = eta, minus = eta;
     plus(j) += h;

@@ -3,9 +3,8 @@
 /// Observers that record what users ask of a simulation. Each records
 /// everything it is shown: run the transient without them.
 
-#include <vector>
-
 #include <Eigen/Dense>
+#include <vector>
 
 #include "impactkit/hybrid/simulator.hpp"
 

@@ -36,8 +36,9 @@
 #include <string>
 
 #include "impactkit/dynamics/flow.hpp"
-#include "impactkit/model/system.hpp"
 #include "impactkit/dynamics/segment.hpp"
+#include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/model/system.hpp"
 
 namespace impactkit {
 
@@ -73,10 +74,10 @@ struct SimulationOptions {
 
 /// Why Simulate() returned.
 enum class SimulationStatus {
-  kReachedEnd,   ///< the state is at t_end
-  kEventLimit,   ///< max_events reached; the state is at the last event
-  kStopped,      ///< an observer asked to stop; the state is where it asked
-  kStalled,      ///< events kept repeating at one instant; the state is there
+  kReachedEnd,  ///< the state is at t_end
+  kEventLimit,  ///< max_events reached; the state is at the last event
+  kStopped,     ///< an observer asked to stop; the state is where it asked
+  kStalled,     ///< events kept repeating at one instant; the state is there
 };
 
 std::string ToString(SimulationStatus status);
@@ -131,6 +132,9 @@ class Simulator {
  public:
   /// Throws InvalidInput for an invalid system or options.
   Simulator(const System& system, const SimulationOptions& options = {});
+  /// On a hybrid system already decomposed (shared with an impact map, say).
+  /// Throws InvalidInput for invalid options.
+  Simulator(std::shared_ptr<const HybridSystem> hybrid, const SimulationOptions& options = {});
   ~Simulator();
   Simulator(Simulator&&) noexcept;
   Simulator& operator=(Simulator&&) noexcept;
@@ -141,16 +145,9 @@ class Simulator {
   SimulationSummary Run(HybridState& state, double t_end) const;
 
   const System& GetSystem() const;
-  const SimulationOptions& Options() const;
-  /// The free-flight flow (all N DOF).
-  const LinearFlow& FreeFlow() const;
-  /// The contact force Fs that would hold the contact mass at the stop, for
-  /// a state with x_c = xs, v_c = 0 (positive: pushed into the stop).
-  double ContactForce(const HybridState& state) const;
-
-  struct Impl;  ///< opaque: the decomposed flows
 
  private:
+  struct Impl;  ///< the hybrid system and the options
   std::unique_ptr<Impl> impl_;
 };
 

@@ -10,12 +10,11 @@
 /// C = c E, K = k E with E tridiagonal (E_ii = 2 for i < N, E_NN = 1,
 /// off-diagonals -1). PaperSystem() is the default of every command.
 
+#include <Eigen/Dense>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "impactkit/core/errors.hpp"
 
@@ -55,8 +54,8 @@ struct System {
 Eigen::MatrixXd ChainCouplingMatrix(int dof);
 
 /// The uniform chain with the given forcing (length N), Ω, xs and r.
-System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing,
-                    double omega, double stop, double restitution);
+System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
+                    double stop, double restitution);
 
 /// The paper's system: N = 2, m = k = 1, c = 0.1, A = (0.5, 0), xs = 0.1,
 /// r = 0.7, Ω = 1 unless given.
@@ -64,14 +63,19 @@ System PaperSystem(double omega = 1.0);
 
 /// A general system; the contact DOF defaults to the last.
 System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
-                     const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing,
-                     double omega, double stop, double restitution,
+                     const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing, double omega,
+                     double stop, double restitution,
                      std::optional<int> contact_dof = std::nullopt);
 
 /// Checks every field; throws InvalidInput naming the first bad one and the
 /// allowed range. Also rejects an undamped system forced at one of its
 /// natural frequencies (no bounded steady response exists).
 void Validate(const System& system);
+
+/// Every check of Validate() except the resonances, which need the flows
+/// decomposed: for callers that decompose them next anyway (HybridSystem,
+/// whose flows reject a resonance themselves).
+void ValidateParameters(const System& system);
 
 /// The hybrid state: time, positions, velocities, and whether the contact
 /// mass is held at the stop (sticking).

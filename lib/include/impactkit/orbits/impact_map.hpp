@@ -16,22 +16,23 @@
 /// theorem on x_c(t') = xs gives dt' = -e_cᵀ G dη / v_c(t'-) and
 /// dy(t'-) = (I - f(y(t'-), t') e_cᵀ / v_c(t'-)) G dη.
 
+#include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-
 #include "impactkit/dynamics/flow.hpp"
+#include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/model/system.hpp"
 
 namespace impactkit {
 
 /// What happened when the map was applied.
 enum class MapStatus {
-  kOk,         ///< p impacts followed, result valid
-  kNoImpact,   ///< no further impact within max_flight_periods: an impact was lost
-  kGrazing,    ///< an impact with speed below min_speed, the mass moving away after it
-  kChatter,    ///< an impact with speed below min_speed pressed into the stop: chatter/sticking
+  kOk,        ///< p impacts followed, result valid
+  kNoImpact,  ///< no further impact within max_flight_periods: an impact was lost
+  kGrazing,   ///< an impact with speed below min_speed, the mass moving away after it
+  kChatter,   ///< an impact with speed below min_speed pressed into the stop: chatter/sticking
 };
 
 std::string ToString(MapStatus status);
@@ -47,9 +48,9 @@ struct ImpactMapOptions {
 /// The result of P_I^p(η).
 struct MapResult {
   MapStatus status = MapStatus::kOk;
-  int impacts_done = 0;             ///< impacts followed before the status
-  Eigen::VectorXd eta;              ///< P_I^p(η) (valid when kOk)
-  Eigen::MatrixXd jacobian;         ///< D(P_I^p)(η), when asked and kOk
+  int impacts_done = 0;               ///< impacts followed before the status
+  Eigen::VectorXd eta;                ///< P_I^p(η) (valid when kOk)
+  Eigen::MatrixXd jacobian;           ///< D(P_I^p)(η), when asked and kOk
   std::vector<Eigen::VectorXd> path;  ///< η after each impact (size p when kOk)
 };
 
@@ -57,6 +58,10 @@ class ImpactMap {
  public:
   /// Throws InvalidInput for an invalid system or options.
   explicit ImpactMap(const System& system, const ImpactMapOptions& options = {});
+  /// On a hybrid system already decomposed (shared with a simulator, say).
+  /// Throws InvalidInput for invalid options.
+  explicit ImpactMap(std::shared_ptr<const HybridSystem> hybrid,
+                     const ImpactMapOptions& options = {});
 
   /// P_I^p(η) and, if `with_jacobian`, its analytic Jacobian.
   /// Throws InvalidInput if η is not an impact state (wrong size, non-finite,
@@ -93,8 +98,8 @@ class ImpactMap {
   /// ignoring the stop.
   HybridState FlightState(const Eigen::VectorXd& eta, double t) const;
   /// Index of τ in η (N - 1).
-  int TimeIndex() const { return system_.Dof() - 1; }
-  const System& GetSystem() const { return system_; }
+  int TimeIndex() const { return GetSystem().Dof() - 1; }
+  const System& GetSystem() const { return hybrid_->GetSystem(); }
 
   /// Throws InvalidInput naming the problem if η is not an impact state.
   void ValidateEta(const Eigen::VectorXd& eta) const;
@@ -105,14 +110,12 @@ class ImpactMap {
             MapStatus* status) const;
   /// The flow's transient coordinates just after the impact η.
   Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta) const;
-  Eigen::VectorXd VectorField(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
+  /// ∂y(τ+)/∂η: the embedding of η into y(τ−) (x_c = xs fixed, τ no part
+  /// of y), then the stop's reset.
+  Eigen::MatrixXd ResetInEta() const;
 
-  System system_;
+  std::shared_ptr<const HybridSystem> hybrid_;
   ImpactMapOptions options_;
-  LinearFlow flow_;
-  PreparedOutput gap_;
-  Eigen::MatrixXd inverse_mass_;
-  double time_scale_ = 1.0;
 };
 
 }  // namespace impactkit

@@ -1,0 +1,63 @@
+#pragma once
+/// \file stop.hpp
+/// A rigid stop limiting one degree of freedom c at x_c = xs, as a component
+/// of its own: what ends a flight or a held phase (its witnesses), what an
+/// impact does (its reset map and the reset's Jacobian) and when the mass
+/// stays held (its sticking rule). The simulator and the impact map take all
+/// of these from here (Drake's split of witness functions and reset maps).
+///
+///     free       while g = x_c − xs < 0; an impact when g reaches 0 upwards
+///     impact     v_c(t+) = −r v_c(t−), every other coordinate unchanged
+///     held       x_c = xs, v_c = 0 while Fs > 0, Fs the force pressing the
+///                mass into the stop (the stop's reaction: the c-th row of
+///                M x'' = A cos Ωt − C v − K x − Fs e_c with the held mass's
+///                acceleration zero); released when Fs falls through 0, i.e.
+///                when −Fs crosses 0 upwards.
+
+#include <Eigen/Dense>
+#include <string_view>
+
+#include "impactkit/dynamics/flow.hpp"
+#include "impactkit/model/system.hpp"
+
+namespace impactkit {
+
+/// An event as data: w(t) = l_x·x + l_v·v + α cos Ωt + β evaluated on a
+/// flow's exact motion; the event is w crossing 0 upwards.
+struct Witness {
+  std::string_view description;  ///< what the crossing means
+  LinearOutput output;           ///< w, over the coordinates of the mode it watches
+};
+
+class Stop {
+ public:
+  /// The stop of `system`: its contact DOF, position xs and restitution r.
+  explicit Stop(const System& system);
+
+  int Dof() const { return dof_; }
+  double Position() const { return position_; }
+  double Restitution() const { return restitution_; }
+
+  /// The witness of the free mode (N coordinates): g = x_c − xs.
+  Witness Gap(int dofs) const;
+  /// The witness of the held mode (the N − 1 coordinates of the stuck
+  /// subsystem, x_c = xs and v_c = a_c = 0 implied): −Fs.
+  Witness Release(const System& system) const;
+  /// Fs itself, the held mode's contact force (positive: pushed into the stop).
+  LinearOutput ContactForce(const System& system) const;
+
+  /// The impact law on the velocities just before impact (v_c > 0).
+  void Reset(Eigen::VectorXd& v) const { v(dof_) = -restitution_ * v(dof_); }
+  /// ∂(x, v)(t+) / ∂(x, v)(t−), 2N x 2N: the identity with −r at v_c.
+  Eigen::MatrixXd ResetJacobian(int dofs) const;
+
+  /// The sticking rule: the mass stays held while the stop pushes on it.
+  static bool Holds(double contact_force) { return contact_force > 0; }
+
+ private:
+  int dof_;
+  double position_;
+  double restitution_;
+};
+
+}  // namespace impactkit
