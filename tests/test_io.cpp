@@ -405,10 +405,13 @@ TEST_CASE("a system file that is missing or of an unknown type", "[io]") {
   const fs::path missing = dir / "missing.json";
   CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(missing); }),
              StartsWith(missing.string() + ": no such system file"));
-  // A directory is not a system file either.
-  fs::create_directory(dir / "directory.json");
-  CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(dir / "directory.json"); }),
-             Contains("no such system file"));
+  // A directory is not a system file either, and the message says so,
+  // whatever its name ends with.
+  for (const char* name : {"directory.json", "directory"}) {
+    fs::create_directory(dir / name);
+    CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(dir / name); }),
+               Equals((dir / name).string() + ": is a directory, not a system file"));
+  }
   WriteText(dir / "system.yaml", "omega: 1.2\n");
   CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(dir / "system.yaml"); }),
              Contains("unknown system file type '.yaml'; use .json or .toml"));
