@@ -15,6 +15,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "common/system_options.hpp"
@@ -33,6 +34,28 @@ int ReportError(std::string message, int status) {
   }
   fmt::print(stderr, "impactkit: error: {}\n", message);
   return status;
+}
+
+/// The subcommands, in the order --help lists them.
+std::string KnownCommands(const CLI::App& app) {
+  std::vector<std::string> names;
+  const auto all = [](const CLI::App*) { return true; };
+  for (const CLI::App* command : app.get_subcommands(all)) names.push_back(command->get_name());
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+/// The message for a command line that chose no subcommand: CLI11 says only
+/// "A subcommand is required", even when the first word is a misspelt one.
+std::string NoCommandMessage(const CLI::App& app, int argc, char** argv) {
+  if (argc > 1) {
+    const std::string word = argv[1];
+    const std::string problem = word.starts_with('-')
+                                    ? fmt::format("unknown option '{}' before the subcommand", word)
+                                    : fmt::format("unknown subcommand '{}'", word);
+    return fmt::format("{}; known: {} (see 'impactkit --help')", problem, KnownCommands(app));
+  }
+  return fmt::format("a subcommand is required; known: {} (see 'impactkit --help')",
+                     KnownCommands(app));
 }
 
 /// Where to look after a command-line syntax error.
@@ -72,6 +95,9 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const CLI::ParseError& error) {
     if (error.get_exit_code() == 0) return app.exit(error);  // --help, --version
+    if (app.get_subcommands().empty() && error.get_name() == "RequiredError") {
+      return ReportError(NoCommandMessage(app, argc, argv), kExitBadInput);
+    }
     return ReportError(fmt::format("{} (see '{}')", error.what(), HelpHint(app)), kExitBadInput);
   } catch (const impactkit::InvalidInput& error) {
     return ReportError(error.what(), kExitBadInput);

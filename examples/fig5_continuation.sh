@@ -22,7 +22,7 @@ echo "the P(2,1) branch at its grazing:"
   --out "$data/p11.csv" --json "$data/p11.json" --plot "$figures/continuation-p11.png"
 echo
 echo "P(2,1) from Ω = 0.6 upwards:"
-"$impactkit" continue --omega 0.6 --from 0.6 --to 1.0 \
+"$impactkit" continue --from 0.6 --to 1.0 \
   --out "$data/p21.csv" --json "$data/p21.json" --plot "$figures/continuation-p21.png"
 echo
 echo "P(1,2) from Ω = 2.0 both ways, with the P(2,4) branch at its period doubling:"

@@ -1,8 +1,14 @@
 /// Tests of the io area: system files (JSON, TOML), CSV tables and
 /// whole-or-nothing output files.
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cfloat>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +21,7 @@
 
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/modal.hpp"
 
@@ -405,10 +412,13 @@ TEST_CASE("a system file that is missing or of an unknown type", "[io]") {
   const fs::path missing = dir / "missing.json";
   CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(missing); }),
              StartsWith(missing.string() + ": no such system file"));
-  // A directory is not a system file either.
-  fs::create_directory(dir / "directory.json");
-  CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(dir / "directory.json"); }),
-             Contains("no such system file"));
+  // A directory is not a system file either, and the message says so,
+  // whatever its name ends with.
+  for (const char* name : {"directory.json", "directory"}) {
+    fs::create_directory(dir / name);
+    CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(dir / name); }),
+               Equals((dir / name).string() + ": is a directory, not a system file"));
+  }
   WriteText(dir / "system.yaml", "omega: 1.2\n");
   CHECK_THAT(MessageOf<InvalidInput>([&] { ReadSystemFile(dir / "system.yaml"); }),
              Contains("unknown system file type '.yaml'; use .json or .toml"));
@@ -516,5 +526,101 @@ TEST_CASE("AtomicOutputFile: the file appears whole on Commit, or not at all", "
     const fs::path nowhere = dir / "no" / "such" / "out.csv";
     CHECK_THAT(MessageOf<OutputError>([&] { AtomicOutputFile file(nowhere); }),
                Contains("cannot create " + nowhere.string()));
+  }
+}
+
+TEST_CASE("AtomicOutputFile: any valid file name works, and empty paths are refused", "[io]") {
+  ScratchDir dir;
+  // NAME_MAX bytes: the temporary's name must not grow with the target's.
+  const std::string longest(NAME_MAX, 'a');
+  {
+    AtomicOutputFile file(dir / longest);
+    CHECK(file.TemporaryPath().parent_path() == dir.Path());
+    CHECK(file.TemporaryPath().filename().string().size() < 100);
+    CHECK_THAT(file.TemporaryPath().filename().string(),
+               StartsWith(".impactkit." + std::to_string(::getpid()) + "."));
+    file.Write("x");
+    file.Commit();
+  }
+  CHECK(dir.Entries() == std::vector<std::string>{longest});
+  CHECK_THAT(MessageOf<OutputError>([&] { AtomicOutputFile file(""); }), Contains("empty name"));
+}
+
+TEST_CASE("OutputSet: every file appears on Commit, or none does", "[io]") {
+  ScratchDir dir;
+  WriteText(dir / "keep.csv", "old\n");
+  SECTION("a file that cannot be created fails at once and changes nothing") {
+    {
+      OutputSet outputs;
+      outputs.AddCsv(dir / "keep.csv", "test", {"t"}).WriteRow(std::vector<double>{1.0});
+      fs::create_directory(dir / "taken.json");  // a directory where a file should go
+      CHECK_THROWS_AS(outputs.AddFile(dir / "taken.json"), OutputError);
+      CHECK_THROWS_AS(outputs.AddFile(dir / "no" / "such" / "x.png"), OutputError);
+    }
+    CHECK(ReadText(dir / "keep.csv") == "old\n");
+    CHECK(dir.Entries() == std::vector<std::string>{"keep.csv", "taken.json"});
+  }
+  SECTION("Commit moves every file into place") {
+    {
+      OutputSet outputs;
+      AtomicOutputFile& main = outputs.AddFile(dir / "keep.csv");
+      AtomicOutputFile& json = outputs.AddFile(dir / "result.json");
+      outputs.AddCsv(main, "test", {"t", "x"}).WriteRow(std::vector<double>{0.5, 1.5});
+      json.Write("{}\n");
+      CHECK(outputs.Size() == 2);
+      CHECK(ReadText(dir / "keep.csv") == "old\n");  // nothing before Commit
+      outputs.Commit();
+    }
+    CHECK(ReadText(dir / "keep.csv") == "# impactkit test\nt,x\n0.5,1.5\n");
+    CHECK(ReadText(dir / "result.json") == "{}\n");
+    CHECK(dir.Entries() == std::vector<std::string>{"keep.csv", "result.json"});
+  }
+  SECTION("one path named twice is bad input") {
+    OutputSet outputs;
+    outputs.AddFile(dir / "a.png");
+    CHECK_THAT(MessageOf<InvalidInput>([&] { outputs.AddFile(dir / "." / "a.png"); }),
+               Contains("named twice"));
+  }
+}
+
+TEST_CASE("temporaries of processes that no longer run are removed", "[io]") {
+  ScratchDir dir;
+  // A PID that has just ended: a child reaped at once.
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) ::_exit(0);
+  REQUIRE(::waitpid(child, nullptr, 0) == child);
+  const std::string stale = TemporaryFileName(child, 0);
+  const std::string live = TemporaryFileName(::getpid(), 999);
+  const std::string other_host = ".impactkit." + std::to_string(child) + ".0.elsewhere.tmp";
+  for (const std::string& name : {stale, live, other_host, std::string("data.csv")}) {
+    WriteText(dir / name, "x");
+  }
+  CHECK(RemoveStaleTemporaries(dir.Path()) == 1);
+  std::vector<std::string> left = {live, other_host, "data.csv"};
+  std::sort(left.begin(), left.end());
+  CHECK(dir.Entries() == left);
+}
+
+TEST_CASE("SIGTERM and SIGINT remove the temporaries and still end the process", "[io]") {
+  for (int signal : {SIGTERM, SIGINT}) {
+    ScratchDir dir;
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+      // The child's own dispositions: default, as in a program run from a shell.
+      ::signal(signal, SIG_DFL);
+      AtomicOutputFile a(dir / "a.csv");
+      AtomicOutputFile b(dir / "b.png");
+      a.Write("half a table");
+      ::raise(signal);
+      ::_exit(3);  // not reached: the signal ends the process
+    }
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    INFO("signal " << signal);
+    CHECK(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == signal);
+    CHECK(dir.Entries().empty());
   }
 }

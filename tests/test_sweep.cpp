@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 #include "impactkit/analysis/classify.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
@@ -82,6 +83,19 @@ TEST_CASE("default sweep and classification options are valid", "[sweep]") {
   CHECK(SweepOptions{}.IsValid(&error));
   CHECK(ClassifyOptions{}.IsValid(&error));
   CHECK(error.empty());
+}
+
+TEST_CASE("sweep options whose period counts would overflow an int are refused", "[sweep]") {
+  std::string error;
+  SweepOptions options;
+  options.transient_periods = std::numeric_limits<int>::max();
+  options.recorded_periods = 1;
+  CHECK_FALSE(options.IsValid(&error));
+  CHECK_THAT(error, Contains("transient + recorded periods must be at most"));
+  options = SweepOptions{};
+  options.classify.period.max_q = std::numeric_limits<int>::max();
+  CHECK_FALSE(options.IsValid(&error));
+  CHECK_THAT(error, Contains("max_q must be at most"));
 }
 
 TEST_CASE("sweep values: both ends exact, evenly spaced, reversed downwards", "[sweep]") {

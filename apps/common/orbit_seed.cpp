@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "common/limits.hpp"
+
 namespace impactkit::cli {
 
 void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std::string& group) {
@@ -12,11 +14,13 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
           "--p", options.p,
           "Impacts per orbit (with --q); default: those of the motion a simulation settles on")
       ->type_name("P")
+      ->check(AtMost(kMaxOrbitPeriod, "impacts"))
       ->group(group);
   command
       .add_option("--q", options.q,
                   "Forcing periods per orbit (with --p); default: from the simulation, as --p")
       ->type_name("Q")
+      ->check(AtMost(kMaxOrbitPeriod, "forcing periods"))
       ->group(group);
   command
       .add_option("--guess", options.guess,
@@ -29,6 +33,7 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
       .add_option("--transient", options.transient,
                   "Forcing periods simulated from rest before seeding from the motion")
       ->type_name("N")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group(group);
   command

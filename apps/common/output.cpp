@@ -1,17 +1,11 @@
 #include "common/output.hpp"
 
-#include "impactkit/io/output_file.hpp"
-
 namespace impactkit::cli {
 
-void WriteWhole(const std::filesystem::path& path, const std::string& bytes) {
-  AtomicOutputFile file(path);
-  file.Write(bytes);
-  file.Commit();
+AtomicOutputFile* AddIfAsked(OutputSet& outputs, const std::filesystem::path& path) {
+  return path.empty() ? nullptr : &outputs.AddFile(path);
 }
 
-void WriteChartPng(const std::filesystem::path& path, const LineChart& chart) {
-  WriteWhole(path, RenderPng(chart));
-}
+void WriteChartPng(AtomicOutputFile& file, const LineChart& chart) { file.Write(RenderPng(chart)); }
 
 }  // namespace impactkit::cli

@@ -1,21 +1,23 @@
 #pragma once
 /// \file common/output.hpp
-/// Writing a whole file at once, as every command writes its PNGs and
-/// JSON: to a temporary file renamed over the target when complete, so that
-/// a failure leaves no half-written file (impactkit/io/output_file.hpp).
+/// How every command writes its files: all of them in one OutputSet
+/// (impactkit/io/output_set.hpp), each created as a temporary before any
+/// work, so that a bad path fails first, and all moved into place together
+/// at the end, so that a failure or an interruption changes no file.
 
 #include <filesystem>
 #include <string>
 
 #include "common/plot.hpp"
+#include "impactkit/io/output_set.hpp"
 
 namespace impactkit::cli {
 
-/// Writes `bytes` to `path`, whole or not at all. Throws OutputError.
-void WriteWhole(const std::filesystem::path& path, const std::string& bytes);
+/// The file of `path` in `outputs`, created now; nullptr when `path` is
+/// empty (the option was not given). Throws OutputError.
+AtomicOutputFile* AddIfAsked(OutputSet& outputs, const std::filesystem::path& path);
 
-/// Renders `chart` (RenderPng) and writes it to `path`, whole or not at
-/// all. Throws PlotError or OutputError.
-void WriteChartPng(const std::filesystem::path& path, const LineChart& chart);
+/// Renders `chart` (RenderPng) into `file`. Throws PlotError or OutputError.
+void WriteChartPng(AtomicOutputFile& file, const LineChart& chart);
 
 }  // namespace impactkit::cli

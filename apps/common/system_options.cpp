@@ -94,6 +94,13 @@ void AddSystemOptions(CLI::App& command, SystemOptions& options) {
                   "System file, .json or .toml (docs/system-files.md); default: the paper's "
                   "uniform chain")
       ->type_name("FILE")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            return text.empty() ? "an empty path names no system file (leave --system out for "
+                                  "the paper's system)"
+                                : "";
+          },
+          ""))
       ->group(group);
   command
       .add_option("--set", options.sets,
@@ -123,6 +130,21 @@ System ResolveSystem(const SystemOptions& options) {
   for (const Assignment& assignment : Assignments(options)) Apply(assignment, system);
   Validate(system);
   return system;
+}
+
+std::optional<std::string> FlagSetting(const SystemOptions& options, const std::string& parameter) {
+  for (const Assignment& assignment : Assignments(options)) {
+    if (assignment.name == parameter) return assignment.origin;
+  }
+  return std::nullopt;
+}
+
+void RequireNotSet(const SystemOptions& options, const std::string& parameter,
+                   const std::string& flag, const std::string& source) {
+  if (const std::optional<std::string> origin = FlagSetting(options, parameter)) {
+    throw InvalidInput(fmt::format("{} conflicts with {} {}: the values of {} come from {}",
+                                   *origin, flag, parameter, parameter, source));
+  }
 }
 
 std::string ParameterList(const System& system) {

@@ -29,6 +29,16 @@ void AddSystemOptions(CLI::App& command, SystemOptions& options);
 /// Throws InvalidInput naming the flag or parameter at fault.
 System ResolveSystem(const SystemOptions& options);
 
+/// The flag that sets `parameter` ("--omega", "--set omega=1.2"), if any.
+/// Throws InvalidInput for a malformed --set.
+std::optional<std::string> FlagSetting(const SystemOptions& options, const std::string& parameter);
+
+/// Throws InvalidInput when a flag sets `parameter`, which `flag` (e.g.
+/// "--param") makes the varied one: the fixed value would be silently
+/// overridden by those of `source` (e.g. "--from and --to").
+void RequireNotSet(const SystemOptions& options, const std::string& parameter,
+                   const std::string& flag, const std::string& source);
+
 /// Every named parameter as --set would take it, at full precision:
 /// "omega=1.4 xs=0.1 r=0.7 A1=0.5 A2=0 m=1 k=1 c=0.1 n=2".
 std::string ParameterList(const System& system);

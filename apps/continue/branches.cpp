@@ -11,17 +11,6 @@
 namespace impactkit::cli {
 namespace {
 
-std::vector<std::string> Columns(const Branch& branch) {
-  std::vector<std::string> columns = {branch.parameter, "arclength"};
-  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("phase{}", i));
-  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("v{}", i));
-  columns.push_back("range_xN");
-  const Eigen::Index multipliers = branch.points.front().orbit.multipliers.size();
-  for (Eigen::Index i = 1; i <= multipliers; ++i) columns.push_back(fmt::format("mod{}", i));
-  for (const char* name : {"stable", "clearance", "depth", "special"}) columns.push_back(name);
-  return columns;
-}
-
 /// The CSV's `special` column: the special point's type by name, empty for
 /// an ordinary point.
 std::string SpecialName(const Branch& branch, const BranchPoint& point) {
@@ -128,8 +117,18 @@ std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbi
   return branches;
 }
 
-void WriteBranchCsv(const std::string& path, const std::string& provenance, const Branch& branch) {
-  CsvWriter csv(path, provenance, Columns(branch));
+std::vector<std::string> BranchColumns(const Branch& branch) {
+  std::vector<std::string> columns = {branch.parameter, "arclength"};
+  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("phase{}", i));
+  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("v{}", i));
+  columns.push_back("range_xN");
+  const Eigen::Index multipliers = branch.points.front().orbit.multipliers.size();
+  for (Eigen::Index i = 1; i <= multipliers; ++i) columns.push_back(fmt::format("mod{}", i));
+  for (const char* name : {"stable", "clearance", "depth", "special"}) columns.push_back(name);
+  return columns;
+}
+
+void WriteBranchRows(CsvWriter& csv, const Branch& branch) {
   for (const BranchPoint& point : branch.points) {
     const PeriodicOrbit& orbit = point.orbit;
     std::vector<double> row = {point.parameter, point.arclength};
@@ -144,7 +143,6 @@ void WriteBranchCsv(const std::string& path, const std::string& provenance, cons
     row.push_back(std::min(orbit.contacts.slowest_depth, 1e300));
     csv.WriteRow(row, std::vector<std::string>{SpecialName(branch, point)});
   }
-  csv.Commit();
 }
 
 /// FILE.csv for the main branch, FILE.<label>.csv for the others.

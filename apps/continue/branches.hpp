@@ -11,6 +11,7 @@
 
 #include "common/plot.hpp"
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
 
@@ -53,8 +54,11 @@ std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbi
                                         const ContinuationOptions& options, BranchSwitches switches,
                                         BranchProgress& progress);
 
-/// One row per point (columns: docs/cli.md, `impactkit continue`).
-void WriteBranchCsv(const std::string& path, const std::string& provenance, const Branch& branch);
+/// The CSV columns of `branch` (docs/cli.md, `impactkit continue`).
+std::vector<std::string> BranchColumns(const Branch& branch);
+
+/// One row per point of `branch`, in the columns of BranchColumns.
+void WriteBranchRows(CsvWriter& csv, const Branch& branch);
 
 /// FILE.csv for the main branch, FILE.<label>.csv for the others.
 std::string BranchPath(const std::string& path, const std::string& label);

@@ -15,14 +15,14 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
 #include "continue/branches.hpp"
 #include "impactkit/continuation/continuation.hpp"
-#include "impactkit/io/csv.hpp"
-#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 
 namespace impactkit::cli {
@@ -74,7 +74,8 @@ System StartSystem(const ContinueRequest& request) {
   }
   System system = ResolveSystem(request.system);
   GetParameter(system, request.parameter);  // an unknown name fails here, naming the choices
-  MakeOptions(request, OrbitOptions{});     // and bad bounds or steps before any work
+  RequireNotSet(request.system, request.parameter, "--param", "--from, --to and --start");
+  MakeOptions(request, OrbitOptions{});  // and bad bounds or steps before any work
   const double lower = std::min(*request.from, *request.to);
   const double upper = std::max(*request.from, *request.to);
   if (request.start && !(*request.start >= lower && *request.start <= upper)) {
@@ -104,9 +105,13 @@ std::string Provenance(const ContinueRequest& request, const System& system) {
 
 void RunContinue(const ContinueRequest& request) {
   const System system = StartSystem(request);
-  std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
-  if (!request.json.empty()) json.emplace(request.json);
   if (!request.plot.empty()) RequireGnuplot();
+  // Created first: a bad path fails before the work. The other branches'
+  // files go beside --out, whose directory this checks.
+  OutputSet outputs;
+  AtomicOutputFile* out = AddIfAsked(outputs, request.out);
+  AtomicOutputFile* json = AddIfAsked(outputs, request.json);
+  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   OrbitOptions orbit_options;
   const PeriodicOrbit start = FindStartOrbit(system, request.seed, &orbit_options);
   const ContinuationOptions options = MakeOptions(request, orbit_options);
@@ -128,21 +133,29 @@ void RunContinue(const ContinueRequest& request) {
                     traced.p, traced.q, ToString(traced.end), traced.end_message));
   }
   const std::string provenance = Provenance(request, system);
-  if (!request.out.empty()) {
+  std::vector<std::string> written;
+  if (out) {
     for (const TracedBranch& b : branches) {
-      WriteBranchCsv(BranchPath(request.out, b.label), provenance, b.branch);
-      fmt::print("wrote:      {}\n", BranchPath(request.out, b.label));
+      const std::string path = BranchPath(request.out, b.label);
+      CsvWriter& csv = b.label == "main"
+                           ? outputs.AddCsv(*out, provenance, BranchColumns(b.branch))
+                           : outputs.AddCsv(path, provenance, BranchColumns(b.branch));
+      WriteBranchRows(csv, b.branch);
+      written.push_back(path);
     }
   }
   if (json) {
     json->Write(ContinueJson(system, branches, "impactkit " + provenance));
-    json->Commit();
-    fmt::print("wrote:      {}\n", request.json);
+    written.push_back(request.json);
   }
-  if (!request.plot.empty()) {
-    WriteChartPng(request.plot, BranchChart(branches));
-    fmt::print("wrote:      {}\n", request.plot);
+  if (plot) {
+    WriteChartPng(*plot, BranchChart(branches));
+    written.push_back(request.plot);
   }
+  // All together, last: a failure above (a branch file that cannot be
+  // created, gnuplot) leaves every file as it was.
+  outputs.Commit();
+  for (const std::string& path : written) fmt::print("wrote:      {}\n", path);
 }
 
 }  // namespace
@@ -182,6 +195,7 @@ void AddContinueCommand(CLI::App& app) {
       ->capture_default_str()
       ->group(group);
   command->add_option("--max-points", request->max_points, "Points per direction at most")
+      ->check(AtMost(kMaxBranchPoints, "points"))
       ->capture_default_str()
       ->group(group);
   command
@@ -201,17 +215,20 @@ void AddContinueCommand(CLI::App& app) {
                    "1 fold, 2 period doubling, 3 Neimark-Sacker, 4 grazing, 5 sticking); "
                    "other branches go to FILE.<label>.csv")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group("Output");
   command
       ->add_option("--json", request->json,
                    "JSON: special_points [{type, param, ...}], end_reason, and every branch")
       ->type_name("FILE.json")
+      ->check(OutputPath())
       ->group("Output");
   command
       ->add_option("--plot", request->plot,
                    "PNG: impact velocities against the parameter, stable solid, unstable "
                    "dashed, special points marked (needs gnuplot)")
       ->type_name("FILE.png")
+      ->check(OutputPath())
       ->group("Output");
   command->callback([request] { RunContinue(*request); });
 }

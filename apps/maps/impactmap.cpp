@@ -11,10 +11,11 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
-#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "maps/run.hpp"
 
 namespace impactkit::cli {
@@ -30,11 +31,14 @@ struct ImpactMapRequest {
 void RunImpactMap(const ImpactMapRequest& request) {
   ValidateRun(request.run);
   const System system = ResolveSystem(request.system);
-  std::optional<CsvWriter> csv;  // created first: a bad path fails before the work
   const std::string provenance = RunProvenance("impactmap", request.run, system);
-  if (!request.out.empty())
-    csv.emplace(request.out, provenance, std::vector<std::string>{"t", "phase", "v"});
   if (!request.plot.empty()) RequireGnuplot();
+  OutputSet outputs;  // created first: a bad path fails before the work
+  CsvWriter* csv = nullptr;
+  if (!request.out.empty()) {
+    csv = &outputs.AddCsv(request.out, provenance, std::vector<std::string>{"t", "phase", "v"});
+  }
+  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   const RecordedRun recorded = RecordImpacts(system, request.run);
   PrintRun(system, request.run, recorded);
   Curve points{"impacts", {}, {}, false, "#1f4e9a", true};
@@ -52,18 +56,17 @@ void RunImpactMap(const ImpactMapRequest& request) {
     fmt::print("impacts:     {} with speed in [{:.6g}, {:.6g}]\n", recorded.impacts.size(), v_min,
                v_max);
   }
-  if (csv) {
-    csv->Commit();
-    fmt::print("wrote:       {}\n", request.out);
-  }
-  if (!request.plot.empty()) {
+  if (plot) {
     LineChart chart;
     chart.title = fmt::format("impact map, omega = {}", system.omega);
     chart.x_label = fmt::format("phase at impact, t mod T (T = {:.6g})", system.ForcingPeriod());
     chart.y_label = fmt::format("impact velocity v{}(t-)", system.contact_dof + 1);
     chart.curves.push_back(points);
-    WriteChartPng(request.plot, chart);
-    fmt::print("wrote:       {}\n", request.plot);
+    WriteChartPng(*plot, chart);
+  }
+  outputs.Commit();
+  for (const std::string* path : {&request.out, &request.plot}) {
+    if (!path->empty()) fmt::print("wrote:       {}\n", *path);
   }
 }
 
@@ -79,9 +82,11 @@ void AddImpactMapCommand(CLI::App& app) {
   AddRunOptions(*command, request->run, 5000);
   command->add_option("--out", request->out, "Write the impacts as CSV: t,phase,v")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group("Output");
   command->add_option("--plot", request->plot, "Plot phase against impact speed (PNG, gnuplot)")
       ->type_name("FILE.png")
+      ->check(OutputPath())
       ->group("Output");
   command->callback([request] { RunImpactMap(*request); });
 }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/require.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/hybrid/recorders.hpp"
@@ -104,14 +105,17 @@ void AddLyapunovCommand(CLI::App& app) {
   command
       ->add_option("--transient", request->transient,
                    "Forcing periods simulated from rest to reach the attractor")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group("Run");
   command
       ->add_option("--transient-impacts", request->options.transient_impacts,
                    "Map iterations that align the frame, not counted")
+      ->check(AtMost(kMaxImpacts, "impacts"))
       ->capture_default_str()
       ->group("Run");
   command->add_option("--impacts", request->options.impacts, "Map iterations counted")
+      ->check(AtMost(kMaxImpacts, "impacts"))
       ->capture_default_str()
       ->group("Run");
   command
@@ -119,6 +123,7 @@ void AddLyapunovCommand(CLI::App& app) {
                    "Write the result as JSON: valid, message, exponents, largest, impacts_used, "
                    "time_span, system")
       ->type_name("FILE.json")
+      ->check(OutputPath())
       ->group("Output");
   command->callback([request] { RunLyapunov(*request); });
 }

@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/require.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/map_fit.hpp"
-#include "impactkit/io/csv.hpp"
-#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "maps/run.hpp"
 
@@ -66,13 +66,14 @@ void RunReturnMap(const ReturnMapRequest& request) {
   const System system = ResolveSystem(request.system);
   const std::string provenance = fmt::format("returnmap --bound {} {}", request.bound,
                                              RunProvenance("", request.run, system).substr(1));
-  std::optional<CsvWriter> csv;  // created first: a bad path fails before the work
-  if (!request.out.empty()) {
-    csv.emplace(request.out, provenance, std::vector<std::string>{"v_j", "v_next"});
-  }
-  std::optional<AtomicOutputFile> json;
-  if (!request.json.empty()) json.emplace(request.json);
   if (!request.plot.empty()) RequireGnuplot();
+  OutputSet outputs;  // created first: a bad path fails before the work
+  CsvWriter* csv = nullptr;
+  if (!request.out.empty()) {
+    csv = &outputs.AddCsv(request.out, provenance, std::vector<std::string>{"v_j", "v_next"});
+  }
+  AtomicOutputFile* json = AddIfAsked(outputs, request.json);
+  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
 
   const RecordedRun recorded = RecordImpacts(system, request.run);
   PrintRun(system, request.run, recorded);
@@ -83,10 +84,6 @@ void RunReturnMap(const ReturnMapRequest& request) {
              points.from.size(), request.bound, speeds.size());
   for (std::size_t j = 0; j < points.from.size(); ++j) {
     if (csv) csv->WriteRow(std::vector<double>{points.from[j], points.to[j]});
-  }
-  if (csv) {
-    csv->Commit();
-    fmt::print("wrote:       {}\n", request.out);
   }
 
   std::optional<MapFitSummary> fit;
@@ -115,12 +112,10 @@ void RunReturnMap(const ReturnMapRequest& request) {
                         x.empty() ? 0.0 : *std::max_element(x.begin(), x.end())};
       j["system"] = nlohmann::json::parse(SystemToJson(system));
       json->Write(j.dump(2) + "\n");
-      json->Commit();
-      fmt::print("wrote:       {}\n", request.json);
     }
   }
 
-  if (!request.plot.empty()) {
+  if (plot) {
     LineChart chart;
     chart.title =
         fmt::format("return map of impacts with v < {}, omega = {}", request.bound, system.omega);
@@ -143,8 +138,13 @@ void RunReturnMap(const ReturnMapRequest& request) {
       }
       chart.curves.push_back(curve);
     }
-    WriteChartPng(request.plot, chart);
-    fmt::print("wrote:       {}\n", request.plot);
+    WriteChartPng(*plot, chart);
+  }
+  // All files together, then the verdict: a fit that did not converge is
+  // still written (its JSON records how it ended).
+  outputs.Commit();
+  for (const std::string* path : {&request.out, &request.json, &request.plot}) {
+    if (!path->empty()) fmt::print("wrote:       {}\n", *path);
   }
   // A fit that did not converge is no fit: exit status 1, after the report
   // (and the JSON with its termination) that say how it ended.
@@ -180,15 +180,18 @@ void AddReturnMapCommand(CLI::App& app) {
       ->group("Fit");
   command->add_option("--out", request->out, "Write the pairs as CSV: v_j,v_next")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group("Output");
   command->add_option("--plot", request->plot, "Plot the return map (and the fit) as PNG")
       ->type_name("FILE.png")
+      ->check(OutputPath())
       ->group("Output");
   command
       ->add_option("--json", request->json,
                    "Write the fit as JSON: parameters, standard_error, covariance, "
                    "rms_residual, sigma, points")
       ->type_name("FILE.json")
+      ->check(OutputPath())
       ->group("Output");
   command->callback([request] { RunReturnMap(*request); });
 }

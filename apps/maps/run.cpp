@@ -8,6 +8,7 @@
 
 #include <stdexcept>
 
+#include "common/limits.hpp"
 #include "common/progress.hpp"
 #include "common/require.hpp"
 #include "common/system_options.hpp"
@@ -17,9 +18,11 @@ namespace impactkit::cli {
 void AddRunOptions(CLI::App& command, RunOptions& run, int default_periods) {
   run.periods = default_periods;
   command.add_option("--transient", run.transient, "Forcing periods run from rest and discarded")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group("Run");
   command.add_option("--periods", run.periods, "Forcing periods recorded after the transient")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group("Run");
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/io/output_file.hpp"
@@ -114,6 +115,7 @@ void AddOrbitCommand(CLI::App& app) {
                    "[[re, im]], stable, residual, iterations, eta, system, jacobian (the method), "
                    "jacobian_check (with --check-jacobian)")
       ->type_name("FILE.json")
+      ->check(OutputPath())
       ->group("Output");
   command
       ->add_flag("--check-jacobian", request->check_jacobian,

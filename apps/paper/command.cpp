@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
@@ -25,7 +26,7 @@
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
-#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/modal.hpp"
 #include "sweep/chart.hpp"
@@ -59,11 +60,25 @@ void Stage(int k, const std::string& what) {
   fmt::print(stderr, "[{}/5] {}\n", k, what);
 }
 
-/// Writes `text` to out/name and says so.
-void WriteFile(const std::filesystem::path& out, const std::string& name, const std::string& text,
-               std::vector<std::string>* written) {
-  WriteWhole(out / name, text);
-  written->push_back(name);
+/// The output folder: every file is staged in one set and moved into place
+/// at the end, so that a failure at any stage leaves no partial study.
+struct Folder {
+  std::filesystem::path path;
+  OutputSet outputs;
+  std::vector<std::string> written;  ///< names, in the order staged
+};
+
+/// Stages `text` as folder/name.
+void WriteFile(Folder& folder, const std::string& name, const std::string& text) {
+  folder.outputs.AddFile(folder.path / name).Write(text);
+  folder.written.push_back(name);
+}
+
+/// A table staged as folder/name.
+CsvWriter& AddTable(Folder& folder, const std::string& name, const std::string& provenance,
+                    const std::vector<std::string>& columns) {
+  folder.written.push_back(name);
+  return folder.outputs.AddCsv(folder.path / name, provenance, columns);
 }
 
 nlohmann::json ModalStage(const System& system) {
@@ -82,8 +97,7 @@ nlohmann::json ModalStage(const System& system) {
   return j;
 }
 
-nlohmann::json ResonanceStage(const System& system, const std::filesystem::path& out,
-                              std::vector<std::string>* written) {
+nlohmann::json ResonanceStage(const System& system, Folder& folder) {
   const std::vector<ResonancePoint> curve = ResonanceCurve(system, 0.05, 2.5, 2451);
   nlohmann::json peaks = nlohmann::json::array();
   for (const ResonancePeak& peak : ResonancePeaks(system, curve)) {
@@ -105,7 +119,7 @@ nlohmann::json ResonanceStage(const System& system, const std::filesystem::path&
     }
     chart.curves.push_back(std::move(c));
   }
-  WriteFile(out, "fig2-resonance.png", RenderPng(chart), written);
+  WriteFile(folder, "fig2-resonance.png", RenderPng(chart));
   return peaks;
 }
 
@@ -150,8 +164,7 @@ struct BranchPlan {
   BranchSwitches switches;
 };
 
-nlohmann::json BranchStage(const System& paper, const Resolution& resolution,
-                           const std::filesystem::path& out, std::vector<std::string>* written) {
+nlohmann::json BranchStage(const System& paper, const Resolution& resolution, Folder& folder) {
   const BranchPlan plans[] = {{"p11", 1.0, 0.5, 2.0, {true, true}},
                               {"p21", 0.6, 0.4, 1.0, {true, false}},
                               {"p12", 2.0, 1.0, 3.0, {true, false}}};
@@ -176,13 +189,13 @@ nlohmann::json BranchStage(const System& paper, const Resolution& resolution,
       b.label = plan.name + "-" + b.label;
       PrintBranch(b);
       const std::string csv = "branch-" + b.label + ".csv";
-      WriteBranchCsv((out / csv).string(), "paper branch " + b.label, b.branch);
-      written->push_back(csv);
+      WriteBranchRows(AddTable(folder, csv, "paper branch " + b.label, BranchColumns(b.branch)),
+                      b.branch);
       j.push_back(BranchJson(b));
       all.push_back(std::move(b));
     }
   }
-  WriteFile(out, "branches.png", RenderPng(BranchChart(all)), written);
+  WriteFile(folder, "branches.png", RenderPng(BranchChart(all)));
   return j;
 }
 
@@ -230,7 +243,7 @@ void PrintRegimes(const nlohmann::json& regimes) {
 }
 
 nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int threads,
-                          const std::filesystem::path& out, std::vector<std::string>* written) {
+                          Folder& folder) {
   SweepOptions options;
   options.from = 0.1;
   options.to = 2.5;
@@ -247,10 +260,10 @@ nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int
   fmt::print("  {}\n", sweep.BriefReport());
   const nlohmann::json regimes = Regimes(sweep);
   PrintRegimes(regimes);
-  CsvWriter csv(out / "fig3-sweep.csv",
-                "paper sweep omega 0.1..2.5; kind 0 periodic, 1 sticking, 2 chaotic, "
-                "3 non_impacting, 4 unresolved",
-                {"omega", "kind", "p", "q", "range_xN_max", "impacts"});
+  CsvWriter& csv = AddTable(folder, "fig3-sweep.csv",
+                            "paper sweep omega 0.1..2.5; kind 0 periodic, 1 sticking, 2 chaotic, "
+                            "3 non_impacting, 4 unresolved",
+                            {"omega", "kind", "p", "q", "range_xN_max", "impacts"});
   for (const SweepPoint& p : sweep.points) {
     const MotionPeriod& period = p.classification.period;
     const double range = p.range_contact.empty()
@@ -260,10 +273,8 @@ nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int
                                      static_cast<double>(period.p), static_cast<double>(period.q),
                                      range, static_cast<double>(p.impacts.size())});
   }
-  csv.Commit();
-  written->push_back("fig3-sweep.csv");
-  WriteFile(out, "fig3-bifurcation.png",
-            RenderStackedPng(SweepCharts(paper, options, sweep), 1000, 900), written);
+  WriteFile(folder, "fig3-bifurcation.png",
+            RenderStackedPng(SweepCharts(paper, options, sweep), 1000, 900));
   return regimes;
 }
 
@@ -271,11 +282,18 @@ void RunPaper(const PaperRequest& request) {
   if (request.threads < 0) throw InvalidInput("--threads must be >= 0 (0: all cores)");
   RequireGnuplot();
   const auto start = std::chrono::steady_clock::now();
-  const std::filesystem::path out = request.out;
-  std::filesystem::create_directories(out);
+  Folder folder;
+  folder.path = request.out;
+  std::error_code error;
+  std::filesystem::create_directories(folder.path, error);
+  if (error) {
+    throw OutputError(
+        fmt::format("cannot create the folder {}: {}", folder.path.string(), error.message()));
+  }
+  // Staged first: a folder that cannot be written fails before the work.
+  AtomicOutputFile& summary_file = folder.outputs.AddFile(folder.path / "summary.json");
   const Resolution resolution = ResolutionFor(request.quick);
   const System paper = PaperSystem(1.0);
-  std::vector<std::string> written;
   nlohmann::json summary;
   summary["system"] = nlohmann::json::parse(SystemToJson(paper));
   summary["quick"] = request.quick;
@@ -283,22 +301,24 @@ void RunPaper(const PaperRequest& request) {
   fmt::print("system:       {} (Wagg & Bishop 2001)\n", DescribeSystem(paper));
   Stage(1, "modal data and resonance curves");
   summary["modes"] = ModalStage(paper);
-  summary["resonance_peaks"] = ResonanceStage(paper, out, &written);
+  summary["resonance_peaks"] = ResonanceStage(paper, folder);
   Stage(2, "orbits at the paper's frequencies");
   fmt::print("orbits (from a simulation from rest, refined as fixed points of the impact map):\n");
   summary["orbits"] = OrbitStage(paper, resolution);
   Stage(3, "continued branches");
   fmt::print("branches (pseudo-arclength continuation in omega):\n");
-  summary["branches"] = BranchStage(paper, resolution, out, &written);
+  summary["branches"] = BranchStage(paper, resolution, folder);
   Stage(4, "brute-force bifurcation diagram (Fig. 3)");
   fmt::print("brute-force diagram, omega 0.1 to 2.5 ({} values):\n", resolution.sweep_values);
-  summary["regimes"] = SweepStage(paper, resolution, request.threads, out, &written);
+  summary["regimes"] = SweepStage(paper, resolution, request.threads, folder);
   Stage(5, "summary");
   summary["seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  WriteFile(out, "summary.json", summary.dump(2) + "\n", &written);
-  fmt::print("wrote into {}: {}\n", std::filesystem::absolute(out).string(),
-             fmt::join(written, ", "));
+  summary_file.Write(summary.dump(2) + "\n");
+  folder.written.push_back("summary.json");
+  folder.outputs.Commit();
+  fmt::print("wrote into {}: {}\n", std::filesystem::absolute(folder.path).string(),
+             fmt::join(folder.written, ", "));
   fmt::print("time:         {:.1f} s\n", summary["seconds"].get<double>());
 }
 
@@ -314,10 +334,12 @@ void AddPaperCommand(CLI::App& app) {
       "grazings, and the brute-force diagram (Fig. 3) with its regimes. Prints a summary and "
       "writes CSV, JSON and PNG files into one folder.");
   command->add_option("--out", request->out, "Output folder (created if missing)")
+      ->check(OutputPath("folder"))
       ->capture_default_str();
   command->add_flag("--quick", request->quick,
                     "Reduced resolution (121 sweep values, short transients), for tests");
   command->add_option("--threads", request->threads, "Threads of the sweep (0: all cores)")
+      ->check(AtMost(kMaxThreads, "threads"))
       ->capture_default_str();
   command->callback([request] { RunPaper(*request); });
 }

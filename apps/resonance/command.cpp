@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/resonance.hpp"
-#include "impactkit/io/csv.hpp"
+#include "impactkit/io/output_set.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -33,14 +34,16 @@ void RunResonance(const ResonanceRequest& request) {
   std::vector<std::string> columns{"omega"};
   for (int i = 1; i <= n; ++i) columns.push_back(fmt::format("range_x{}", i));
   for (int i = 1; i <= n; ++i) columns.push_back(fmt::format("phase_x{}", i));
-  std::optional<CsvWriter> csv;  // created first: a bad path fails before the work
-  if (!request.out.empty()) {
-    csv.emplace(request.out,
-                fmt::format("resonance --from {} --to {} --steps {} {}", request.from, request.to,
-                            request.steps, ParameterList(system)),
-                columns);
-  }
   if (!request.plot.empty()) RequireGnuplot();
+  OutputSet outputs;  // created first: a bad path fails before the work
+  CsvWriter* csv = nullptr;
+  if (!request.out.empty()) {
+    csv = &outputs.AddCsv(request.out,
+                          fmt::format("resonance --from {} --to {} --steps {} {}", request.from,
+                                      request.to, request.steps, ParameterList(system)),
+                          columns);
+  }
+  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   const std::vector<ResonancePoint> curve =
       ResonanceCurve(system, request.from, request.to, request.steps);
   const std::vector<ResonancePeak> peaks = ResonancePeaks(system, curve);
@@ -63,10 +66,8 @@ void RunResonance(const ResonanceRequest& request) {
       }
       csv->WriteRow(row);
     }
-    csv->Commit();
-    fmt::print("wrote:       {}\n", request.out);
   }
-  if (!request.plot.empty()) {
+  if (plot) {
     LineChart chart;
     chart.title = "resonance curves without the stop";
     chart.x_label = "forcing frequency omega";
@@ -84,8 +85,11 @@ void RunResonance(const ResonanceRequest& request) {
       }
       chart.curves.push_back(c);
     }
-    WriteChartPng(request.plot, chart);
-    fmt::print("wrote:       {}\n", request.plot);
+    WriteChartPng(*plot, chart);
+  }
+  outputs.Commit();
+  for (const std::string* path : {&request.out, &request.plot}) {
+    if (!path->empty()) fmt::print("wrote:       {}\n", *path);
   }
 }
 
@@ -106,15 +110,18 @@ void AddResonanceCommand(CLI::App& app) {
       ->capture_default_str()
       ->group("Range");
   command->add_option("--steps", request->steps, "Number of omega values, evenly spaced (>= 1)")
+      ->check(AtMost(kMaxSteps, "values"))
       ->capture_default_str()
       ->group("Range");
   command
       ->add_option("--out", request->out,
                    "Write the curve as CSV: omega,range_x1..range_xN,phase_x1..phase_xN")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group("Output");
   command->add_option("--plot", request->plot, "Plot the curves (PNG, gnuplot)")
       ->type_name("FILE.png")
+      ->check(OutputPath())
       ->group("Output");
   command->callback([request] { RunResonance(*request); });
 }

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
 #include "common/system_options.hpp"
 #include "simulate/run.hpp"
 
@@ -18,16 +19,19 @@ void AddRunOptions(CLI::App& command, SimulateRequest& request) {
       .add_option("--transient", request.transient,
                   "Forcing periods to run and discard before recording")
       ->type_name("N")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group(group);
   command.add_option("--periods", request.periods, "Forcing periods to record")
       ->type_name("N")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group(group);
   command
       .add_option("--samples-per-period", request.samples_per_period,
                   "Samples per forcing period in --series and --plot")
       ->type_name("K")
+      ->check(AtMost(kMaxSamplesPerPeriod, "samples per period"))
       ->capture_default_str()
       ->group(group);
   command
@@ -70,22 +74,26 @@ void AddOutputOptions(CLI::App& command, SimulateRequest& request) {
       .add_option("--series", request.series,
                   "Time series CSV of the window: columns t,x1..xN,v1..vN,stuck")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group(group);
   command
       .add_option("--impacts", request.impacts,
                   "Impacts CSV of the window: columns t,phase,v,x1..xN,v1..vN; v is the impact "
                   "speed of the contact mass, x and v the state just before impact")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group(group);
   command
       .add_option("--plot", request.plot,
                   "PNG of x1..xN against t over the window, stop marked (needs gnuplot)")
       ->type_name("FILE.png")
+      ->check(OutputPath())
       ->group(group);
   command
       .add_option("--json", request.json,
                   "Summary as JSON: system, run, window, impacts, motion, final state")
       ->type_name("FILE.json")
+      ->check(OutputPath())
       ->group(group);
 }
 

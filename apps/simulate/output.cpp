@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "common/output.hpp"
 #include "common/plot.hpp"
 #include "simulate/summary.hpp"
 
@@ -65,13 +66,14 @@ SimulateOutputs::SimulateOutputs(const SimulateRequest& request, const System& s
     : provenance_(std::move(provenance)) {
   const int dof = system.Dof();
   if (!request.series.empty()) {
-    series_.emplace(request.series, provenance_, StateColumns({"t"}, dof, {"stuck"}));
+    series_ = &set_.AddCsv(request.series, provenance_, StateColumns({"t"}, dof, {"stuck"}));
   }
   if (!request.impacts.empty()) {
-    impacts_.emplace(request.impacts, provenance_, StateColumns({"t", "phase", "v"}, dof, {}));
+    impacts_ =
+        &set_.AddCsv(request.impacts, provenance_, StateColumns({"t", "phase", "v"}, dof, {}));
   }
-  if (!request.plot.empty()) plot_.emplace(request.plot);
-  if (!request.json.empty()) json_.emplace(request.json);
+  plot_ = AddIfAsked(set_, request.plot);
+  json_ = AddIfAsked(set_, request.json);
 }
 
 void SimulateOutputs::Write(const SimulateResult& result) {
@@ -79,12 +81,9 @@ void SimulateOutputs::Write(const SimulateResult& result) {
   // failure (gnuplot, a full disk) leaves no partial set of files either.
   if (series_) WriteSeries(result);
   if (impacts_) WriteImpacts(result);
-  if (plot_) plot_->Write(RenderPng(TimeSeriesChart(result)));
+  if (plot_) WriteChartPng(*plot_, TimeSeriesChart(result));
   if (json_) json_->Write(SummaryJson(result, provenance_) + "\n");
-  if (series_) series_->Commit();
-  if (impacts_) impacts_->Commit();
-  if (plot_) plot_->Commit();
-  if (json_) json_->Commit();
+  set_.Commit();
 }
 
 void SimulateOutputs::WriteSeries(const SimulateResult& result) {

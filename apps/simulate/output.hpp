@@ -15,8 +15,7 @@
 #include <optional>
 #include <string>
 
-#include "impactkit/io/csv.hpp"
-#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "simulate/run.hpp"
 
 namespace impactkit::cli {
@@ -27,7 +26,7 @@ class SimulateOutputs {
   SimulateOutputs(const SimulateRequest& request, const System& system, std::string provenance);
 
   /// Whether the window's time series must be recorded (--series or --plot).
-  bool NeedsSeries() const { return series_.has_value() || plot_.has_value(); }
+  bool NeedsSeries() const { return series_ != nullptr || plot_ != nullptr; }
 
   /// Writes every requested file, then moves them all into place.
   void Write(const SimulateResult& result);
@@ -37,10 +36,11 @@ class SimulateOutputs {
   void WriteImpacts(const SimulateResult& result);
 
   std::string provenance_;
-  std::optional<CsvWriter> series_;
-  std::optional<CsvWriter> impacts_;
-  std::optional<AtomicOutputFile> plot_;
-  std::optional<AtomicOutputFile> json_;
+  OutputSet set_;
+  CsvWriter* series_ = nullptr;  ///< each in set_; nullptr when not asked for
+  CsvWriter* impacts_ = nullptr;
+  AtomicOutputFile* plot_ = nullptr;
+  AtomicOutputFile* json_ = nullptr;
 };
 
 }  // namespace impactkit::cli

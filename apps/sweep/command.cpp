@@ -15,11 +15,12 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/limits.hpp"
+#include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/sweep.hpp"
-#include "impactkit/io/csv.hpp"
-#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/output_set.hpp"
 #include "sweep/chart.hpp"
 
 namespace impactkit::cli {
@@ -102,6 +103,7 @@ SweepOptions OptionsOf(const SweepRequest& request, const System& system) {
   if (request.max_q < 1)
     throw InvalidInput(fmt::format("--max-q must be >= 1, got {}", request.max_q));
   GetParameter(system, request.param);  // "unknown parameter 'x'; allowed: ..."
+  RequireNotSet(request.system, request.param, "--param", "--from and --to");
   SweepOptions options;
   options.parameter = request.param;
   options.from = request.from;
@@ -198,15 +200,15 @@ void RunSweepCommand(const SweepRequest& request) {
   const std::string provenance = Provenance(request, system, options);
   // Outputs are opened before the work, so that a bad path or a missing
   // gnuplot fails at once, not after a long sweep.
-  std::optional<CsvWriter> out;
-  std::optional<AtomicOutputFile> summary, plot;
-  if (!request.out.empty())
-    out.emplace(request.out, provenance, std::vector<std::string>{"param", "t", "phase", "v"});
-  if (!request.summary.empty()) summary.emplace(request.summary);
-  if (!request.plot.empty()) {
-    RequireGnuplot();
-    plot.emplace(request.plot);
+  if (!request.plot.empty()) RequireGnuplot();
+  OutputSet outputs;
+  CsvWriter* out = nullptr;
+  if (!request.out.empty()) {
+    out = &outputs.AddCsv(request.out, provenance,
+                          std::vector<std::string>{"param", "t", "phase", "v"});
   }
+  AtomicOutputFile* summary = AddIfAsked(outputs, request.summary);
+  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
 
   SweepResult result;
   {
@@ -238,21 +240,11 @@ void RunSweepCommand(const SweepRequest& request) {
         "lyapunov,restarted\n");
     for (const SweepPoint& point : result.points) summary->Write(SummaryRow(point));
   }
-  std::string png;
-  if (plot) png = RenderStackedPng(SweepCharts(system, options, result), 1000, 900);
+  if (plot) plot->Write(RenderStackedPng(SweepCharts(system, options, result), 1000, 900));
   // Committed last: a failure above leaves no partial set of files.
-  if (out) {
-    out->Commit();
-    fmt::print("wrote:   {}\n", request.out);
-  }
-  if (summary) {
-    summary->Commit();
-    fmt::print("wrote:   {}\n", request.summary);
-  }
-  if (plot) {
-    plot->Write(png);
-    plot->Commit();
-    fmt::print("wrote:   {}\n", request.plot);
+  outputs.Commit();
+  for (const std::string* path : {&request.out, &request.summary, &request.plot}) {
+    if (!path->empty()) fmt::print("wrote:   {}\n", *path);
   }
 }
 
@@ -284,14 +276,17 @@ void AddSweepCommand(CLI::App& app) {
       ->group(group);
   command->add_option("--steps", request->steps, "Number of values K, both ends included")
       ->type_name("K")
+      ->check(AtMost(kMaxSteps, "values"))
       ->required()
       ->group(group);
   command->add_option("--transient", request->transient, "Forcing periods discarded at each value")
       ->type_name("P")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group(group);
   command->add_option("--record", request->record, "Forcing periods recorded at each value")
       ->type_name("P")
+      ->check(AtMost(kMaxPeriods, "forcing periods"))
       ->capture_default_str()
       ->group(group);
   command
@@ -315,12 +310,14 @@ void AddSweepCommand(CLI::App& app) {
       ->group(group);
   command->add_option("--threads", request->threads, "Worker threads (default: all cores)")
       ->type_name("N")
+      ->check(AtMost(kMaxThreads, "threads"))
       ->group(group);
   command
       ->add_option("--chunk", request->chunk,
                    "With --start previous: values per independently computed chunk (0: one "
                    "chunk, strictly sequential); part of the result, unlike --threads")
       ->type_name("N")
+      ->check(AtMost(kMaxSteps, "values"))
       ->capture_default_str()
       ->group(group);
   command
@@ -328,10 +325,12 @@ void AddSweepCommand(CLI::App& app) {
                    "With --start previous: values before each chunk whose transients it runs "
                    "first, from the fixed state")
       ->type_name("N")
+      ->check(AtMost(kMaxSteps, "values"))
       ->capture_default_str()
       ->group(group);
   command->add_option("--max-q", request->max_q, "Longest period searched, in forcing periods")
       ->type_name("Q")
+      ->check(AtMost(kMaxOrbitPeriod, "forcing periods"))
       ->capture_default_str()
       ->group(group);
   const std::string output = "Output (each written only if asked for, and only whole)";
@@ -340,6 +339,7 @@ void AddSweepCommand(CLI::App& app) {
                    "Every recorded impact: columns param,t,phase,v (t from the start of "
                    "that value's run, phase = t mod T, v the impact speed)")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group(output);
   command
       ->add_option("--summary", request->summary,
@@ -347,12 +347,14 @@ void AddSweepCommand(CLI::App& app) {
                    "range_x1_min,impacts,v_min,v_max,lyapunov,restarted (range_*: largest and "
                    "smallest per-period max - min; p = inf when sticking; empty where undefined)")
       ->type_name("FILE.csv")
+      ->check(OutputPath())
       ->group(output);
   command
       ->add_option("--plot", request->plot,
                    "PNG of the paper's Fig. 3: max - min of the contact mass per period, and "
                    "impact velocity, against the parameter (needs gnuplot)")
       ->type_name("FILE.png")
+      ->check(OutputPath())
       ->group(output);
   command->callback([request] { RunSweepCommand(*request); });
 }

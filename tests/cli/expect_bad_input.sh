@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Bad input must fail cleanly: `impactkit COMMAND ARGS...`, with every output
-# of COMMAND requested, exits with status 2, prints exactly one line on
-# stderr, starting "impactkit: error: " and containing EXPECTED, prints
-# nothing on stdout, and leaves no file behind (not even a temporary one).
+# Bad input must fail cleanly: `impactkit COMMAND ARGS...`, with outputs of
+# COMMAND requested (each unless ARGS name it, as tests of output paths do),
+# exits with status 2, prints exactly one line on stderr, starting
+# "impactkit: error: " and containing EXPECTED, prints nothing on stdout, and
+# leaves no file behind (not even a temporary one). COMMAND may be a word
+# that is no subcommand.
 #
 #     expect_bad_input.sh IMPACTKIT COMMAND EXPECTED ARGS...
 source "$(dirname "$0")/testlib.sh"
@@ -15,10 +17,20 @@ mkdir "$work/out"
 case $command in
   simulate) outputs=(--series "$work/out/series.csv" --impacts "$work/out/impacts.csv"
                      --plot "$work/out/plot.png" --json "$work/out/summary.json") ;;
-  *) outputs=(--json "$work/out/result.json") ;;
+  sweep) outputs=(--out "$work/out/impacts.csv" --summary "$work/out/summary.csv") ;;
+  resonance | impactmap | returnmap) outputs=(--out "$work/out/table.csv") ;;
+  orbit | continue | lyapunov) outputs=(--json "$work/out/result.json") ;;
+  paper) outputs=(--out "$work/out/paper") ;;
+  *) outputs=() ;;  # not a subcommand: its message is the test
 esac
+# An output flag among ARGS (the subject of the test) is not given twice.
+given=()
+for ((i = 0; i < ${#outputs[@]}; i += 2)); do
+  [[ " $* " == *" ${outputs[i]} "* || " $* " == *" ${outputs[i]}="* ]] ||
+    given+=("${outputs[i]}" "${outputs[i + 1]}")
+done
 status=0
-"$impactkit" "$command" "$@" "${outputs[@]}" >"$work/stdout" 2>"$work/stderr" || status=$?
+"$impactkit" "$command" "$@" ${given[@]+"${given[@]}"} >"$work/stdout" 2>"$work/stderr" || status=$?
 
 message=$(cat "$work/stderr")
 [[ $status -eq 2 ]] || fail "exit status $status, expected 2; stderr: $message"

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -199,6 +200,15 @@ bool SweepOptions::IsValid(std::string* error) const {
   }
   if (recorded_periods < 1) {
     return fail(fmt::format("recorded periods must be >= 1, got {}", recorded_periods));
+  }
+  // RunSweep adds and doubles these in int: refuse what would overflow.
+  if (transient_periods > std::numeric_limits<int>::max() - recorded_periods) {
+    return fail(fmt::format("transient + recorded periods must be at most {}, got {} + {}",
+                            std::numeric_limits<int>::max(), transient_periods, recorded_periods));
+  }
+  if (classify.period.max_q > (std::numeric_limits<int>::max() - 1) / 2) {
+    return fail(fmt::format("max_q must be at most {}, got {}",
+                            (std::numeric_limits<int>::max() - 1) / 2, classify.period.max_q));
   }
   if (threads < 1) return fail(fmt::format("threads must be >= 1, got {}", threads));
   if (chunk_values < 0) return fail(fmt::format("chunk_values must be >= 0, got {}", chunk_values));

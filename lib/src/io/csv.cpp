@@ -14,7 +14,17 @@ constexpr std::size_t kFlushBytes = 1 << 16;
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::string_view provenance,
                      const std::vector<std::string>& columns)
-    : file_(path), columns_(columns.size()) {
+    : owned_(std::in_place, path), file_(&*owned_), columns_(columns.size()) {
+  Start(provenance, columns);
+}
+
+CsvWriter::CsvWriter(AtomicOutputFile& file, std::string_view provenance,
+                     const std::vector<std::string>& columns)
+    : file_(&file), columns_(columns.size()) {
+  Start(provenance, columns);
+}
+
+void CsvWriter::Start(std::string_view provenance, const std::vector<std::string>& columns) {
   if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");
   if (provenance.find_first_of("\r\n") != std::string_view::npos) {
     throw std::invalid_argument("the provenance of a CSV table must be one line");
@@ -30,7 +40,7 @@ void CsvWriter::WriteRow(std::span<const double> values) {
   }
   // "{}" is the shortest representation that round-trips (fmt's default).
   fmt::format_to(std::back_inserter(buffer_), "{}\n", fmt::join(values, ","));
-  if (buffer_.size() >= kFlushBytes) Flush();
+  if (buffer_.size() >= kFlushBytes) Finish();
 }
 
 void CsvWriter::WriteRow(std::span<const double> values, std::span<const std::string> labels) {
@@ -48,16 +58,16 @@ void CsvWriter::WriteRow(std::span<const double> values, std::span<const std::st
   }
   fmt::format_to(std::back_inserter(buffer_), "{}{}{}\n", fmt::join(values, ","),
                  values.empty() || labels.empty() ? "" : ",", fmt::join(labels, ","));
-  if (buffer_.size() >= kFlushBytes) Flush();
+  if (buffer_.size() >= kFlushBytes) Finish();
 }
 
 void CsvWriter::Commit() {
-  Flush();
-  file_.Commit();
+  Finish();
+  file_->Commit();
 }
 
-void CsvWriter::Flush() {
-  file_.Write(buffer_);
+void CsvWriter::Finish() {
+  file_->Write(buffer_);
   buffer_.clear();
 }
 

@@ -282,11 +282,26 @@ std::optional<SystemFileFormat> FormatOf(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
-std::string ReadText(const std::filesystem::path& path) {
+/// Says which of the common mistakes it is: no such file, a directory, or
+/// something else that is not a file (a device, a pipe).
+void RequireRegularFile(const std::filesystem::path& path) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_regular_file(status)) return;
+  if (std::filesystem::is_directory(status)) {
+    throw InvalidInput(fmt::format("{}: is a directory, not a system file", path.string()));
+  }
+  if (status.type() == std::filesystem::file_type::not_found) {
     throw InvalidInput(fmt::format("{}: no such system file", path.string()));
   }
+  if (error) {
+    throw InvalidInput(
+        fmt::format("{}: cannot read the system file: {}", path.string(), error.message()));
+  }
+  throw InvalidInput(fmt::format("{}: not a regular file, so not a system file", path.string()));
+}
+
+std::string ReadText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
@@ -305,6 +320,7 @@ std::vector<std::vector<double>> Rows(const Eigen::MatrixXd& matrix) {
 }  // namespace
 
 System ReadSystemFile(const std::filesystem::path& path) {
+  RequireRegularFile(path);  // first: "is a directory" says more than its extension would
   const std::optional<SystemFileFormat> format = FormatOf(path);
   if (!format) {
     throw InvalidInput(fmt::format("{}: unknown system file type '{}'; use .json or .toml",

@@ -8,9 +8,11 @@
 ///
 /// Numbers are written in the shortest form that reads back to the same
 /// double, so a table loses nothing of what the simulator computed. The file
-/// appears only on Commit() (output_file.hpp).
+/// appears only on Commit() (output_file.hpp), or with the other files of
+/// its OutputSet (output_set.hpp).
 
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -28,6 +30,10 @@ class CsvWriter {
   /// or no columns.
   CsvWriter(const std::filesystem::path& path, std::string_view provenance,
             const std::vector<std::string>& columns);
+  /// A table written into `file`, which outlives the writer and is
+  /// committed by its owner (an OutputSet) after Finish().
+  CsvWriter(AtomicOutputFile& file, std::string_view provenance,
+            const std::vector<std::string>& columns);
 
   /// One row: exactly as many values as there are columns (else
   /// std::invalid_argument). Throws OutputError if writing fails.
@@ -36,16 +42,19 @@ class CsvWriter {
   /// without commas or line breaks; empty for none), as many in all as
   /// there are columns (else std::invalid_argument).
   void WriteRow(std::span<const double> values, std::span<const std::string> labels);
-  /// Writes what is buffered and moves the file into place.
+  /// Writes what is buffered to the (temporary) file. Throws OutputError.
+  void Finish();
+  /// Finish(), then moves the file into place.
   void Commit();
 
   std::size_t Columns() const { return columns_; }
-  const std::filesystem::path& Path() const { return file_.Path(); }
+  const std::filesystem::path& Path() const { return file_->Path(); }
 
  private:
-  void Flush();
+  void Start(std::string_view provenance, const std::vector<std::string>& columns);
 
-  AtomicOutputFile file_;
+  std::optional<AtomicOutputFile> owned_;  ///< the file, unless an OutputSet owns it
+  AtomicOutputFile* file_;
   std::size_t columns_;
   std::string buffer_;  ///< rows not yet written: one write per ~64 KiB, not per row
 };
