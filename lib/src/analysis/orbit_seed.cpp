@@ -13,7 +13,9 @@ std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient,
     throw InvalidInput(
         fmt::format("transient must be >= 0 and max_q >= 1, got {} and {}", transient, max_q));
   }
-  const Simulator simulator(system);
+  // One decomposition for the simulation and the impact state's map.
+  const auto hybrid = std::make_shared<const HybridSystem>(system);
+  const Simulator simulator(hybrid);
   const double period = system.ForcingPeriod();
   HybridState state = RestState(system);
   simulator.Run(state, transient * period);
@@ -22,7 +24,7 @@ std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient,
   if (window.Impacts().empty()) return std::nullopt;
   const Impact& last = window.Impacts().back();
   return OrbitSeed{window.Period(PeriodOptions{max_q, 1e-6}),
-                   ImpactMap(system).ToEta(last.t, last.x, last.v)};
+                   ImpactMap(hybrid).ToEta(last.t, last.x, last.v)};
 }
 
 }  // namespace impactkit
