@@ -153,7 +153,7 @@ void HybridRun::FreePhase() {
   const std::optional<double> te =
       pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, t_end_, events_);
   const double end = te.value_or(t_end_);
-  if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, false, c, s.stop));
+  if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, SegmentMode::kFree, c, s.stop));
   flow.State(t0, z0, end, &state_.x, &state_.v);
   state_.t = end;
   if (!te) return;
@@ -210,8 +210,9 @@ void HybridRun::JumpToAccumulation(double te, double t_star) {
   const int c = s.contact_dof;
   if (t_star > te) {
     const Eigen::VectorXd z0 = held.Transient(te, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
-    observer_.OnSegment(Segment(held, te, z0, te, t_star, true, c, s.stop));
-    summary_.stuck_time += t_star - te;
+    // Not sticking yet: the impacts accumulate until t*, where sticking (if
+    // the contact force holds the mass) begins.
+    observer_.OnSegment(Segment(held, te, z0, te, t_star, SegmentMode::kChatter, c, s.stop));
     Eigen::VectorXd xs, vs;
     held.State(te, z0, t_star, &xs, &vs);
     state_.x = hybrid_.Full(xs, s.stop);
@@ -244,7 +245,7 @@ void HybridRun::StuckPhase() {
                                        ? std::optional<double>(t0)
                                        : FirstUpcrossing(witness_, t0, t_end_, events_);
   const double end = tr.value_or(t_end_);
-  if (end > t0) observer_.OnSegment(Segment(held, t0, z0, t0, end, true, c, s.stop));
+  if (end > t0) observer_.OnSegment(Segment(held, t0, z0, t0, end, SegmentMode::kStuck, c, s.stop));
   Eigen::VectorXd xs, vs;
   held.State(t0, z0, end, &xs, &vs);
   state_.x = hybrid_.Full(xs, s.stop);

@@ -10,16 +10,27 @@
 
 namespace impactkit {
 
+/// What the contact mass does during a segment.
+enum class SegmentMode {
+  kFree,     ///< flight: the free flow of all N coordinates
+  kChatter,  ///< the tail of a chatter sequence, from its last simulated impact to the
+             ///< accumulation point: the contact mass is modelled at the stop (the other
+             ///< masses follow the stuck subsystem) but not yet sticking
+  kStuck,    ///< sticking: held at the stop while the contact force presses it there
+};
+
 class Segment {
  public:
-  /// `flow` is the free flow (n = N) or, when `stuck`, the stuck subsystem
-  /// (n = N - 1, the contact DOF removed and held at `stop`).
+  /// `flow` is the free flow (n = N) for kFree, otherwise the stuck
+  /// subsystem (n = N - 1, the contact DOF removed and held at `stop`).
   Segment(const LinearFlow& flow, double t0, const Eigen::VectorXd& z0, double begin, double end,
-          bool stuck, int contact_dof, double stop);
+          SegmentMode mode, int contact_dof, double stop);
 
   double Begin() const { return begin_; }
   double End() const { return end_; }
-  bool Stuck() const { return stuck_; }
+  SegmentMode Mode() const { return mode_; }
+  /// Sticking (kStuck); a chatter tail is not.
+  bool Stuck() const { return mode_ == SegmentMode::kStuck; }
 
   /// Full positions and velocities (size N) at t in [Begin(), End()].
   void StateAt(double t, Eigen::VectorXd* x, Eigen::VectorXd* v) const;
@@ -32,7 +43,7 @@ class Segment {
   const Eigen::VectorXd* z0_;
   double begin_;
   double end_;
-  bool stuck_;
+  SegmentMode mode_;
   int contact_dof_;
   double stop_;
 };

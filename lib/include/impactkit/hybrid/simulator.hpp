@@ -19,7 +19,8 @@
 ///           impacts end at t* = te + 2u / (a (1 - r))) and t* - te is small
 ///           on the system's time scale, or (threshold method) the last
 ///           inter-impact time is below the threshold:
-///         jump: the other masses follow the stuck subsystem to t*,
+///         jump: the other masses follow the stuck subsystem to t* (a
+///               chatter segment, not sticking),
 ///               x_c = xs, v_c = 0; observer.OnChatter(te, t*)
 ///       if v_c = 0 at the stop: stuck if the contact force Fs > 0 there
 ///     if stuck:
@@ -87,8 +88,9 @@ struct SimulationSummary {
   std::int64_t impacts = 0;        ///< impacts with the stop
   std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
   std::int64_t releases = 0;       ///< ends of sticking
-  /// Total time held at the stop, including the accumulated tails of
-  /// completed chatter sequences.
+  /// Total time stuck at the stop, each sticking phase from the
+  /// accumulation point of the chatter that led to it (the chatter's tail
+  /// before it is impacting, not sticking).
   double stuck_time = 0.0;
   double elapsed_seconds = 0.0;
   std::string BriefReport() const;
