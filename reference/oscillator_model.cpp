@@ -90,6 +90,7 @@ ImpactSequence::ImpactSequence(const System& system, const LinearOscillator& osc
       min_interimpact_(min_interimpact),
       min_flight_depth_(kResolvedDepthInTolerances * position_tolerance) {
   Require(contact_dof_ >= 0 && contact_dof_ < oscillator.Dof(), "contact_dof must be in [0, N)");
+  inverse_mass_column_ = system.mass.inverse().col(contact_dof_);
 }
 
 bool ImpactSequence::Begin(double t0, Eigen::Ref<Eigen::VectorXd> y) {
@@ -103,6 +104,12 @@ bool ImpactSequence::Impact(double t, Eigen::Ref<Eigen::VectorXd> y) {
   const bool too_soon = !impacts_.empty() && t - impacts_.back().t < min_interimpact_;
   const double v_c = std::max(y[velocity_index_], 0.0);
   impacts_.push_back({t, v_c});
+  // Newton's law with the stop's impulse λ acting through the mass matrix:
+  // v+ = v− + λ M⁻¹ e_c with v_c+ = −r v_c−.
+  const double impulse = -(1.0 + restitution_) * v_c / inverse_mass_column_(contact_dof_);
+  for (int j = 0; j < oscillator_.Dof(); ++j) {
+    if (j != contact_dof_) y[oscillator_.Dof() + j] += impulse * inverse_mass_column_(j);
+  }
   y[velocity_index_] = -restitution_ * v_c;
   chatter_detected_ = too_soon || static_cast<long>(impacts_.size()) >= max_impacts_ ||
                       NextFlightUnresolvable(t, y);

@@ -82,6 +82,7 @@ class ImpactSequence {
   int velocity_index_;  // of v_c in y
   double stop_;
   double restitution_;
+  Eigen::VectorXd inverse_mass_column_;  ///< M⁻¹ e_c: the direction of the stop's impulse
   long max_impacts_;
   double min_interimpact_;
   double min_flight_depth_;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/hybrid/stop.hpp"
 
 using namespace impactkit;
@@ -36,9 +37,21 @@ TEST_CASE("the stop's reset and its Jacobian", "[stop]") {
   v << 0.3, 0.7, -0.2;
   Eigen::VectorXd after = v;
   stop.Reset(after);
-  CHECK(after(0) == v(0));
-  CHECK(after(2) == v(2));
+  // Newton's law through the mass matrix: v+ = v + λ M⁻¹ e_2 with v_2+ = −r v_2.
+  const Eigen::Vector3d column = system.mass.inverse().col(1);
+  const double impulse = -(1.0 + 0.6) * 0.7 / column(1);
+  CHECK((after - (v + impulse * column)).cwiseAbs().maxCoeff() < 1e-15);
   CHECK(after(1) == -0.6 * 0.7);
+  // Kinetic energy drops by (1 − r²) v_c² / (2 (M⁻¹)_cc), whatever the others do.
+  auto kinetic = [&](const Eigen::VectorXd& u) { return 0.5 * u.dot(system.mass * u); };
+  CHECK_THAT(kinetic(after) - kinetic(v), WithinAbs(-(1 - 0.36) * 0.49 / (2 * column(1)), 1e-15));
+  // A diagonal M: only v_c changes, to the last bit (the paper's law).
+  const Stop paper_stop(PaperSystem());
+  Eigen::VectorXd u(2);
+  u << 0.3, 0.7;
+  paper_stop.Reset(u);
+  CHECK(u(0) == 0.3);
+  CHECK(u(1) == -0.7 * 0.7);
   // The reset is linear: its Jacobian is its finite difference, exactly up
   // to rounding, column by column over y = (x, v).
   const Eigen::MatrixXd jacobian = stop.ResetJacobian(3);
@@ -46,7 +59,7 @@ TEST_CASE("the stop's reset and its Jacobian", "[stop]") {
     Eigen::VectorXd y = Eigen::VectorXd::Zero(6);
     y(j) = 1.0;
     Eigen::VectorXd reset_v = y.tail(3);
-    stop.Reset(reset_v);
+    stop.Reset(reset_v);  // linear in v: the image of a unit vector is a column
     Eigen::VectorXd image(6);
     image << y.head(3), reset_v;
     CHECK((jacobian.col(j) - image).cwiseAbs().maxCoeff() < 1e-15);
@@ -106,4 +119,41 @@ TEST_CASE("the hybrid system's vector field is M⁻¹(A cos Ωt − C v − K x)
   const double behind =
       hybrid.ContactAcceleration(t - h, x - h * v, v - h * a, &ignored, &force, &acceleration);
   CHECK_THAT(rate, WithinAbs((ahead - behind) / (2 * h), 1e-7));
+}
+
+TEST_CASE("a full mass matrix no longer gains energy at impacts and stays bounded", "[stop]") {
+  // Found by a randomised run: with v_c alone reversed, 57 of its first 60
+  // impacts gained kinetic energy and the motion grew to 1e29.
+  Eigen::Matrix3d m, c, k;
+  m << 1.604088163968363, -0.13246023729548584, 0.4120205873969771, -0.13246023729548584,
+      1.1668991331294452, 0.42532035035927784, 0.4120205873969771, 0.42532035035927784,
+      0.6992699301464166;
+  c << 0.16795211293584097, 0.0698392807381956, -0.006563485935048544, 0.0698392807381956,
+      0.07523302848312648, 0.019404482595265837, -0.006563485935048544, 0.019404482595265837,
+      0.06908204611476863;
+  k << 1.5900817432046708, -0.262989060829579, -0.5644124897898639, -0.262989060829579,
+      1.6503621020569692, 1.0767176184331912, -0.5644124897898639, 1.0767176184331912,
+      1.6097422309538914;
+  const System system = GeneralSystem(
+      m, c, k, Eigen::Vector3d(-0.6540884271515945, -0.6612885033997188, -0.883874767405854),
+      1.3891451532513255, 0.2458120848002388, 0.8399329871659771, 1);
+  class Check : public Observer {
+   public:
+    explicit Check(const System& s) : s_(s) {}
+    void OnImpact(const Impact& impact) override {
+      Eigen::VectorXd after = impact.v;
+      Stop(s_).Reset(after);
+      gained += after.dot(s_.mass * after) > impact.v.dot(s_.mass * impact.v);
+      largest = std::max(largest, impact.x.cwiseAbs().maxCoeff());
+      ++count;
+    }
+    const System& s_;
+    int gained = 0, count = 0;
+    double largest = 0.0;
+  } check(system);
+  HybridState state = RestState(system);
+  Simulate(system, {}, state, 200 * system.ForcingPeriod(), check);
+  CHECK(check.count > 50);
+  CHECK(check.gained == 0);
+  CHECK(check.largest < 2.0);
 }

@@ -5,7 +5,23 @@
 namespace impactkit {
 
 Stop::Stop(const System& system)
-    : dof_(system.contact_dof), position_(system.stop), restitution_(system.restitution) {}
+    : dof_(system.contact_dof), position_(system.stop), restitution_(system.restitution) {
+  const Eigen::VectorXd column =
+      system.mass.partialPivLu().solve(Eigen::VectorXd::Unit(system.Dof(), dof_));
+  impulse_direction_ = column / column(dof_);
+  impulse_direction_(dof_) = 1.0;
+}
+
+void Stop::Reset(Eigen::VectorXd& v) const {
+  // v_c is set directly rather than as v_c + Δ: −r v_c, the paper's law to
+  // the last bit; the others move with the impulse (not at all for a
+  // diagonal M, whose impulse direction is exactly e_c).
+  const double change = -(1.0 + restitution_) * v(dof_);
+  for (Eigen::Index j = 0; j < v.size(); ++j) {
+    if (j != dof_) v(j) += change * impulse_direction_(j);
+  }
+  v(dof_) = -restitution_ * v(dof_);
+}
 
 Witness Stop::Gap(int dofs) const {
   return {"the contact mass reaches the stop (an impact)",
@@ -44,6 +60,13 @@ Witness Stop::Release(const System& system) const {
 
 Eigen::MatrixXd Stop::ResetJacobian(int dofs) const {
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Identity(2 * dofs, 2 * dofs);
+  for (int j = 0; j < dofs; ++j) {
+    // Zero directions are left as they are (+0): a diagonal M's Jacobian
+    // is the paper's to the last bit.
+    if (j != dof_ && impulse_direction_(j) != 0.0) {
+      jacobian(dofs + j, dofs + dof_) = -(1.0 + restitution_) * impulse_direction_(j);
+    }
+  }
   jacobian(dofs + dof_, dofs + dof_) = -restitution_;
   return jacobian;
 }

@@ -7,7 +7,12 @@
 /// of these from here (Drake's split of witness functions and reset maps).
 ///
 ///     free       while g = x_c − xs < 0; an impact when g reaches 0 upwards
-///     impact     v_c(t+) = −r v_c(t−), every other coordinate unchanged
+///     impact     v(t+) = v(t−) + λ M⁻¹ e_c, the stop's impulse λ such that
+///                v_c(t+) = −r v_c(t−): λ = −(1 + r) v_c(t−) / (M⁻¹)_cc.
+///                With a diagonal M only v_c changes (the paper's law); with
+///                masses coupled through M the impulse moves the others too,
+///                and kinetic energy drops by (1 − r²) v_c² / (2 (M⁻¹)_cc)
+///                (changing v_c alone could create energy there).
 ///     held       x_c = xs, v_c = 0 while Fs > 0, Fs the force pressing the
 ///                mass into the stop (the stop's reaction: the c-th row of
 ///                M x'' = A cos Ωt − C v − K x − Fs e_c with the held mass's
@@ -47,8 +52,9 @@ class Stop {
   LinearOutput ContactForce(const System& system) const;
 
   /// The impact law on the velocities just before impact (v_c > 0).
-  void Reset(Eigen::VectorXd& v) const { v(dof_) = -restitution_ * v(dof_); }
-  /// ∂(x, v)(t+) / ∂(x, v)(t−), 2N x 2N: the identity with −r at v_c.
+  void Reset(Eigen::VectorXd& v) const;
+  /// ∂(x, v)(t+) / ∂(x, v)(t−), 2N x 2N: the identity except the column of
+  /// v_c, which is −(1 + r) M⁻¹e_c / (M⁻¹)_cc + e_c (−r at v_c itself).
   Eigen::MatrixXd ResetJacobian(int dofs) const;
 
   /// The sticking rule: the mass stays held while the stop pushes on it.
@@ -58,6 +64,9 @@ class Stop {
   int dof_;
   double position_;
   double restitution_;
+  /// M⁻¹ e_c / (M⁻¹)_cc: how the impulse moves each velocity per unit
+  /// change of v_c (exactly e_c for a diagonal M).
+  Eigen::VectorXd impulse_direction_;
 };
 
 }  // namespace impactkit

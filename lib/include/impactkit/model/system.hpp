@@ -6,6 +6,9 @@
 ///     M x'' + C x' + K x = A cos(Ω t)      while x_c < xs     (free flight)
 ///     v_c(t+) = -r v_c(t-)                 when x_c reaches xs with v_c > 0
 ///
+/// (by an impulse through M: the other velocities move too when M couples
+/// the masses; hybrid/stop.hpp)
+///
 /// The paper's case (Wagg & Bishop 2001) is the uniform chain M = m I,
 /// C = c E, K = k E with E tridiagonal (E_ii = 2 for i < N, E_NN = 1,
 /// off-diagonals -1). PaperSystem() is the default of every command.
