@@ -22,7 +22,16 @@ using Keys = std::span<const std::string_view>;
 
 constexpr std::array<std::string_view, 9> kTopLevelKeys = {
     "chain", "mass", "damping", "stiffness", "forcing", "omega", "xs", "r", "contact_dof"};
-constexpr std::array<std::string_view, 4> kChainKeys = {"n", "m", "k", "c"};
+/// The chain's keys are the model's chain parameters (model/parameters.hpp),
+/// n first: it sizes the chain the others fill.
+std::vector<std::string_view> ChainKeys() {
+  std::vector<std::string_view> keys;
+  for (const ParameterSpec& spec : ParameterTable()) {
+    if (spec.chain_only) keys.push_back(spec.name);
+  }
+  std::stable_partition(keys.begin(), keys.end(), [](std::string_view key) { return key == "n"; });
+  return keys;
+}
 
 /// What a file states, before the paper's defaults fill the gaps.
 struct SystemFields {
@@ -132,7 +141,7 @@ class FieldReader {
 
 ChainParameters ReadChain(const Json& value, const ChainParameters& defaults,
                           const FieldReader& reader) {
-  reader.RequireObject(value, "chain", kChainKeys);
+  reader.RequireObject(value, "chain", ChainKeys());
   ChainParameters chain = defaults;
   if (value.contains("n")) chain.dof = reader.WholeNumber(value["n"], Field("chain.n"), 1);
   if (value.contains("m")) chain.mass = reader.Number(value["m"], Field("chain.m"));
