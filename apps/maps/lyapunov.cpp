@@ -14,8 +14,8 @@
 
 #include "commands.hpp"
 #include "common/limits.hpp"
-#include "common/require.hpp"
 #include "common/system_options.hpp"
+#include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/io/output_file.hpp"

@@ -10,8 +10,8 @@
 
 #include "common/limits.hpp"
 #include "common/progress.hpp"
-#include "common/require.hpp"
 #include "common/system_options.hpp"
+#include "impactkit/core/errors.hpp"
 
 namespace impactkit::cli {
 

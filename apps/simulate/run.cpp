@@ -9,7 +9,7 @@
 
 #include "common/plot.hpp"
 #include "common/progress.hpp"
-#include "common/require.hpp"
+#include "impactkit/core/errors.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "simulate/output.hpp"
 #include "simulate/summary.hpp"
