@@ -15,20 +15,14 @@
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "seeded_orbit.hpp"
 
 using namespace impactkit;
 
 namespace {
 
 PeriodicOrbit Orbit(const System& system, int p, int q) {
-  const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
-  REQUIRE(seed.has_value());
-  OrbitOptions options;
-  options.p = p;
-  options.q = q;
-  PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged);
-  return orbit;
+  return testing::SeededOrbit(system, p, q);
 }
 
 ContinuationOptions Options(double lower, double upper, int p, int q,

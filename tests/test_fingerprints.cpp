@@ -19,6 +19,7 @@
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "seeded_orbit.hpp"
 
 using namespace impactkit;
 
@@ -97,13 +98,7 @@ System GeneralThreeDof(double omega) {
 }
 
 std::uint64_t OrbitHash(const System& system, int p, int q) {
-  const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
-  REQUIRE(seed.has_value());
-  OrbitOptions options;
-  options.p = p;
-  options.q = q;
-  PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged);
+  const PeriodicOrbit orbit = testing::SeededOrbit(system, p, q);
   BitHash hash;
   hash.Add(orbit.eta);
   hash.Add(orbit.jacobian);
