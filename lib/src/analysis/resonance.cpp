@@ -5,6 +5,8 @@
 #include <cmath>
 #include <complex>
 
+#include "impactkit/core/parameter_grid.hpp"
+
 namespace impactkit {
 
 Eigen::VectorXcd SteadyResponse(const System& system, double omega) {
@@ -37,7 +39,7 @@ std::vector<ResonancePoint> ResonanceCurve(const System& system, double from, do
   curve.reserve(steps);
   for (int k = 0; k < steps; ++k) {
     ResonancePoint point;
-    point.omega = steps == 1 ? from : from + (to - from) * k / (steps - 1);
+    point.omega = GridValue(from, to, steps, k);
     const Eigen::VectorXcd x = SteadyResponse(system, point.omega);
     point.range = 2.0 * x.cwiseAbs();
     point.phase = x.unaryExpr([](std::complex<double> z) { return std::arg(z); }).real();

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "impactkit/analysis/steady_window.hpp"
+#include "impactkit/core/parameter_grid.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
 
@@ -240,16 +241,9 @@ std::string SweepResult::BriefReport() const {
 std::vector<double> SweepValues(const SweepOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw InvalidInput(error);
-  const double low = std::min(options.from, options.to), high = std::max(options.from, options.to);
-  std::vector<double> values(options.steps);
-  if (options.steps == 1) {
-    values[0] = options.from;
-    return values;
-  }
-  // std::lerp is exact at both ends and monotonic in between.
-  for (int k = 0; k < options.steps; ++k) {
-    values[k] = std::lerp(low, high, static_cast<double>(k) / (options.steps - 1));
-  }
+  if (options.steps == 1) return {options.from};
+  std::vector<double> values = GridValues(std::min(options.from, options.to),
+                                          std::max(options.from, options.to), options.steps);
   if (options.direction == SweepDirection::kDown) std::reverse(values.begin(), values.end());
   return values;
 }
