@@ -6,7 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -126,9 +128,7 @@ std::string Preamble(int width, int height, const fs::path& output, std::string_
       "}}\n"
       "set output {2}\n"
       "set grid\n"
-      "set key {3}\n"
-      "set autoscale xfix\n"
-      "set offsets 0, 0, graph 0.05, graph 0.05\n",
+      "set key {3}\n",
       width, height, Quoted(output.string()), key);
 }
 
@@ -163,17 +163,74 @@ void RunGnuplot(const fs::path& script, const fs::path& log) {
   }
 }
 
+/// The smallest and largest finite value of `values` over all curves.
+template <typename Values>
+std::optional<std::array<double, 2>> FiniteRange(const LineChart& chart, Values values) {
+  std::optional<std::array<double, 2>> range;
+  for (const Curve& curve : chart.curves) {
+    for (double v : values(curve)) {
+      if (!std::isfinite(v)) continue;
+      if (!range) range = std::array{v, v};
+      (*range)[0] = std::min((*range)[0], v);
+      (*range)[1] = std::max((*range)[1], v);
+    }
+  }
+  return range;
+}
+
+/// A range narrower than a few parts in 10^9 of its size is one value seen
+/// through rounding; gnuplot would autoscale the noise, every tick label
+/// reading the same digits. Such an axis is centred on the value and says so.
+std::string AxisRange(char axis, const std::optional<std::array<double, 2>>& data) {
+  if (!data) return fmt::format("set autoscale {0}\nset autoscale {0}fix\n", axis);
+  const auto [low, high] = *data;
+  const double size = std::max(std::abs(low), std::abs(high));
+  if (high - low > 1e-9 * size && high > low) {
+    return fmt::format("set autoscale {0}\nset autoscale {0}fix\n", axis);
+  }
+  const double middle = 0.5 * (low + high), half = std::max(0.05 * size, 1e-3);
+  return fmt::format(
+      "set {0}range [{1}:{2}]\n"
+      "set label 1 {3} at graph 0.02, graph {4} front\n",
+      axis, middle - half, middle + half,
+      Quoted(fmt::format("every {} value is {:.10g} (spread {:.1e})", axis, middle, high - low)),
+      axis == 'x' ? 0.08 : 0.95);
+}
+
+/// The x and y ranges of one panel: fixed, from zero, or the data's.
+std::string RangeSettings(const LineChart& chart) {
+  std::string settings = "unset label 1\n";
+  if (chart.x_range) {
+    settings += fmt::format("set xrange [{}:{}]\n", (*chart.x_range)[0], (*chart.x_range)[1]);
+  } else {
+    settings += AxisRange('x', FiniteRange(chart, [](const Curve& c) { return c.x; }));
+  }
+  // A margin keeps points off the frame (special points at a branch's end);
+  // none below a y that starts at zero.
+  const auto y = FiniteRange(chart, [](const Curve& c) { return c.y; });
+  if (chart.y_from_zero && y && (*y)[1] > 0.0) {
+    return settings + "set offsets graph 0.01, graph 0.01, graph 0.05, 0\nset yrange [0:*]\n";
+  }
+  return settings + "set offsets graph 0.01, graph 0.01, graph 0.05, graph 0.05\n" +
+         AxisRange('y', y);
+}
+
 /// The settings and plot command of one chart of a multiplot.
 std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& files) {
   return fmt::format(
       "set title {}\n"
       "set xlabel {}\n"
       "set ylabel {}\n"
-      "{}",
-      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), PlotCommand(chart, files));
+      "{}{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), RangeSettings(chart),
+      PlotCommand(chart, files));
 }
 
 }  // namespace
+
+std::string ParameterLabel(std::string_view parameter) {
+  return parameter == "omega" ? "Ω" : std::string(parameter);
+}
 
 void RequireGnuplot() {
   if (!FindOnPath("gnuplot")) {

@@ -5,8 +5,11 @@
 /// back to the caller, who writes them like any other output (whole or not
 /// at all). pngcairo is used when gnuplot has it, else the plain png terminal.
 
+#include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace impactkit::cli {
@@ -39,9 +42,17 @@ struct LineChart {
   std::string y_label;
   std::vector<Curve> curves;
   std::vector<HorizontalLine> lines;
+  /// The x axis's range; unset: the data's (panels of one figure share it).
+  std::optional<std::array<double, 2>> x_range;
+  /// y starts at 0 (max - min, amplitudes: never negative).
+  bool y_from_zero = false;
   int width = 1000;  ///< pixels
   int height = 600;
 };
+
+/// A parameter's name as an axis label: the forcing frequency is Ω in
+/// every figure, as in the paper; other parameters keep their names.
+std::string ParameterLabel(std::string_view parameter);
 
 /// Throws PlotError unless gnuplot is on PATH: call it before a long run
 /// so that a missing gnuplot is reported before the work, not after.

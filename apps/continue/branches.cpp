@@ -180,7 +180,7 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
   static const char* kPalette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf"};
   LineChart chart;
   chart.title = "Continued branches: impact velocities";
-  chart.x_label = branches.front().branch.parameter;
+  chart.x_label = ParameterLabel(branches.front().branch.parameter);
   chart.y_label = "impact velocity";
   for (std::size_t k = 0; k < branches.size(); ++k) {
     const Branch& b = branches[k].branch;

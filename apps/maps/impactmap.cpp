@@ -58,7 +58,7 @@ void RunImpactMap(const ImpactMapRequest& request) {
   }
   if (plot) {
     LineChart chart;
-    chart.title = fmt::format("impact map, omega = {}", system.omega);
+    chart.title = fmt::format("impact map, Ω = {}", system.omega);
     chart.x_label = fmt::format("phase at impact, t mod T (T = {:.6g})", system.ForcingPeriod());
     chart.y_label = fmt::format("impact velocity v{}(t-)", system.contact_dof + 1);
     chart.curves.push_back(points);

@@ -118,7 +118,7 @@ void RunReturnMap(const ReturnMapRequest& request) {
   if (plot) {
     LineChart chart;
     chart.title =
-        fmt::format("return map of impacts with v < {}, omega = {}", request.bound, system.omega);
+        fmt::format("return map of impacts with v < {}, Ω = {}", request.bound, system.omega);
     chart.x_label = "v(j)";
     chart.y_label = "v(j+1)";
     chart.curves.push_back({"impacts", points.from, points.to, false, "#1f4e9a", true});

@@ -107,7 +107,8 @@ nlohmann::json ResonanceStage(const System& system, Folder& folder) {
   }
   LineChart chart;
   chart.title = "Fig. 2: non-impacting resonance curves";
-  chart.x_label = "omega";
+  chart.x_label = ParameterLabel("omega");
+  chart.y_from_zero = true;
   chart.y_label = "max - min displacement";
   for (int i = 0; i < system.Dof(); ++i) {
     Curve c;

@@ -70,7 +70,8 @@ void RunResonance(const ResonanceRequest& request) {
   if (plot) {
     LineChart chart;
     chart.title = "resonance curves without the stop";
-    chart.x_label = "forcing frequency omega";
+    chart.x_label = "forcing frequency Ω";
+    chart.y_from_zero = true;
     chart.y_label = "max - min displacement";
     // The paper's Fig. 2: x_N solid, the other masses dashed.
     static const char* const kColors[] = {"#1f4e9a", "#c0392b", "#27ae60", "#8e44ad", "#d35400"};

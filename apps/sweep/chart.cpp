@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace impactkit::cli {
 
 std::vector<LineChart> SweepCharts(const System& system, const SweepOptions& options,
@@ -9,10 +11,19 @@ std::vector<LineChart> SweepCharts(const System& system, const SweepOptions& opt
   const int c = system.contact_dof + 1;
   LineChart ranges, speeds;
   ranges.title = fmt::format("impactkit sweep: max - min of x{} in each recorded period", c);
-  ranges.x_label = options.parameter;
+  // Both panels span the whole sweep, also where one of them has no data
+  // (no impacts above the last impacting value).
+  std::optional<std::array<double, 2>> range;
+  if (options.from != options.to) {
+    range = std::array{std::min(options.from, options.to), std::max(options.from, options.to)};
+  }
+  ranges.x_label = ParameterLabel(options.parameter);
+  ranges.x_range = range;
+  ranges.y_from_zero = true;
   ranges.y_label = fmt::format("max - min x{}", c);
   speeds.title = fmt::format("impact velocity v{}(t-)", c);
-  speeds.x_label = options.parameter;
+  speeds.x_label = ParameterLabel(options.parameter);
+  speeds.x_range = range;
   speeds.y_label = "impact velocity";
   Curve range_points{fmt::format("x{}", c), {}, {}, false, "#1f77b4", true};
   Curve speed_points{"impacts", {}, {}, false, "#000000", true};
