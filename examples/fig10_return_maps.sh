@@ -6,10 +6,10 @@
 #
 #   examples/fig10_return_maps.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/maps.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/maps}
 mkdir -p "$figures" "$data"
 echo "Fig. 10(a), and the Eq. 18 fit over all its points:"

@@ -6,11 +6,11 @@
 #
 #   examples/fig11_sqrt_map.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./docs/figures; the binary and the data folder are unused (a
+# Defaults: ./out/figures; the binary and the data folder are unused (a
 # formula needs neither), taken so that every figure script is called alike.
 # Needs gnuplot.
 set -euo pipefail
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 mkdir -p "$figures"
 gnuplot <<GP
 set terminal pngcairo size 700,600 font "Sans,11"

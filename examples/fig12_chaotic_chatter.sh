@@ -6,10 +6,10 @@
 #
 #   examples/fig12_chaotic_chatter.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/maps.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/maps}
 mkdir -p "$figures" "$data"
 for w in 1.7205 1.721 1.7215 1.722 1.7225 1.723 1.7235 1.724 1.7245; do

@@ -5,10 +5,10 @@
 #
 #   examples/fig2_resonance.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/maps.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/maps}
 mkdir -p "$figures" "$data"
 "$impactkit" resonance --from 0.1 --to 2.5 --steps 2401 \

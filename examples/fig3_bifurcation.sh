@@ -7,10 +7,10 @@
 #
 #   examples/fig3_bifurcation.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/sweep. Needs gnuplot.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/sweep. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/sweep}
 mkdir -p "$figures" "$data"
 

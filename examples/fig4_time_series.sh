@@ -4,10 +4,10 @@
 #
 #   examples/fig4_time_series.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/fig4.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/fig4.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/fig4}
 mkdir -p "$figures" "$data"
 

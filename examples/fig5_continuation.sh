@@ -7,12 +7,12 @@
 #
 #   examples/fig5_continuation.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/continuation. The
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/continuation. The
 # figures are continuation-*.png; the branch CSV/JSON and sweeps are data.
 # Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/continuation}
 mkdir -p "$figures" "$data"
 
@@ -53,7 +53,7 @@ set terminal pngcairo size 1000,600 noenhanced
 set output '$3'
 set datafile separator ','
 set xrange [$2]
-set xlabel 'Omega'
+set xlabel 'Ω'
 set ylabel 'impact velocity v2'
 set title 'Continued branches (lines: stable solid, unstable dashed) over brute-force impacts (dots)'
 plot '$1' using 1:4 with points pt 7 ps 0.25 lc rgb '#777777' title 'sweep', \

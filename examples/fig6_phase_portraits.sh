@@ -5,10 +5,10 @@
 #
 #   examples/fig6_phase_portraits.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/fig6. Needs gnuplot.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/fig6. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/fig6}
 mkdir -p "$figures" "$data"
 
@@ -21,12 +21,12 @@ for panel in "a 0.82" "b 1.17" "c 1.69"; do
 set terminal pngcairo size 700,600 noenhanced
 set output '$figures/fig6$name.png'
 set datafile separator ','
-set title 'Fig. 6($name): phase portrait, Omega = $omega'
+set title 'Fig. 6($name): phase portrait, Ω = $omega'
 set xlabel 'displacement'
 set ylabel 'velocity'
 set arrow from 0.1, graph 0 to 0.1, graph 1 nohead dt 3 lc rgb '#888888'
 plot '$data/fig6$name.csv' using 3:5 with lines lw 2 lc rgb '#1f77b4' title 'x2', \
-     '' using 2:4 with lines lw 1 dt 2 lc rgb '#d62728' title 'x1'
+     '' using 2:4 with lines lw 1 lc rgb '#d62728' title 'x1'
 GNUPLOT
 done
 echo "wrote: $figures/fig6a.png $figures/fig6b.png $figures/fig6c.png"

@@ -8,10 +8,10 @@
 #
 #   examples/fig7_sticking.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/sweep. Needs gnuplot.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/sweep. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/sweep}
 mkdir -p "$figures" "$data"
 

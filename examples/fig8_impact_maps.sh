@@ -6,10 +6,10 @@
 #
 #   examples/fig8_impact_maps.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/maps. Needs gnuplot.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/maps}
 mkdir -p "$figures" "$data"
 omegas="1.70 1.701 1.71 1.715 1.72 1.725 1.74 1.75 1.77 1.79 1.81 1.82"

@@ -7,10 +7,13 @@
 #
 #   examples/fig9_impact_map_details.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/maps. Needs gnuplot.
+# FIG9_PERIODS (default 20000) shortens the recorded runs for a quick look.
+#
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps. Needs gnuplot.
 set -euo pipefail
+here=$(dirname "$0")
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/maps}
 mkdir -p "$figures" "$data"
 
@@ -25,10 +28,13 @@ c 1.72 0.28 10"
   echo 'set multiplot layout 1,3'
   echo 'unset key'
   while read -r panel w lo hi; do
-    "$impactkit" impactmap --omega "$w" --transient 500 --periods 20000 \
+    "$impactkit" impactmap --omega "$w" --transient 500 --periods ${FIG9_PERIODS:-20000} \
       --out "$data/fig9$panel.csv" >/dev/null
+    band="((\$3 > $lo && \$3 < $hi) ? \$3 : 1/0)"
     echo "set title '($panel) Ω = $w, $lo < v2 < $hi'; set xlabel 'phase'; set ylabel 'v2'"
-    echo "plot '$data/fig9$panel.csv' every ::2 using 2:((\$3 > $lo && \$3 < $hi) ? \$3 : 1/0) with points pointtype 7 pointsize 0.1 linecolor rgb '#1f4e9a'"
+    echo "call '$here/gnuplot/single_value_axis.gp' 'x' '$data/fig9$panel.csv' '((\$3 > $lo && \$3 < $hi) ? \$2 : 1/0)'"
+    echo "call '$here/gnuplot/single_value_axis.gp' 'y' '$data/fig9$panel.csv' '$band'"
+    echo "plot '$data/fig9$panel.csv' every ::2 using 2:$band with points pointtype 7 pointsize 0.1 linecolor rgb '#1f4e9a'"
   done <<<"$panels"
   echo 'unset multiplot'
 } | gnuplot
