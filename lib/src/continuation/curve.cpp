@@ -49,6 +49,13 @@ class CurveTracer {
   HalfCurve Trace(const CurvePoint& start) {
     HalfCurve half;
     Accept(start, &half);
+    if (Leaving(start)) {
+      half.end = CurveEnd::kParameterBound;
+      half.message =
+          fmt::format("starts on a bound: {} = {:.10g}, {} = {:.10g}", options_.parameter,
+                      start.parameter, options_.parameter2, start.parameter2);
+      return half;
+    }
     double step = options_.initial_step;
     while (static_cast<int>(half.points.size()) < options_.max_points) {
       const CurvePoint from = half.points.back();
@@ -110,6 +117,16 @@ class CurveTracer {
   bool Beyond(const CurvePoint& point) const {
     return point.parameter < options_.lower || point.parameter > options_.upper ||
            point.parameter2 < options_.lower2 || point.parameter2 > options_.upper2;
+  }
+
+  /// True for a point on a bound whose tangent leads out of the bounds.
+  bool Leaving(const CurvePoint& point) const {
+    const Eigen::Index size = point.tangent.size();
+    const double d1 = point.tangent(size - 2), d2 = point.tangent(size - 1);
+    return (point.parameter <= options_.lower && d1 < 0) ||
+           (point.parameter >= options_.upper && d1 > 0) ||
+           (point.parameter2 <= options_.lower2 && d2 < 0) ||
+           (point.parameter2 >= options_.upper2 && d2 > 0);
   }
 
   /// The curve's point on the first bound crossed between `from` and `beyond`.
