@@ -23,8 +23,9 @@ struct Curve {
   std::vector<double> y;
   bool dashed = false;
   std::string color = "#000000";  ///< gnuplot colour, "#rrggbb"
-  /// Draw each (x, y) as a small dot, unjoined (bifurcation diagrams).
+  /// Draw each (x, y) as a dot, unjoined (bifurcation diagrams).
   bool points = false;
+  double point_size = 0.2;  ///< gnuplot pointsize of those dots (1: a marker)
 };
 
 /// A constant y across the chart (a stop, a threshold).
