@@ -201,6 +201,11 @@ void RunCurve(const CurveRequest& request) {
           "--start-json takes the system from its file: drop --system, --set, --omega and --dof");
   System system = request.start_json.empty() ? ResolveSystem(request.system) : System{};
   if (!request.plot.empty()) RequireGnuplot();
+  // Created first: a bad path fails before the work.
+  OutputSet outputs;
+  AtomicOutputFile* out = AddIfAsked(outputs, request.out);
+  AtomicOutputFile* json = AddIfAsked(outputs, request.json);
+  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   CurveOptions options;
   CurveStart start;
   if (request.start_json.empty()) {
@@ -209,10 +214,6 @@ void RunCurve(const CurveRequest& request) {
   } else {
     start = StartFromJson(request, &system, &options);
   }
-  OutputSet outputs;
-  AtomicOutputFile* out = AddIfAsked(outputs, request.out);
-  AtomicOutputFile* json = AddIfAsked(outputs, request.json);
-  AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   fmt::print("system:     {}\n", DescribeSystem(system));
   fmt::print("start:      {}\n", start.special.Describe(request.parameter));
   impactkit::Curve curve;
