@@ -151,6 +151,32 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("curves: P(2,1)'s vanishing impact is followed as P(1,1)'s grazing, the same curve",
+          "[curve]") {
+  const System system = PaperSystem(0.6);
+  const PeriodicOrbit p21 = testing::SeededOrbit(system, 2, 1);
+  ContinuationOptions options;
+  options.lower = 0.5;
+  options.upper = 1.0;
+  options.orbit.p = 2;
+  const Branch branch = ContinueBranch({system, p21, {}}, options);
+  REQUIRE(!branch.special_points.empty());
+  const SpecialPoint& vanishing = branch.special_points.back();
+  REQUIRE(vanishing.vanishing_impact >= 0);
+  const std::optional<CurveStart> reduced = ReducedGrazingStart(system, branch, vanishing, options);
+  REQUIRE(reduced.has_value());
+  CHECK(reduced->special.point.orbit.p == 1);
+  const Curve from_p21 = ContinueCurve(*reduced, Plane("r", 0.3, 0.95, 1, 1));
+  const Curve direct = ContinueCurve(Start(PaperSystem(1.0), SpecialPointType::kGrazing, 1, 1),
+                                     Plane("r", 0.3, 0.95, 1, 1));
+  for (const Curve* curve : {&from_p21, &direct}) {
+    REQUIRE(curve->begin == CurveEnd::kParameterBound);
+    REQUIRE(curve->end == CurveEnd::kParameterBound);
+  }
+  CHECK(std::abs(from_p21.points.front().parameter - direct.points.front().parameter) < 1e-8);
+  CHECK(std::abs(from_p21.points.back().parameter - direct.points.back().parameter) < 1e-8);
+}
+
 TEST_CASE("curves: codimension-two points are recomputed by a fresh orbit solve", "[curve]") {
   // Where P(1,1)'s grazing curve in (omega, A1) meets its period doubling,
   // and where its period-doubling curve in (omega, xs) has a double -1.

@@ -128,6 +128,11 @@ CurveStart FindStart(const CurveRequest& request, const System& system, CurveOpt
   branch.p = orbit.p;
   branch.q = orbit.q;
   const std::optional<CurveStart> reduced = ReducedGrazingStart(system, branch, *special, search);
+  fmt::print(
+      "origin:     impact {} of P({},{}) vanishes at {} = {:.10g}: the curve is that of "
+      "P({},{}) grazing by a new contact\n",
+      special->vanishing_impact + 1, orbit.p, orbit.q, request.parameter, special->parameter,
+      orbit.p - 1, orbit.q);
   if (!reduced) {
     throw std::runtime_error(
         fmt::format("no P({},{}) orbit found at the vanishing impact at {} = "

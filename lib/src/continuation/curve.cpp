@@ -506,27 +506,40 @@ std::optional<CurveStart> ReducedGrazingStart(const System& system, const Branch
                                               const ContinuationOptions& options) {
   Require(graze.type == SpecialPointType::kGrazing && graze.vanishing_impact >= 0 && branch.p >= 2,
           "ReducedGrazingStart needs a vanishing impact of an orbit with two impacts or more");
-  System at = system;
-  SetParameter(at, branch.parameter, graze.parameter);
-  const ImpactMap map(at, options.orbit.map);
-  const MapResult path = map.Apply(graze.point.orbit.eta, branch.p, false);
+  // The impact after the vanishing one starts the reduced orbit (as in
+  // vanishing_impact.hpp), taken from the branch's last point at its own μ.
+  System last = system;
+  SetParameter(last, branch.parameter, graze.point.parameter);
+  const MapResult path =
+      ImpactMap(last, options.orbit.map).Apply(graze.point.orbit.eta, branch.p, false);
   if (path.status != MapStatus::kOk) return std::nullopt;
   OrbitOptions reduced = options.orbit;
   reduced.p = branch.p - 1;
   reduced.q = branch.q;
-  PeriodicOrbit orbit;
   const Eigen::VectorXd& seed = path.path[static_cast<std::size_t>(graze.vanishing_impact)];
-  if (FindOrbit(at, seed, reduced, &orbit).termination != Termination::kConverged ||
-      !orbit.contacts.clearance) {
-    return std::nullopt;
+  // The grazing itself (clearance 0 within rounding), or just beside it on
+  // the side where the reduced orbit clears the stop.
+  const double scale = std::max(1.0, std::abs(graze.parameter));
+  for (double offset : {0.0, 1e-9, -1e-9, 1e-8, -1e-8}) {
+    CurveStart start{system, {}};
+    SetParameter(start.system, branch.parameter, graze.parameter + offset * scale);
+    PeriodicOrbit orbit;
+    try {
+      if (FindOrbit(start.system, seed, reduced, &orbit).termination != Termination::kConverged ||
+          !orbit.contacts.clearance || !(*orbit.contacts.clearance > 0)) {
+        continue;
+      }
+    } catch (const InvalidInput&) {
+      continue;  // μ outside the parameter's range
+    }
+    start.special.type = SpecialPointType::kGrazing;
+    start.special.parameter = GetParameter(start.system, branch.parameter);
+    start.special.point.parameter = start.special.parameter;
+    start.special.point.orbit = orbit;
+    start.special.monitor = *orbit.contacts.clearance;
+    return start;
   }
-  CurveStart start{at, {}};
-  start.special.type = SpecialPointType::kGrazing;
-  start.special.parameter = graze.parameter;
-  start.special.point.parameter = graze.parameter;
-  start.special.point.orbit = orbit;
-  start.special.monitor = *orbit.contacts.clearance;
-  return start;
+  return std::nullopt;
 }
 
 double CompareCurveJacobian(const CurveStart& start, const CurveOptions& options,
