@@ -9,10 +9,13 @@ namespace impactkit::detail {
 namespace {
 
 /// Relative step of the defining rows' central differences. Each map
-/// carries event-time rounding of ~1e-12 (impact_map.hpp), so the step
-/// near its cube root balances rounding (1e-12 / h) against truncation
-/// (h²): ~1e-7 relative accuracy, ample for Newton.
-constexpr double kDefiningStep = 1e-5;
+/// carries event-time rounding of ~1e-12 (impact_map.hpp): this step leaves
+/// ~1e-6 of it in the gradient, ample for Newton. A step near the cube root
+/// of the rounding (1e-4 to 1e-5) would balance it against the truncation
+/// error for a map of moderate curvature, but near a slow impact (speed v)
+/// the map's curvature grows like 1/v³: on P(1,2)'s fold curve in (Ω, xs),
+/// v ≈ 0.01, 1e-5 left a 1% error in the xs column, 1e-6 leaves 1e-4.
+constexpr double kDefiningStep = 1e-6;
 /// A grazing curve is followed at this clearance, just inside the region
 /// where its orbit exists: at clearance 0 within rounding the event search
 /// sees a touch (an impact slower than min_speed, or a tiny extra impact)
