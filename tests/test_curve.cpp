@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <complex>
+#include <numbers>
 
 #include "closed_form_sdof.hpp"
 #include "impactkit/continuation/curve.hpp"
@@ -211,6 +213,85 @@ TEST_CASE("curves: codimension-two points are recomputed by a fresh orbit solve"
     }
   }
   CHECK(checked >= 2);
+}
+
+TEST_CASE(
+    "curves: P(1,1)'s Neimark-Sacker curve in (xs, omega) has strong resonances, its 1:2 "
+    "the period-doubling curve's",
+    "[curve]") {
+  const System system = PaperSystem(1.2);
+  ContinuationOptions search;
+  search.parameter = "xs";
+  search.lower = 0.1;
+  search.upper = 0.5;
+  const std::optional<SpecialPoint> ns = LocateSpecialPoint(
+      {system, testing::SeededOrbit(system, 1, 1), {}}, search, SpecialPointType::kNeimarkSacker);
+  REQUIRE(ns.has_value());
+  CurveOptions options = Plane("omega", 0.9, 1.7, 1, 1);
+  options.parameter = "xs";
+  options.lower = 0.1;
+  options.upper = 0.5;
+  options.max_points = 120;
+  const Curve torus = ContinueCurve({At(system, "xs", ns->parameter), *ns}, options);
+  CurveOptions flip_options = Plane("xs", 0.05, 0.39, 1, 1);
+  flip_options.max_points = 200;
+  const Curve flip =
+      ContinueCurve(Start(PaperSystem(1.6), SpecialPointType::kPeriodDoubling, 1, 1), flip_options);
+
+  // Each resonance recomputed from a fresh orbit: the critical multipliers.
+  int found = 0;
+  for (const Codim2Point& c : torus.codim2_points) {
+    INFO(c.Describe(torus.parameter, torus.parameter2));
+    const System at = At(At(system, "xs", c.point.parameter), "omega", c.point.parameter2);
+    PeriodicOrbit orbit;
+    REQUIRE(FindOrbit(at, c.point.orbit.eta, OrbitOptions{}, &orbit).termination ==
+            Termination::kConverged);
+    auto near = [&](std::complex<double> target) {
+      int count = 0;
+      for (const std::complex<double>& l : orbit.multipliers) count += std::abs(l - target) < 1e-6;
+      return count;
+    };
+    const double third = 2.0 * std::numbers::pi / 3.0;
+    switch (c.type) {
+      case Codim2Type::kResonance13:
+        CHECK(near(std::polar(1.0, third)) == 1);
+        CHECK(near(std::polar(1.0, -third)) == 1);
+        ++found;
+        break;
+      case Codim2Type::kResonance14:
+        CHECK(near({0.0, 1.0}) == 1);
+        CHECK(near({0.0, -1.0}) == 1);
+        ++found;
+        break;
+      case Codim2Type::kResonance11:
+      case Codim2Type::kResonance12: {
+        const double sign = c.type == Codim2Type::kResonance11 ? 1.0 : -1.0;
+        const Eigen::MatrixXd a = orbit.jacobian - sign * Eigen::MatrixXd::Identity(4, 4);
+        // A double multiplier ±1: D P ∓ I singular, of rank 3 (a Jordan pair).
+        CHECK(std::abs(a.determinant()) < 1e-8);
+        ++found;
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  CHECK(found >= 4);
+  // The 1:2 point where the NS curve meets the period-doubling curve, found
+  // from both curves.
+  const auto resonance12 = [](const Curve& curve, const std::string& xs, double near_xs) {
+    for (const Codim2Point& c : curve.codim2_points) {
+      const double value = xs == curve.parameter ? c.point.parameter : c.point.parameter2;
+      if (c.type == Codim2Type::kResonance12 && std::abs(value - near_xs) < 1e-3) return &c;
+    }
+    return static_cast<const Codim2Point*>(nullptr);
+  };
+  const Codim2Point* on_torus = resonance12(torus, "xs", 0.3843);
+  const Codim2Point* on_flip = resonance12(flip, "xs", 0.3843);
+  REQUIRE(on_torus != nullptr);
+  REQUIRE(on_flip != nullptr);
+  CHECK(std::abs(on_torus->point.parameter - on_flip->point.parameter2) < 1e-8);
+  CHECK(std::abs(on_torus->point.parameter2 - on_flip->point.parameter) < 1e-8);
 }
 
 TEST_CASE("curves: the defining rows' differenced gradient agrees with Richardson extrapolation",

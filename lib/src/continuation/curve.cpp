@@ -25,6 +25,21 @@ constexpr int kMaxLocateIterations = 80;
 constexpr double kGrazingTolerance = 1e-10;
 constexpr double kGrazingBracket = 1e-13;
 
+/// Why a curve may stop short of its located end: "; impact 1 vanishes
+/// nearby (depth 2.2e-07, not located to 1e-10)" when a monitor is small.
+std::string NearLimit(const CurvePoint& point) {
+  const OrbitContacts& c = point.orbit.contacts;
+  if (c.slowest_depth < 1e-4) {
+    return fmt::format("; impact {} vanishes nearby (depth {:.1e}, not located to {:.0e})",
+                       c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
+  }
+  if (point.defining.size() == 1 && c.clearance && *c.clearance < 1e-4) {
+    return fmt::format("; a new contact is born nearby (clearance {:.1e}, not located to {:.0e})",
+                       *c.clearance, kGrazingTolerance);
+  }
+  return "";
+}
+
 struct HalfCurve {
   std::vector<CurvePoint> points;
   std::vector<Codim2Point> codim2;
@@ -81,9 +96,9 @@ class CurveTracer {
         half.end = CurveEnd::kCorrectorFailed;
         half.message = fmt::format(
             "the corrector did not converge with the smallest step {:g} at {} = {:.10g}, {} = "
-            "{:.10g}",
+            "{:.10g}{}",
             options_.min_step, options_.parameter, from.parameter, options_.parameter2,
-            from.parameter2);
+            from.parameter2, NearLimit(from));
         return half;
       }
       if (options_.locate_codim2) LocateCodim2(from, *next, &half);
