@@ -165,12 +165,18 @@ void RunGnuplot(const fs::path& script, const fs::path& log) {
 
 /// The settings and plot command of one chart of a multiplot.
 std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& files) {
+  std::string labels = "unset label\n";
+  for (const PointLabel& label : chart.labels) {
+    labels += fmt::format("set label {} at {:.17g},{:.17g} offset 0.8,0.8 front\n",
+                          Quoted(label.text), label.x, label.y);
+  }
   return fmt::format(
       "set title {}\n"
       "set xlabel {}\n"
       "set ylabel {}\n"
-      "{}",
-      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), PlotCommand(chart, files));
+      "{}{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), labels,
+      PlotCommand(chart, files));
 }
 
 }  // namespace

@@ -34,12 +34,20 @@ struct HorizontalLine {
   std::string title;
 };
 
+/// A text beside a point of the chart (a located special point).
+struct PointLabel {
+  double x = 0.0;
+  double y = 0.0;
+  std::string text;
+};
+
 struct LineChart {
   std::string title;
   std::string x_label;
   std::string y_label;
   std::vector<Curve> curves;
   std::vector<HorizontalLine> lines;
+  std::vector<PointLabel> labels;
   int width = 1000;  ///< pixels
   int height = 600;
 };

@@ -114,6 +114,7 @@ LineChart CurveChart(const std::vector<impactkit::Curve>& curves) {
       Curve& mark = marks[ToString(s.type)];
       mark.x.push_back(s.point.parameter);
       mark.y.push_back(s.point.parameter2);
+      chart.labels.push_back({s.point.parameter, s.point.parameter2, ToString(s.type)});
     }
   }
   std::size_t k = 0;

@@ -28,8 +28,8 @@ std::vector<std::string> CurveColumns(const impactkit::Curve& curve);
 /// One row per point, the located codim-2 points named in the last column.
 void WriteCurveRows(CsvWriter& csv, const impactkit::Curve& curve);
 
-/// The curves in the parameter plane, codim-2 points marked, one legend
-/// entry per kind.
+/// The curves in the parameter plane, codim-2 points marked and labelled
+/// with their type, one legend entry per kind.
 LineChart CurveChart(const std::vector<impactkit::Curve>& curves);
 
 /// The curve, its ends and codim-2 points, on stdout.
