@@ -179,6 +179,29 @@ TEST_CASE("curves: P(2,1)'s vanishing impact is followed as P(1,1)'s grazing, th
   CHECK(std::abs(from_p21.points.back().parameter - direct.points.back().parameter) < 1e-8);
 }
 
+TEST_CASE(
+    "curves: P(1,2)'s vanishing impact in (omega, xs) is where the closed-form "
+    "non-impacting amplitude equals xs",
+    "[curve]") {
+  const System system = PaperSystem(2.0);
+  const CurveStart start = Start(system, SpecialPointType::kGrazing, 1, 2);
+  REQUIRE(start.special.vanishing_impact == 0);
+  const Curve curve = ContinueCurve(start, Plane("xs", 0.0, 0.3, 1, 2));
+  CHECK(curve.p == 0);
+  REQUIRE(curve.points.size() >= 5);
+  // |X_2| for X = (K − Ω²M + iΩC)⁻¹ A, written out for the 2 x 2 chain.
+  const auto amplitude = [](double w) {
+    using C = std::complex<double>;
+    const C a = 2.0 - w * w + C(0, 0.2 * w), b = -1.0 - C(0, 0.1 * w);
+    const C d = 1.0 - w * w + C(0, 0.1 * w);
+    return std::abs(-b * 0.5 / (a * d - b * b));
+  };
+  for (const CurvePoint& point : curve.points) {
+    INFO("xs = " << point.parameter2);
+    CHECK(std::abs(amplitude(point.parameter) - point.parameter2) < 1e-10);
+  }
+}
+
 TEST_CASE("curves: codimension-two points are recomputed by a fresh orbit solve", "[curve]") {
   // Where P(1,1)'s grazing curve in (omega, A1) meets its period doubling,
   // and where its period-doubling curve in (omega, xs) has a double -1.

@@ -119,10 +119,13 @@ CurveStart FindStart(const CurveRequest& request, const System& system, CurveOpt
   if (special->type != SpecialPointType::kGrazing || special->vanishing_impact < 0) {
     return {at, *special};
   }
-  Require(orbit.p >= 2,
-          fmt::format("the nearest grazing, at {} = {:.10g}, is P({},{})'s last impact vanishing: "
-                      "the non-impacting response touching the stop, which `curve` does not follow",
-                      request.parameter, special->parameter, orbit.p, orbit.q));
+  if (orbit.p == 1) {
+    fmt::print(
+        "origin:     P({},{})'s impact vanishes at {} = {:.10g}: the curve is where the "
+        "non-impacting response touches the stop\n",
+        orbit.p, orbit.q, request.parameter, special->parameter);
+    return {at, *special};
+  }
   Branch branch;
   branch.parameter = request.parameter;
   branch.p = orbit.p;
@@ -188,12 +191,13 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
 }
 
 std::string Provenance(const CurveRequest& request, const System& system,
-                       const CurveOptions& options, const impactkit::Curve& curve) {
+                       const CurveOptions& options, const CurveStart& start) {
   return fmt::format(
       "curve --type {} --param {} --param2 {} --from {} --to {} --from2 {} --to2 {} "
       "--p {} --q {} {}",
-      ToString(curve.type), request.parameter, request.parameter2, options.lower, options.upper,
-      request.from2, request.to2, curve.p, curve.q, ParameterList(system));
+      ToString(start.special.type), request.parameter, request.parameter2, options.lower,
+      options.upper, request.from2, request.to2, start.special.point.orbit.p,
+      start.special.point.orbit.q, ParameterList(system));
 }
 
 void RunCurve(const CurveRequest& request) {
@@ -238,7 +242,7 @@ void RunCurve(const CurveRequest& request) {
     throw std::runtime_error(
         fmt::format("the curve could not be continued beyond its start: {}", curve.end_message));
   }
-  const std::string provenance = Provenance(request, system, options, curve);
+  const std::string provenance = Provenance(request, system, options, start);
   const std::vector<impactkit::Curve> curves = {curve};
   if (out) WriteCurveRows(outputs.AddCsv(*out, provenance, CurveColumns(curve)), curve);
   if (json)

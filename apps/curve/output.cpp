@@ -15,8 +15,14 @@ int Outside(const PeriodicOrbit& orbit) {
       [](const std::complex<double>& l) { return std::abs(l) > 1.0 + kOutsideUnitCircle; }));
 }
 
-/// "grazing" curves say which: a new contact in a flight.
+/// The curve's type as outputs name it.
 std::string CurveName(const impactkit::Curve& curve) { return ToString(curve.type); }
+
+/// "period_doubling of P(1,1)", "grazing of the non-impacting response".
+std::string CurveTitle(const impactkit::Curve& curve) {
+  return curve.p == 0 ? CurveName(curve) + " of the non-impacting response"
+                      : fmt::format("{} of P({},{})", CurveName(curve), curve.p, curve.q);
+}
 
 nlohmann::json PointJson(const impactkit::Curve& curve, const CurvePoint& point) {
   nlohmann::json multipliers = nlohmann::json::array();
@@ -103,7 +109,7 @@ LineChart CurveChart(const std::vector<impactkit::Curve>& curves) {
   std::map<std::string, Curve> marks;  // one legend entry per kind of codim-2 point
   for (const impactkit::Curve& c : curves) {
     Curve line;
-    line.title = fmt::format("{} P({},{})", CurveName(c), c.p, c.q);
+    line.title = CurveTitle(c);
     std::tie(line.color, line.dashed) = kStyle.at(c.type);
     for (const CurvePoint& point : c.points) {
       line.x.push_back(point.parameter);
@@ -129,9 +135,8 @@ LineChart CurveChart(const std::vector<impactkit::Curve>& curves) {
 }
 
 void PrintCurve(const impactkit::Curve& curve) {
-  fmt::print("curve:      {} of P({},{}) in ({}, {}): {} points, {:.2f} s\n", CurveName(curve),
-             curve.p, curve.q, curve.parameter, curve.parameter2, curve.points.size(),
-             curve.seconds);
+  fmt::print("curve:      {} in ({}, {}): {} points, {:.2f} s\n", CurveTitle(curve),
+             curve.parameter, curve.parameter2, curve.points.size(), curve.seconds);
   fmt::print("  begins:   {} ({})\n", ToString(curve.begin), curve.begin_message);
   for (const Codim2Point& s : curve.codim2_points) {
     fmt::print("  codim 2:  {}\n", s.Describe(curve.parameter, curve.parameter2));

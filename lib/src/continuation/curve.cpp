@@ -28,6 +28,7 @@ constexpr double kGrazingBracket = 1e-13;
 /// Why a curve may stop short of its located end: "; impact 1 vanishes
 /// nearby (depth 2.2e-07, not located to 1e-10)" when a monitor is small.
 std::string NearLimit(const CurvePoint& point) {
+  if (point.orbit.multipliers.size() == 0) return "";  // the response's grazing: no orbit
   const OrbitContacts& c = point.orbit.contacts;
   if (c.slowest_depth < 1e-4) {
     return fmt::format("; impact {} vanishes nearby (depth {:.1e}, not located to {:.0e})",
@@ -353,10 +354,12 @@ void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1
           fmt::format("a {} point has no two-parameter curve here (fold, period_doubling, "
                       "neimark_sacker and grazing have)",
                       ToString(type)));
-  Require(type != SpecialPointType::kGrazing || start.special.vanishing_impact < 0,
+  const bool vanishing = type == SpecialPointType::kGrazing && start.special.vanishing_impact >= 0;
+  Require(!vanishing || start.special.point.orbit.p == 1,
           "a vanishing impact's curve is the grazing of the orbit with one impact fewer: start "
           "from that orbit's grazing (ReducedGrazingStart)");
-  Require(type != SpecialPointType::kGrazing || start.special.point.orbit.contacts.clearance,
+  Require(type != SpecialPointType::kGrazing || vanishing ||
+              start.special.point.orbit.contacts.clearance,
           "the grazing start has no flight maximum to follow");
   Require(mu1 >= options.lower && mu1 <= options.upper,
           fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter, mu1,
@@ -457,16 +460,22 @@ Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
   std::string error;
   Require(options.IsValid(&error), error);
   const SpecialPoint& special = start.special;
-  const double mu1 = special.point.parameter;
+  // A vanishing impact's parameter comes from its defining equation, not
+  // the branch's last point (continuation.hpp).
+  const double mu1 = special.parameter;
   const double mu2 = GetParameter(start.system, options.parameter2);
   CheckStart(start, options, mu1, mu2);
+  // P(1,q)'s impact vanishes where the non-impacting response touches the
+  // stop: that is the curve (p = 0 says so).
+  const bool response = special.vanishing_impact >= 0;
   CurveOptions own = options;
-  own.orbit.p = special.point.orbit.p;
-  own.orbit.q = special.point.orbit.q;
+  own.orbit.p = response ? 0 : special.point.orbit.p;
+  own.orbit.q = response ? 1 : special.point.orbit.q;
   const OrbitContacts& contacts = special.point.orbit.contacts;
-  CurveProblem problem(start.system, own, special.type, contacts.clearance_flight);
-  const CurvePoint first = StartPoint(
-      problem, problem.Join(special.point.orbit.eta, contacts.clearance_time, mu1, mu2), own);
+  CurveProblem problem(start.system, own, special.type, contacts.clearance_flight, response);
+  const Eigen::VectorXd eta = response ? Eigen::VectorXd() : special.point.orbit.eta;
+  const CurvePoint first =
+      StartPoint(problem, problem.Join(eta, contacts.clearance_time, mu1, mu2), own);
 
   CurveTracer tracer(problem, special.type, own, progress);
   HalfCurve forward = tracer.Trace(first);

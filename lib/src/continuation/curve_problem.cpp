@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit::detail {
@@ -27,13 +28,14 @@ constexpr double kGrazingMargin = 1e-10;
 }  // namespace
 
 CurveProblem::CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
-                           int grazing_flight)
+                           int grazing_flight, bool response)
     : base_(base),
       options_(options),
       type_(type),
       grazing_flight_(grazing_flight),
-      eta_size_(2 * base.Dof()),
-      size_(2 * base.Dof() + 2 + (type == SpecialPointType::kGrazing ? 1 : 0)) {
+      response_(response),
+      eta_size_(response ? 0 : 2 * base.Dof()),
+      size_(response ? 2 : 2 * base.Dof() + 2 + (type == SpecialPointType::kGrazing ? 1 : 0)) {
   GetParameter(base_, options_.parameter);  // throws for an unknown name
   GetParameter(base_, options_.parameter2);
 }
@@ -42,7 +44,7 @@ Eigen::VectorXd CurveProblem::Join(const Eigen::VectorXd& eta, double contact_ti
                                    double mu2) const {
   Eigen::VectorXd x(size_);
   x.head(eta_size_) = eta;
-  if (IsGrazing()) x(eta_size_) = contact_time;
+  if (HasContactTime()) x(eta_size_) = contact_time;
   x(size_ - 2) = mu1;
   x(size_ - 1) = mu2;
   return x;
@@ -89,6 +91,15 @@ double CurveProblem::Sigma(const Eigen::MatrixXd& a) const {
 
 bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const {
   if (!x.allFinite()) return false;
+  if (response_) {
+    g->resize(1);
+    try {
+      (*g)(0) = NonImpactingClearance(SystemAt(Mu1(x), Mu2(x)));
+    } catch (const InvalidInput&) {
+      return false;  // outside a parameter's range
+    }
+    return std::isfinite((*g)(0));
+  }
   const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
   if (!map) return false;
   const int c = base_.contact_dof, time = map->TimeIndex();
@@ -139,6 +150,7 @@ bool CurveProblem::TouchInsideFlight(const Eigen::VectorXd& x) const {
 }
 
 bool CurveProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* f) const {
+  if (response_) return Defining(x, f);
   if (!x.allFinite()) return false;
   Eigen::VectorXd u, g;
   if (!Along1(Mu2(x)).Residual(BranchProblem::Join(Eta(x), Mu1(x)), &u)) return false;
@@ -153,6 +165,7 @@ bool CurveProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* f) const 
 
 bool CurveProblem::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian,
                             double step_scale) const {
+  if (response_) return DefiningGradient(x, step_scale, jacobian);
   const Eigen::VectorXd eta = Eta(x);
   Eigen::MatrixXd along1, along2;
   if (!Along1(Mu2(x)).Jacobian(BranchProblem::Join(eta, Mu1(x)), &along1)) return false;
@@ -190,7 +203,7 @@ bool CurveProblem::DefiningGradient(const Eigen::VectorXd& x, double step_scale,
 Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
   Eigen::VectorXd f, g;
   Eigen::MatrixXd gradient;
-  if (!IsGrazing() || Residual(x, &f) || !Defining(x, &g) || !(g(0) > 0) ||
+  if (!HasContactTime() || Residual(x, &f) || !Defining(x, &g) || !(g(0) > 0) ||
       !DefiningGradient(x, 1.0, &gradient)) {
     return x;
   }
@@ -265,18 +278,19 @@ std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
   if (!tangent) return std::nullopt;
   CurvePoint point;
   if (!Defining(x, &point.defining)) return std::nullopt;
+  point.parameter = Mu1(x);
+  point.parameter2 = Mu2(x);
+  point.x = x;
+  point.tangent = *tangent;
+  if (response_) return point;  // no orbit: the response has no impacts
   const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
   const Eigen::VectorXd eta = Eta(x);
   if (!map || map->Apply(eta, options_.orbit.p, false).status != MapStatus::kOk) {
     return std::nullopt;
   }
-  point.parameter = Mu1(x);
-  point.parameter2 = Mu2(x);
   point.orbit = DescribeOrbit(*map, eta, options_.orbit.p, options_.orbit.q);
   point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
-  if (IsGrazing()) point.contact_time = x(eta_size_);
-  point.x = x;
-  point.tangent = *tangent;
+  if (HasContactTime()) point.contact_time = x(eta_size_);
   return point;
 }
 

@@ -17,12 +17,19 @@ namespace impactkit::detail {
 class CurveProblem {
  public:
   /// `grazing_flight`: for a grazing curve, the impact whose flight holds
-  /// the touch. Throws InvalidInput for a parameter the system lacks.
+  /// the touch. `response`: a grazing curve of the non-impacting response
+  /// instead (where P(1,q)'s impact vanishes): X = (μ1, μ2) and the one
+  /// equation xs − |X_c| = 0. Throws InvalidInput for a parameter the
+  /// system lacks.
   CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
-               int grazing_flight);
+               int grazing_flight, bool response = false);
 
-  int Size() const { return size_; }  ///< unknowns: 2N + 2, or 2N + 3 for grazing
+  /// Unknowns: 2N + 2, 2N + 3 for a grazing by a new contact, 2 for the
+  /// response's grazing.
+  int Size() const { return size_; }
   bool IsGrazing() const { return type_ == SpecialPointType::kGrazing; }
+  /// X holds t* (a grazing of an impacting orbit).
+  bool HasContactTime() const { return IsGrazing() && !response_; }
 
   /// X from its parts (t* ignored unless grazing), and back.
   Eigen::VectorXd Join(const Eigen::VectorXd& eta, double contact_time, double mu1,
@@ -78,6 +85,7 @@ class CurveProblem {
   CurveOptions options_;
   SpecialPointType type_;
   int grazing_flight_;
+  bool response_;
   int eta_size_, size_;
   Eigen::VectorXd border_b_, border_c_;
   mutable std::unique_ptr<BranchProblem> along1_, along2_;

@@ -101,6 +101,8 @@ Codim2Type GrazingMeeting(SpecialPointType type) {
 }
 
 std::optional<double> LinearMonitor(const CurvePoint& point, Monitor monitor) {
+  // The non-impacting response's grazing curve has no orbit to watch.
+  if (point.orbit.multipliers.size() == 0) return std::nullopt;
   const OrbitContacts& c = point.orbit.contacts;
   if (monitor == Monitor::kClearance) {
     // On a grazing curve the clearance is the curve's own touch (zero).

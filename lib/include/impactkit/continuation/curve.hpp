@@ -12,6 +12,9 @@
 ///     Neimark–Sacker   Π_{i<j} (λ_i λ_j − 1) = det(D P ⊙ D P − I) = 0
 ///     grazing          x_c(t*) = xs,  v_c(t*) = 0   (t* in one flight)
 ///
+/// (P(1,q)'s vanishing impact: X = (μ1, μ2) and xs − |X_c| = 0 for the
+/// non-impacting response X_c, see CurveStart.)
+///
 /// where σ(A) is the minimally augmented function of A (Govaerts): the last
 /// component of the solution of [A b; cᵀ 0] (v, σ) = (0, 1) with borders b,
 /// c the left and right singular vectors of A's least singular value at the
@@ -135,10 +138,13 @@ struct Curve {
 };
 
 /// Where a curve starts: a fold, period doubling, Neimark–Sacker point or a
-/// grazing by a new contact (vanishing_impact < 0), located on a branch in
-/// options.parameter of the system `system` (whose options.parameter2 is
-/// the curve's start value of μ2).
-/// Its orbit's p and q are the curve's.
+/// grazing, located on a branch in options.parameter of the system `system`
+/// (whose options.parameter2 is the curve's start value of μ2). Its orbit's
+/// p and q are the curve's. A grazing is a new contact (vanishing_impact <
+/// 0), or P(1,q)'s impact vanishing: the curve is then where the
+/// non-impacting response X cos(Ωt − φ), X = (K − Ω²M + iΩC)⁻¹ A, touches
+/// the stop, |X_c(μ1, μ2)| = xs (the curve's p is 0, its points have no
+/// orbit).
 struct CurveStart {
   System system;
   SpecialPoint special;
@@ -148,10 +154,10 @@ using CurveProgress = std::function<void(const CurvePoint&)>;
 
 /// Follows the curve through `start` both ways. Throws InvalidInput for bad
 /// options (the same parameter twice, n, bounds not holding the start), a
-/// special point of another kind (branch points, sticking, a vanishing
-/// impact: see below), or a start the corrector cannot put on the curve.
-/// A vanishing impact of P(p, q) with p >= 2 is the grazing of P(p − 1, q)
-/// by a new contact: pass that orbit's grazing point instead
+/// special point of another kind (branch points, sticking), a vanishing
+/// impact of P(p, q) with p >= 2, or a start the corrector cannot put on
+/// the curve. Such a vanishing impact is the grazing of P(p − 1, q) by a
+/// new contact: pass that orbit's grazing point instead
 /// (ReducedGrazingStart).
 Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
                     const CurveProgress& progress = {});
