@@ -4,7 +4,8 @@
 # (a new contact), P(1,2)'s fold and period-doubling curves, each followed
 # by `impactkit curve` from the point that continuation in Ω finds at the
 # paper's r = 0.7, xs = 0.1; the region where P(1,1) exists and is stable
-# (between its grazing and its period doubling) shaded; the
+# (between its grazing and its period doubling) shaded; where P(1,q)'s
+# impact vanishes (the non-impacting response touches the stop); the
 # codimension-two points found marked. docs/continuation.md describes them.
 #
 #   examples/parameter_planes.sh [impactkit binary] [figure folder] [data folder]
@@ -32,6 +33,10 @@ plane() {
     --out "$data/fold12-$second.csv" --json "$data/fold12-$second.json"
   "$impactkit" curve --type period_doubling --p 1 --q 2 --omega 2.0 "${common[@]}" \
     --out "$data/pd12-$second.csv" --json "$data/pd12-$second.json"
+  # Where P(1,1)'s (and P(1,2)'s) impact vanishes: the non-impacting
+  # response touches the stop (the upper end of P(1,1)'s branch).
+  "$impactkit" curve --type grazing --p 1 --q 2 --omega 2.0 "${common[@]}" \
+    --out "$data/response-$second.csv" --json "$data/response-$second.json"
   # P(1,1) stable: between its grazing and its period doubling, both
   # curves running from FROM2 to TO2 (the polygon closes along the bounds).
   {
@@ -58,7 +63,8 @@ plot '$data/stable11-$second.csv' using 1:2 with filledcurves closed fc rgb '#cc
   '$data/graze11-$second.csv' using 1:2 with lines lw 2 dt 2 lc rgb '#000000' title 'P(1,1) grazing', \
   '$data/pd11-$second.csv' using 1:2 with lines lw 2 lc rgb '#d62728' title 'P(1,1) period doubling', \
   '$data/fold12-$second.csv' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'P(1,2) fold', \
-  '$data/pd12-$second.csv' using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'P(1,2) period doubling'${codim2:+, $codim2}
+  '$data/pd12-$second.csv' using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'P(1,2) period doubling', \
+  '$data/response-$second.csv' using 1:2 with lines lw 2 dt 3 lc rgb '#7f7f7f' title 'impact of P(1,q) vanishes'${codim2:+, $codim2}
 GNUPLOT
   echo "wrote: $figures/plane-$second.png"
 }
