@@ -5,7 +5,8 @@
 # parameters and one row per point; the grazing curve in (omega, A1)
 # reports its two meetings with period doubling as codim2_points keyed by
 # the parameter names; a start read from `impactkit continue --json` gives
-# the same curve as the direct start.
+# the same curve as the direct start; P(1,2)'s vanishing impact is the
+# non-impacting response's grazing.
 #
 #     check_curve.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -41,4 +42,12 @@ done
   >"$work/stdout" || fail "--start-json failed: $(cat "$work/stdout")"
 grep -q "begins:   parameter_bound (reached omega = 1.61564" "$work/stdout" ||
   fail "--start-json gave another curve: $(cat "$work/stdout")"
+# P(1,2)'s impact vanishes: followed as the non-impacting response touching
+# the stop (p = 0 in the JSON, points without multipliers).
+"$impactkit" curve --type grazing --p 1 --q 2 --omega 2.0 --param2 xs --from 0.5 --to 3 \
+  --from2 0.05 --to2 0.2 --json "$work/v.json" >"$work/stdout" || fail "vanishing impact: $(cat "$work/stdout")"
+grep -q "curve:      grazing of the non-impacting response in (omega, xs)" "$work/stdout" ||
+  fail "not the response's grazing: $(cat "$work/stdout")"
+json=$(tr -d ' \n' <"$work/v.json")
+[[ $json == *'"multipliers":[],"omega":'* && $json == *'"p":0'* ]] || fail "response JSON: $json"
 echo ok
