@@ -174,9 +174,19 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
     start.special.type = CurveType(s.at("type").get<std::string>());
     start.special.parameter = s.at("param").get<double>();
     start.special.point.parameter = start.special.parameter;
-    Require(!s.contains("vanishing_impact") || s.at("vanishing_impact").is_null(),
+    start.special.monitor = s.value("monitor", 0.0);
+    const bool vanishing = s.contains("vanishing_impact") && !s.at("vanishing_impact").is_null();
+    Require(!vanishing || orbit.p == 1,
             "--start-json: a vanishing impact's curve starts from the orbit with one impact "
             "fewer: use --type grazing with that orbit (--p, --q) instead");
+    if (vanishing) {
+      // P(1,q)'s impact vanishes where the non-impacting response touches
+      // the stop: the curve needs no orbit, only where it starts.
+      start.special.vanishing_impact = s.at("vanishing_impact").get<int>() - 1;
+      start.special.point.orbit.p = orbit.p;
+      start.special.point.orbit.q = orbit.q;
+      return start;
+    }
     start.special.point.orbit = DescribeOrbit(
         ImpactMap(*system),
         Eigen::Map<const Eigen::VectorXd>(eta.data(), static_cast<Eigen::Index>(eta.size())),
