@@ -200,6 +200,7 @@ TEST_CASE(
     INFO("xs = " << point.parameter2);
     CHECK(std::abs(amplitude(point.parameter) - point.parameter2) < 1e-10);
   }
+  CHECK(CompareCurveJacobian(start, Plane("xs", 0.0, 0.3, 1, 2), curve.points[2]) < 1e-5);
 }
 
 TEST_CASE("curves: codimension-two points are recomputed by a fresh orbit solve", "[curve]") {

@@ -572,7 +572,9 @@ double CompareCurveJacobian(const CurveStart& start, const CurveOptions& options
   own.orbit.p = point.orbit.p;
   own.orbit.q = point.orbit.q;
   CurveProblem problem(start.system, own, start.special.type,
-                       start.special.point.orbit.contacts.clearance_flight);
+                       start.special.point.orbit.contacts.clearance_flight,
+                       start.special.vanishing_impact >= 0);
+  Require(point.x.size() == problem.Size(), "the point is not one of this start's curve");
   problem.UpdateBorders(point.x);
   Eigen::MatrixXd used, coarse, middle;
   Require(problem.Jacobian(point.x, &used) && problem.Jacobian(point.x, &coarse, 100.0) &&
