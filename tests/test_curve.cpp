@@ -94,9 +94,11 @@ TEST_CASE(
     "curves: the paper's P(1,1) period-doubling and grazing curves and P(1,2)'s fold in "
     "(omega, r) match one-parameter continuation at five values of r",
     "[curve]") {
-  for (const auto& [omega, type, p, q] : {std::tuple{1.5, SpecialPointType::kPeriodDoubling, 1, 1},
-                                          std::tuple{1.0, SpecialPointType::kGrazing, 1, 1},
-                                          std::tuple{2.0, SpecialPointType::kFold, 1, 2}}) {
+  for (const auto& [omega, type, p, q] :
+       {std::tuple{1.5, SpecialPointType::kPeriodDoubling, 1, 1},
+        std::tuple{1.0, SpecialPointType::kGrazing, 1, 1},
+        std::tuple{2.0, SpecialPointType::kFold, 1, 2},
+        std::tuple{2.0, SpecialPointType::kPeriodDoubling, 1, 2}}) {
     INFO(ToString(type) << " of P(" << p << "," << q << ")");
     const System system = PaperSystem(omega);
     const CurveStart start = Start(system, type, p, q);
