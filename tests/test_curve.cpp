@@ -333,6 +333,15 @@ TEST_CASE("curves: the defining rows' differenced gradient agrees with Richardso
   }
 }
 
+TEST_CASE("curves: a bound at the end of the parameter's range (r = 1) is reached", "[curve]") {
+  const System system =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
+  const Curve curve =
+      ContinueCurve(Start(system, SpecialPointType::kFold, 1, 1), Plane("r", 0.05, 1.0, 1, 1));
+  CHECK(curve.end == CurveEnd::kParameterBound);
+  CHECK(curve.points.back().parameter2 == 1.0);
+}
+
 TEST_CASE("curves: bad input is rejected with a clear error", "[curve]") {
   const CurveStart start = Start(PaperSystem(1.5), SpecialPointType::kPeriodDoubling, 1, 1);
   CurveOptions same = Plane("omega", 0.5, 3.0, 1, 1);

@@ -77,8 +77,13 @@ class CurveTracer {
       const CurvePoint from = half.points.back();
       int iterations = 0;
       std::optional<CurvePoint> next = Advance(from, step, &iterations);
-      if (next && Beyond(*next)) {
-        next = OnBound(from, next->x);
+      // The corrector cannot work where a parameter leaves its range (r > 1)
+      // either: a prediction beyond a bound goes to the bound too.
+      const Eigen::VectorXd predicted = from.x + step * from.tangent;
+      const bool beyond = next ? Beyond(next->parameter, next->parameter2)
+                               : Beyond(CurveProblem::Mu1(predicted), CurveProblem::Mu2(predicted));
+      if (beyond) {
+        next = OnBound(from, next ? next->x : predicted);
         if (next) {
           if (options_.locate_codim2) LocateCodim2(from, *next, &half);
           Accept(*next, &half);
@@ -130,9 +135,9 @@ class CurveTracer {
     return point;
   }
 
-  bool Beyond(const CurvePoint& point) const {
-    return point.parameter < options_.lower || point.parameter > options_.upper ||
-           point.parameter2 < options_.lower2 || point.parameter2 > options_.upper2;
+  bool Beyond(double mu1, double mu2) const {
+    return mu1 < options_.lower || mu1 > options_.upper || mu2 < options_.lower2 ||
+           mu2 > options_.upper2;
   }
 
   /// True for a point on a bound whose tangent leads out of the bounds.
