@@ -10,7 +10,8 @@
 ///     fold             σ(D P − I) = 0
 ///     period doubling  σ(D P + I) = 0
 ///     Neimark–Sacker   Π_{i<j} (λ_i λ_j − 1) = det(D P ⊙ D P − I) = 0
-///     grazing          x_c(t*) = xs,  v_c(t*) = 0   (t* in one flight)
+///     grazing          x_c(t*) = xs − δ,  v_c(t*) = 0   (t* in one flight;
+///                      δ = 1e-10 keeps the touch on the orbit's side)
 ///
 /// (P(1,q)'s vanishing impact: X = (μ1, μ2) and xs − |X_c| = 0 for the
 /// non-impacting response X_c, see CurveStart.)
