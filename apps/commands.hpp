@@ -21,6 +21,10 @@ void AddOrbitCommand(CLI::App& app);
 /// special points, and the branches born there (continue/).
 void AddContinueCommand(CLI::App& app);
 
+/// `impactkit curve`: a fold, period-doubling, Neimark-Sacker or grazing
+/// point followed in two parameters, with its codimension-two points (curve/).
+void AddCurveCommand(CLI::App& app);
+
 /// `impactkit paper`: the paper's whole study in one run, summarised and
 /// written into one folder (paper/).
 void AddPaperCommand(CLI::App& app);

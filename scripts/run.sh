@@ -22,10 +22,14 @@ for script in $(printf '%s\n' examples/fig*.sh | sort -V); do
   bash "$script" "$impactkit" "$out/figures" "$out/data"
 done
 echo
+echo "== examples/parameter_planes.sh"
+bash examples/parameter_planes.sh "$impactkit" "$out/figures" "$out/data"
+echo
 echo "Results in $(pwd)/$out/ ($((SECONDS - start)) s after the build):"
 echo "  summary.json      the summary above: modes, peaks, orbits, branches, regimes"
 echo "  branch-*.csv      each continued branch, one row per point"
 echo "  fig3-sweep.csv    the Fig. 3 sweep, one row per value"
 echo "  *.png             Figs. 2 and 3 and the continued branches"
-echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh (PNG)"
+echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh, and the parameter"
+echo "                    planes plane-*.png from examples/parameter_planes.sh (PNG)"
 echo "  data/             their CSV and JSON"

@@ -98,8 +98,8 @@ std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& fil
     const Curve& curve = chart.curves[i];
     if (curve.points) {
       clauses.push_back(fmt::format(
-          "{} using 1:2 with points pointtype 7 pointsize 0.2 linecolor rgb {} title {}",
-          Quoted(files[i].string()), Quoted(curve.color), Quoted(curve.title)));
+          "{} using 1:2 with points pointtype 7 pointsize {} linecolor rgb {} title {}",
+          Quoted(files[i].string()), curve.point_size, Quoted(curve.color), Quoted(curve.title)));
       continue;
     }
     clauses.push_back(
@@ -191,7 +191,7 @@ std::string AxisRange(char axis, const std::optional<std::array<double, 2>>& dat
   const double middle = 0.5 * (low + high), half = std::max(0.05 * size, 1e-3);
   return fmt::format(
       "set {0}range [{1}:{2}]\n"
-      "set label 1 {3} at graph 0.02, graph {4} front\n",
+      "set label 1001 {3} at graph 0.02, graph {4} front\n",
       axis, middle - half, middle + half,
       Quoted(fmt::format("every {} value is {:.10g} (spread {:.1e})", axis, middle, high - low)),
       axis == 'x' ? 0.08 : 0.95);
@@ -199,7 +199,7 @@ std::string AxisRange(char axis, const std::optional<std::array<double, 2>>& dat
 
 /// The x and y ranges of one panel: fixed, from zero, or the data's.
 std::string RangeSettings(const LineChart& chart) {
-  std::string settings = "unset label 1\n";
+  std::string settings;
   if (chart.x_range) {
     settings += fmt::format("set xrange [{}:{}]\n", (*chart.x_range)[0], (*chart.x_range)[1]);
   } else {
@@ -217,13 +217,18 @@ std::string RangeSettings(const LineChart& chart) {
 
 /// The settings and plot command of one chart of a multiplot.
 std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& files) {
+  std::string labels = "unset label\n";
+  for (const PointLabel& label : chart.labels) {
+    labels += fmt::format("set label {} at {:.17g},{:.17g} offset 0.8,0.8 front\n",
+                          Quoted(label.text), label.x, label.y);
+  }
   return fmt::format(
       "set title {}\n"
       "set xlabel {}\n"
       "set ylabel {}\n"
-      "{}{}",
-      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), RangeSettings(chart),
-      PlotCommand(chart, files));
+      "{}{}{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), labels,
+      RangeSettings(chart), PlotCommand(chart, files));
 }
 
 }  // namespace

@@ -26,14 +26,22 @@ struct Curve {
   std::vector<double> y;
   bool dashed = false;
   std::string color = "#000000";  ///< gnuplot colour, "#rrggbb"
-  /// Draw each (x, y) as a small dot, unjoined (bifurcation diagrams).
+  /// Draw each (x, y) as a dot, unjoined (bifurcation diagrams).
   bool points = false;
+  double point_size = 0.2;  ///< gnuplot pointsize of those dots (1: a marker)
 };
 
 /// A constant y across the chart (a stop, a threshold).
 struct HorizontalLine {
   double y = 0.0;
   std::string title;
+};
+
+/// A text beside a point of the chart (a located special point).
+struct PointLabel {
+  double x = 0.0;
+  double y = 0.0;
+  std::string text;
 };
 
 struct LineChart {
@@ -46,6 +54,7 @@ struct LineChart {
   std::optional<std::array<double, 2>> x_range;
   /// y starts at 0 (max - min, amplitudes: never negative).
   bool y_from_zero = false;
+  std::vector<PointLabel> labels;
   int width = 1000;  ///< pixels
   int height = 600;
 };

@@ -37,4 +37,22 @@ void ProgressLine::OnSegment(const Segment& segment) {
   drawn_ = true;
 }
 
+StepProgress::StepProgress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
+
+StepProgress::~StepProgress() {
+  if (drawn_) fmt::print(stderr, "\r\033[K");
+}
+
+bool StepProgress::Due() {
+  if (!enabled_) return false;
+  const Clock::time_point now = Clock::now();
+  return now - start_ >= kQuietPeriod && now - last_drawn_ >= kRedrawInterval;
+}
+
+void StepProgress::Draw(const std::string& text) {
+  fmt::print(stderr, "\r\033[Kimpactkit: {}", text);
+  last_drawn_ = Clock::now();
+  drawn_ = true;
+}
+
 }  // namespace impactkit::cli

@@ -36,4 +36,31 @@ class ProgressLine : public Observer {
   bool drawn_ = false;
 };
 
+/// The same line for work counted in steps of unknown number (points of a
+/// continued curve): the caller says what to show.
+class StepProgress {
+ public:
+  StepProgress();
+  /// Erases the line.
+  ~StepProgress();
+  StepProgress(const StepProgress&) = delete;
+  StepProgress& operator=(const StepProgress&) = delete;
+
+  /// One more step; `text` (made only when drawn) is shown after "impactkit: ".
+  template <typename Text>
+  void Step(const Text& text) {
+    if (Due()) Draw(text());
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool Due();
+  void Draw(const std::string& text);
+
+  const bool enabled_;
+  const Clock::time_point start_ = Clock::now();
+  Clock::time_point last_drawn_{};
+  bool drawn_ = false;
+};
+
 }  // namespace impactkit::cli

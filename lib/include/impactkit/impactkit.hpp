@@ -13,6 +13,7 @@
 #include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/curve.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/flow.hpp"

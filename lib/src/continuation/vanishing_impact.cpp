@@ -14,17 +14,6 @@ constexpr double kClearanceTolerance = 1e-13;
 /// ... or the step in μ below this, relative to max(1, |μ|).
 constexpr double kStepTolerance = 1e-14;
 
-/// xs − max_t x_c(t) of the non-impacting steady response X cos(Ωt − φ):
-/// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A.
-double NonImpactingClearance(const System& s) {
-  using Complex = std::complex<double>;
-  const double w = s.omega;
-  const Eigen::MatrixXcd dynamic = s.stiffness.cast<Complex>() - w * w * s.mass.cast<Complex>() +
-                                   Complex(0.0, w) * s.damping.cast<Complex>();
-  const Eigen::VectorXcd x = dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
-  return s.stop - std::abs(x(s.contact_dof));
-}
-
 /// The reduced orbit's clearance at μ, seeded from (and updating) `seed`;
 /// empty where no P(p − 1, q) orbit with a flight maximum is found.
 class ReducedOrbitClearance {
@@ -57,6 +46,15 @@ class ReducedOrbitClearance {
 };
 
 }  // namespace
+
+double NonImpactingClearance(const System& s) {
+  using Complex = std::complex<double>;
+  const double w = s.omega;
+  const Eigen::MatrixXcd dynamic = s.stiffness.cast<Complex>() - w * w * s.mass.cast<Complex>() +
+                                   Complex(0.0, w) * s.damping.cast<Complex>();
+  const Eigen::VectorXcd x = dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
+  return s.stop - std::abs(x(s.contact_dof));
+}
 
 std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& problem,
                                                           const BranchPoint& a,

@@ -27,6 +27,10 @@ struct VanishingImpactPoint {
   double clearance = 0.0;  ///< the defining function there (0 at the grazing)
 };
 
+/// xs − max_t x_c(t) of the non-impacting steady response X cos(Ωt − φ):
+/// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A.
+double NonImpactingClearance(const System& system);
+
 /// The grazing beyond the branch's last two points `a`, `b`, where impact
 /// `impact` (an index among the p impacts of b) vanishes. Empty when the
 /// reduced orbit cannot be found there or its clearance has no zero nearby.

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The paper system's parameter planes (Ω, r) and (Ω, xs), as vibro-impact
+# papers draw them: P(1,1)'s period-doubling curve and lower grazing curve
+# (a new contact), P(1,2)'s fold and period-doubling curves, each followed
+# by `impactkit curve` from the point that continuation in Ω finds at the
+# paper's r = 0.7, xs = 0.1; the region where P(1,1) exists and is stable
+# (between its grazing and its period doubling) shaded; where P(1,q)'s
+# impact vanishes (the non-impacting response touches the stop); the
+# codimension-two points found marked. docs/continuation.md describes them.
+#
+#   examples/parameter_planes.sh [impactkit binary] [figure folder] [data folder]
+#
+# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/curves. The
+# figures are plane-r.png and plane-xs.png; each curve's CSV and JSON
+# (docs/curves-json.md) are data. Needs gnuplot.
+set -euo pipefail
+impactkit=${1:-./build/apps/impactkit}
+figures=${2:-./docs/figures}
+data=${3:-./out/curves}
+mkdir -p "$figures" "$data"
+
+# plane SECOND FROM2 TO2: the four curves in (omega, SECOND).
+plane() {
+  local second=$1 from2=$2 to2=$3
+  local common=(--param omega --param2 "$second" --from 0.5 --to 3 --from2 "$from2" --to2 "$to2")
+  "$impactkit" curve --type period_doubling --p 1 --q 1 --omega 1.6 "${common[@]}" \
+    --out "$data/pd11-$second.csv" --json "$data/pd11-$second.json"
+  "$impactkit" curve --type grazing --p 1 --q 1 --omega 1.0 "${common[@]}" \
+    --out "$data/graze11-$second.csv" --json "$data/graze11-$second.json"
+  # --max-points: past its 1:1 resonance in (Ω, xs) this curve crawls
+  # (docs/continuation.md, known limits).
+  "$impactkit" curve --type fold --p 1 --q 2 --omega 2.0 "${common[@]}" --max-points 500 \
+    --out "$data/fold12-$second.csv" --json "$data/fold12-$second.json"
+  "$impactkit" curve --type period_doubling --p 1 --q 2 --omega 2.0 "${common[@]}" \
+    --out "$data/pd12-$second.csv" --json "$data/pd12-$second.json"
+  # Where P(1,1)'s (and P(1,2)'s) impact vanishes: the non-impacting
+  # response touches the stop (the upper end of P(1,1)'s branch).
+  "$impactkit" curve --type grazing --p 1 --q 2 --omega 2.0 "${common[@]}" \
+    --out "$data/response-$second.csv" --json "$data/response-$second.json"
+  # P(1,1) stable: between its grazing and its period doubling, both
+  # curves running from FROM2 to TO2 (the polygon closes along the bounds).
+  {
+    grep -v '^#' "$data/graze11-$second.csv" | tail -n +2 | cut -d, -f1,2
+    grep -v '^#' "$data/pd11-$second.csv" | tail -n +2 | cut -d, -f1,2 | tac
+  } >"$data/stable11-$second.csv"
+  # The codimension-two points: rows whose last column names one.
+  local codim2=""
+  cat "$data"/*11-"$second".csv "$data"/*12-"$second".csv | grep -v '^#' |
+    awk -F, '$NF ~ /[a-z]/ && $1 != "omega"' >"$data/codim2-$second.csv"
+  if [[ -s $data/codim2-$second.csv ]]; then
+    codim2="'$data/codim2-$second.csv' using 1:2 with points pt 7 ps 1.5 lc rgb '#2ca02c' title 'codimension two', \
+      '$data/codim2-$second.csv' using 1:2:(stringcolumn(9)) with labels offset -1,1 right notitle"
+  fi
+  gnuplot <<GNUPLOT
+set terminal pngcairo size 1000,700 noenhanced
+set output '$figures/plane-$second.png'
+set datafile separator ','
+set xlabel 'Omega'
+set ylabel '$second'
+set key outside bottom center horizontal
+set title 'Paper system: P(1,1) and P(1,2) bifurcation curves in (Omega, $second)'
+plot '$data/stable11-$second.csv' using 1:2 with filledcurves closed fc rgb '#cce5ff' title 'P(1,1) stable', \
+  '$data/graze11-$second.csv' using 1:2 with lines lw 2 dt 2 lc rgb '#000000' title 'P(1,1) grazing', \
+  '$data/pd11-$second.csv' using 1:2 with lines lw 2 lc rgb '#d62728' title 'P(1,1) period doubling', \
+  '$data/fold12-$second.csv' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'P(1,2) fold', \
+  '$data/pd12-$second.csv' using 1:2 with lines lw 2 lc rgb '#ff7f0e' title 'P(1,2) period doubling', \
+  '$data/response-$second.csv' using 1:2 with lines lw 2 dt 3 lc rgb '#7f7f7f' title 'impact of P(1,q) vanishes'${codim2:+, $codim2}
+GNUPLOT
+  echo "wrote: $figures/plane-$second.png"
+}
+
+plane r 0.3 0.95
+plane xs 0 0.3

@@ -1,0 +1,187 @@
+#pragma once
+/// \file curve.hpp
+/// Two-parameter continuation of codimension-one points of a P(p, q) family:
+/// fold, period-doubling, Neimark–Sacker and grazing curves in any two named
+/// parameters (μ1, μ2), and the codimension-two points along them.
+///
+/// The unknowns are X = (η, [t*], μ1, μ2) on the curve F(X) = 0,
+///
+///     U(η; μ1, μ2) = P_I^p(η) − η − q T e_τ = 0          (2N equations)
+///     fold             σ(D P − I) = 0
+///     period doubling  σ(D P + I) = 0
+///     Neimark–Sacker   Π_{i<j} (λ_i λ_j − 1) = det(D P ⊙ D P − I) = 0
+///     grazing          x_c(t*) = xs − δ,  v_c(t*) = 0   (t* in one flight;
+///                      δ = 1e-10 keeps the touch on the orbit's side)
+///
+/// (P(1,q)'s vanishing impact: X = (μ1, μ2) and xs − |X_c| = 0 for the
+/// non-impacting response X_c, see CurveStart.)
+///
+/// where σ(A) is the minimally augmented function of A (Govaerts): the last
+/// component of the solution of [A b; cᵀ 0] (v, σ) = (0, 1) with borders b,
+/// c the left and right singular vectors of A's least singular value at the
+/// last accepted point (docs/continuation.md says why this and not det).
+/// U's rows and columns are the one-parameter code's (analytic D P, U_μ by
+/// the saltation relation, continuation.hpp); the defining rows' gradient is
+/// a central difference (CompareCurveJacobian checks it).
+///
+/// The curve is followed by pseudo-arclength continuation exactly as a
+/// branch is (tangent predictor, bordered corrector, adaptive step) within
+/// bounds on both parameters. Along it, second test functions locate the
+/// codimension-two points by the Illinois method on arclength; the grazing
+/// and sticking monitors of orbit_contacts.hpp end it where the orbit stops
+/// existing (a bifurcation curve meeting a grazing curve).
+
+#include <Eigen/Dense>
+#include <array>
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "impactkit/continuation/continuation.hpp"
+
+namespace impactkit {
+
+/// The codimension-two points met along a curve.
+enum class Codim2Type {
+  kFoldFlip,     ///< multipliers +1 and −1 at once (fold and PD curves meet)
+  kCusp,         ///< a fold curve turns back in the parameter plane
+  kResonance11,  ///< a double multiplier +1 (NS curve meets a fold curve)
+  kResonance12,  ///< a double multiplier −1 (NS curve meets a PD curve)
+  kResonance13,  ///< the NS pair at e^{±2πi/3}
+  kResonance14,  ///< the NS pair at ±i
+  kFoldGrazing,  ///< a fold meets a grazing (either curve's end or crossing)
+  kPeriodDoublingGrazing,
+  kNeimarkSackerGrazing,
+  kDoubleGrazing,  ///< a grazing curve meets another grazing: a second contact
+  kStickingOnset,  ///< an impact of the curve's orbit starts to chatter
+};
+
+/// "fold_flip", "cusp", "resonance_1_1", …, "fold_grazing",
+/// "period_doubling_grazing", "neimark_sacker_grazing", "double_grazing",
+/// "sticking_onset": the name outputs use.
+std::string ToString(Codim2Type type);
+
+struct CurveOptions {
+  /// μ1 (the parameter of the branch the start point came from) and μ2.
+  std::string parameter = "omega";
+  std::string parameter2 = "r";
+  /// The curve stays within these bounds (it ends on reaching one).
+  double lower = 0.0, upper = 0.0;
+  double lower2 = 0.0, upper2 = 0.0;
+  /// Arclength steps in X = (η, [t*], μ1, μ2): start, floor and ceiling.
+  double initial_step = 0.01;
+  double min_step = 1e-7;
+  double max_step = 0.02;
+  int max_points = 2000;  ///< per direction
+  /// Newton iterations allowed to the corrector before the step is halved.
+  int corrector_iterations = 8;
+  /// A corrected point may lie at most this fraction of the step from its
+  /// prediction; farther means the corrector jumped to another curve.
+  double max_correction = 0.5;
+  /// Locate codimension-two points (the curve's end is always located).
+  bool locate_codim2 = true;
+  /// p, q, tolerances and the map's options.
+  OrbitOptions orbit;
+  bool IsValid(std::string* error) const;
+};
+
+/// One corrected point of a curve.
+struct CurvePoint {
+  double parameter = 0.0;   ///< μ1
+  double parameter2 = 0.0;  ///< μ2
+  double arclength = 0.0;   ///< from the start, signed by direction
+  PeriodicOrbit orbit;      ///< at (μ1, μ2)
+  /// The defining functions here (one value; grazing: x_c(t*) − xs and
+  /// v_c(t*)): zero to the corrector's tolerance.
+  Eigen::VectorXd defining;
+  double contact_time = 0.0;  ///< grazing: t*, the time of the touch
+  std::array<double, kBifurcationTestCount> test_values{};
+  Eigen::VectorXd x;        ///< the unknowns X
+  Eigen::VectorXd tangent;  ///< unit tangent in X
+};
+
+struct Codim2Point {
+  Codim2Type type = Codim2Type::kFoldFlip;
+  CurvePoint point;
+  /// |defining function of the curve| and |second test function| there
+  /// (a grazing monitor is a length: clearance or depth).
+  double defining_residual = 0.0;
+  double second_residual = 0.0;
+  /// One line: "fold_flip at omega = 1.61, r = 0.83 (residuals 1e-12, 3e-10)".
+  std::string Describe(const std::string& name1, const std::string& name2) const;
+};
+
+enum class CurveEnd {
+  kParameterBound,   ///< reached a bound of μ1 or μ2
+  kGrazing,          ///< the orbit stops existing at a grazing (codim-2 point)
+  kSticking,         ///< the orbit stops existing at sticking onset (codim-2 point)
+  kMaxPoints,        ///< max_points reached
+  kCorrectorFailed,  ///< no convergence even with the smallest step
+};
+
+/// "parameter_bound", "grazing", "sticking", "max_points", "corrector_failed".
+std::string ToString(CurveEnd end);
+
+struct Curve {
+  SpecialPointType type = SpecialPointType::kFold;
+  std::string parameter, parameter2;
+  int p = 0, q = 0;
+  /// In order along the curve: from the end reached with μ2 decreasing to
+  /// the end reached with μ2 increasing.
+  std::vector<CurvePoint> points;
+  std::vector<Codim2Point> codim2_points;  ///< in order along the curve
+  CurveEnd begin = CurveEnd::kMaxPoints, end = CurveEnd::kMaxPoints;
+  std::string begin_message, end_message;
+  double seconds = 0.0;
+};
+
+/// Where a curve starts: a fold, period doubling, Neimark–Sacker point or a
+/// grazing, located on a branch in options.parameter of the system `system`
+/// (whose options.parameter2 is the curve's start value of μ2). Its orbit's
+/// p and q are the curve's. A grazing is a new contact (vanishing_impact <
+/// 0), or P(1,q)'s impact vanishing: the curve is then where the
+/// non-impacting response X cos(Ωt − φ), X = (K − Ω²M + iΩC)⁻¹ A, touches
+/// the stop, |X_c(μ1, μ2)| = xs (the curve's p is 0, its points have no
+/// orbit).
+struct CurveStart {
+  System system;
+  SpecialPoint special;
+};
+
+using CurveProgress = std::function<void(const CurvePoint&)>;
+
+/// Follows the curve through `start` both ways. Throws InvalidInput for bad
+/// options (the same parameter twice, n, bounds not holding the start), a
+/// special point of another kind (branch points, sticking), a vanishing
+/// impact of P(p, q) with p >= 2, or a start the corrector cannot put on
+/// the curve. Such a vanishing impact is the grazing of P(p − 1, q) by a
+/// new contact: pass that orbit's grazing point instead
+/// (ReducedGrazingStart).
+Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
+                    const CurveProgress& progress = {});
+
+/// The special point of `type` on the branch of `start.orbit` in
+/// options.parameter nearest the start's value (the branch is followed both
+/// ways within options' bounds); empty when the branch has none.
+std::optional<SpecialPoint> LocateSpecialPoint(const BranchStart& start,
+                                               const ContinuationOptions& options,
+                                               SpecialPointType type);
+
+/// At a vanishing impact `graze` of a P(p, q) branch (p >= 2), the grazing
+/// of the reduced orbit P(p − 1, q) by a new contact, as a curve start;
+/// empty when the reduced orbit is not found there.
+std::optional<CurveStart> ReducedGrazingStart(const System& system, const Branch& branch,
+                                              const SpecialPoint& graze,
+                                              const ContinuationOptions& options);
+
+/// The gradient of the defining rows used by the corrector (central
+/// differences) beside a Richardson-extrapolated one from steps 100 and 50
+/// times larger, at a point of a curve: the largest difference relative to
+/// the gradient's largest entry.
+double CompareCurveJacobian(const CurveStart& start, const CurveOptions& options,
+                            const CurvePoint& point);
+
+}  // namespace impactkit

@@ -1,0 +1,595 @@
+#include "impactkit/continuation/curve.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "continuation/curve_problem.hpp"
+#include "continuation/curve_tests.hpp"
+#include "impactkit/model/parameters.hpp"
+
+namespace impactkit {
+namespace {
+
+using detail::CurveProblem;
+using detail::Monitor;
+
+/// Illinois and secant iterations of the locators.
+constexpr int kMaxLocateIterations = 80;
+/// An end at a grazing or sticking counts as located when its monitor (a
+/// length) is below this, as for a branch (continuation.cpp); rounding in
+/// the map allows ten times more.
+constexpr double kGrazingTolerance = 1e-10;
+constexpr double kGrazingBracket = 1e-13;
+
+/// Why a curve may stop short of its located end: "; impact 1 vanishes
+/// nearby (depth 2.2e-07, not located to 1e-10)" when a monitor is small.
+std::string NearLimit(const CurvePoint& point) {
+  if (point.orbit.multipliers.size() == 0) return "";  // the response's grazing: no orbit
+  const OrbitContacts& c = point.orbit.contacts;
+  if (c.slowest_depth < 1e-4) {
+    return fmt::format("; impact {} vanishes nearby (depth {:.1e}, not located to {:.0e})",
+                       c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
+  }
+  if (point.defining.size() == 1 && c.clearance && *c.clearance < 1e-4) {
+    return fmt::format("; a new contact is born nearby (clearance {:.1e}, not located to {:.0e})",
+                       *c.clearance, kGrazingTolerance);
+  }
+  return "";
+}
+
+struct HalfCurve {
+  std::vector<CurvePoint> points;
+  std::vector<Codim2Point> codim2;
+  CurveEnd end = CurveEnd::kMaxPoints;
+  std::string message;
+};
+
+/// Traces one direction of a curve from an oriented start point.
+class CurveTracer {
+ public:
+  CurveTracer(CurveProblem& problem, SpecialPointType type, const CurveOptions& options,
+              const CurveProgress& progress)
+      : problem_(problem),
+        type_(type),
+        tests_(detail::SecondTests(type)),
+        options_(options),
+        progress_(progress) {
+    newton_ = options.orbit.newton;
+    newton_.max_iterations = options.corrector_iterations;
+  }
+
+  HalfCurve Trace(const CurvePoint& start) {
+    HalfCurve half;
+    Accept(start, &half);
+    if (Leaving(start)) {
+      half.end = CurveEnd::kParameterBound;
+      half.message =
+          fmt::format("starts on a bound: {} = {:.10g}, {} = {:.10g}", options_.parameter,
+                      start.parameter, options_.parameter2, start.parameter2);
+      return half;
+    }
+    double step = options_.initial_step;
+    while (static_cast<int>(half.points.size()) < options_.max_points) {
+      const CurvePoint from = half.points.back();
+      int iterations = 0;
+      std::optional<CurvePoint> next = Advance(from, step, &iterations);
+      // The corrector cannot work where a parameter leaves its range (r > 1)
+      // either: a prediction beyond a bound goes to the bound too.
+      const Eigen::VectorXd predicted = from.x + step * from.tangent;
+      const bool beyond = next ? Beyond(next->parameter, next->parameter2)
+                               : Beyond(CurveProblem::Mu1(predicted), CurveProblem::Mu2(predicted));
+      if (beyond) {
+        next = OnBound(from, next ? next->x : predicted);
+        if (next) {
+          if (options_.locate_codim2) LocateCodim2(from, *next, &half);
+          Accept(*next, &half);
+          half.end = CurveEnd::kParameterBound;
+          half.message = fmt::format("reached {} = {:.10g}, {} = {:.10g}", options_.parameter,
+                                     next->parameter, options_.parameter2, next->parameter2);
+          return half;
+        }
+      }
+      if (!next) {
+        if (step > options_.min_step) {
+          step = std::max(step / 2.0, options_.min_step);
+          continue;
+        }
+        if (EndAtExistenceLimit(half)) return half;
+        half.end = CurveEnd::kCorrectorFailed;
+        half.message = fmt::format(
+            "the corrector did not converge with the smallest step {:g} at {} = {:.10g}, {} = "
+            "{:.10g}{}",
+            options_.min_step, options_.parameter, from.parameter, options_.parameter2,
+            from.parameter2, NearLimit(from));
+        return half;
+      }
+      if (options_.locate_codim2) LocateCodim2(from, *next, &half);
+      Accept(*next, &half);
+      if (LimitAhead(half, step) && EndAtExistenceLimit(half)) return half;
+      if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
+      if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
+    }
+    half.end = CurveEnd::kMaxPoints;
+    half.message = fmt::format("{} points reached", options_.max_points);
+    return half;
+  }
+
+ private:
+  /// The corrected point at arclength s along from's tangent, or empty if
+  /// the corrector fails or jumps farther than max_correction * s.
+  std::optional<CurvePoint> Advance(const CurvePoint& from, double s, int* iterations,
+                                    double tolerance_scale = 1.0) const {
+    const Eigen::VectorXd& t = from.tangent;
+    const Eigen::VectorXd guess = from.x + s * t;
+    NewtonOptions newton = newton_;
+    newton.residual_tolerance *= tolerance_scale;
+    const std::optional<Eigen::VectorXd> x =
+        problem_.Correct(guess, t, t.dot(from.x) + s, newton, iterations);
+    if (!x || (*x - guess).norm() > options_.max_correction * std::abs(s)) return std::nullopt;
+    std::optional<CurvePoint> point = problem_.Describe(*x, t);
+    if (point) point->arclength = from.arclength + s;
+    return point;
+  }
+
+  bool Beyond(double mu1, double mu2) const {
+    return mu1 < options_.lower || mu1 > options_.upper || mu2 < options_.lower2 ||
+           mu2 > options_.upper2;
+  }
+
+  /// True for a point on a bound whose tangent leads out of the bounds.
+  bool Leaving(const CurvePoint& point) const {
+    const Eigen::Index size = point.tangent.size();
+    const double d1 = point.tangent(size - 2), d2 = point.tangent(size - 1);
+    return (point.parameter <= options_.lower && d1 < 0) ||
+           (point.parameter >= options_.upper && d1 > 0) ||
+           (point.parameter2 <= options_.lower2 && d2 < 0) ||
+           (point.parameter2 >= options_.upper2 && d2 > 0);
+  }
+
+  /// The curve's point on the first bound crossed between `from` and `beyond`.
+  std::optional<CurvePoint> OnBound(const CurvePoint& from, const Eigen::VectorXd& beyond) const {
+    double w = 1.0, bound = 0.0;
+    int index = 0;
+    const int size = problem_.Size();
+    const std::array<std::pair<double, double>, 2> limits = {
+        {{options_.lower, options_.upper}, {options_.lower2, options_.upper2}}};
+    for (int k = 0; k < 2; ++k) {
+      const double a = from.x(size - 2 + k), b = beyond(size - 2 + k);
+      for (double limit : {limits[k].first, limits[k].second}) {
+        if ((a - limit) * (b - limit) < 0 && (limit - a) / (b - a) < w) {
+          w = (limit - a) / (b - a);
+          bound = limit;
+          index = size - 2 + k;
+        }
+      }
+    }
+    if (w == 1.0) return std::nullopt;
+    int iterations = 0;
+    const std::optional<Eigen::VectorXd> x =
+        problem_.Correct(from.x + w * (beyond - from.x), Eigen::VectorXd::Unit(size, index), bound,
+                         newton_, &iterations);
+    if (!x) return std::nullopt;
+    std::optional<CurvePoint> point = problem_.Describe(*x, from.tangent);
+    if (point) point->arclength = from.arclength + from.tangent.dot(*x - from.x);
+    return point;
+  }
+
+  void Accept(const CurvePoint& point, HalfCurve* half) {
+    half->points.push_back(point);
+    problem_.UpdateBorders(point.x);
+    if (progress_) progress_(point);
+  }
+
+  /// Locates each second test's sign change between consecutive points and
+  /// inserts the located points before `b`.
+  void LocateCodim2(const CurvePoint& a, const CurvePoint& b, HalfCurve* half) const {
+    std::vector<Codim2Point> found;
+    for (const detail::SecondTest& test : tests_) {
+      const double fa = test.value(a, a), fb = test.value(b, a);
+      if (!std::isfinite(fa) || !std::isfinite(fb) || (fa > 0) == (fb > 0)) continue;
+      const CurvePoint located =
+          IllinoisZero(a, b, [&](const CurvePoint& p) { return test.value(p, a); });
+      if (!test.accept(located)) continue;
+      found.push_back({test.type, located, located.defining.cwiseAbs().maxCoeff(),
+                       std::abs(test.value(located, a))});
+    }
+    std::sort(found.begin(), found.end(), [](const Codim2Point& x, const Codim2Point& y) {
+      return x.point.arclength < y.point.arclength;
+    });
+    for (const Codim2Point& special : found) {
+      half->points.push_back(special.point);
+      half->codim2.push_back(special);
+    }
+  }
+
+  /// The Illinois method on arclength for the zero of `value` between a
+  /// (s = 0) and b, each trial corrected onto the curve from a; the point
+  /// with the least |value| found.
+  template <typename Value>
+  CurvePoint IllinoisZero(const CurvePoint& a, const CurvePoint& b, Value value) const {
+    double lo = 0.0, hi = b.arclength - a.arclength;
+    double f_lo = value(a), f_hi = value(b);
+    std::optional<CurvePoint> best;
+    int side = 0;
+    for (int k = 0; k < kMaxLocateIterations && std::abs(hi - lo) > 1e-14 * std::abs(hi); ++k) {
+      const double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+      int iterations = 0;
+      const std::optional<CurvePoint> trial = Advance(a, s, &iterations);
+      if (!trial) break;
+      const double f = value(*trial);
+      if (!best || std::abs(f) < std::abs(value(*best))) best = trial;
+      if (f == 0.0) break;
+      if ((f > 0) == (f_lo > 0)) {
+        lo = s;
+        f_lo = f;
+        if (side == -1) f_hi /= 2.0;
+        side = -1;
+      } else {
+        hi = s;
+        f_hi = f;
+        if (side == +1) f_lo /= 2.0;
+        side = +1;
+      }
+    }
+    if (!best) best = std::abs(value(a)) < std::abs(value(b)) ? a : b;
+    return *best;
+  }
+
+  /// True when an existence monitor, extrapolated linearly in arclength
+  /// from the last two points, reaches zero within the next step.
+  bool LimitAhead(const HalfCurve& half, double step) const {
+    if (half.points.size() < 2) return false;
+    const CurvePoint& a = half.points[half.points.size() - 2];
+    const CurvePoint& b = half.points.back();
+    for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
+      const auto ma = detail::LinearMonitor(a, monitor), mb = detail::LinearMonitor(b, monitor);
+      if (!ma || !mb || !(*mb < *ma)) continue;
+      if (*mb * (b.arclength - a.arclength) / (*ma - *mb) < step) return true;
+    }
+    return false;
+  }
+
+  /// Looks for the grazing or sticking just ahead of the last point where
+  /// the orbit stops existing; if found, ends the curve there.
+  bool EndAtExistenceLimit(HalfCurve& half) {
+    if (half.points.size() < 2) return false;
+    std::optional<Codim2Point> best;
+    std::vector<CurvePoint> best_path;
+    for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
+      std::vector<CurvePoint> path;
+      std::optional<Codim2Point> end =
+          LocateLimit(half.points[half.points.size() - 2], half.points.back(), monitor, &path);
+      if (end && (!best || end->point.arclength < best->point.arclength)) {
+        best = end;
+        best_path = std::move(path);
+      }
+    }
+    if (!best) return false;
+    for (const CurvePoint& point : best_path) Accept(point, &half);
+    half.codim2.push_back(*best);
+    half.end = best->type == Codim2Type::kStickingOnset ? CurveEnd::kSticking : CurveEnd::kGrazing;
+    half.message = best->Describe(options_.parameter, options_.parameter2);
+    return true;
+  }
+
+  /// The zero of `monitor` beyond b, approached from the side where the
+  /// orbit exists by secant steps, each from the newest point along its
+  /// own tangent, halved when they land where the corrector fails (as
+  /// continuation.cpp's LocateGrazing).
+  std::optional<Codim2Point> LocateLimit(const CurvePoint& a, const CurvePoint& b, Monitor monitor,
+                                         std::vector<CurvePoint>* path) const {
+    CurvePoint previous = a, best = b;
+    std::optional<double> m_prev = detail::LinearMonitor(a, monitor);
+    std::optional<double> m_lo = detail::LinearMonitor(b, monitor);
+    if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
+    double failed = std::numeric_limits<double>::infinity();
+    for (int k = 0;
+         k < kMaxLocateIterations && detail::MonitorLength(*m_lo, monitor) > kGrazingTolerance;
+         ++k) {
+      double s = *m_lo * (best.arclength - previous.arclength) / (*m_prev - *m_lo);
+      s = std::min(s, options_.max_step);
+      if (s >= failed) s = 0.5 * failed;
+      if (!(s > kGrazingBracket)) break;
+      // Near a vanishing impact the multipliers grow like 1/v and so does
+      // the rounding in U: ask Newton for what the conditioning allows.
+      const double conditioning = std::abs(best.orbit.multipliers(0));
+      int iterations = 0;
+      const std::optional<CurvePoint> trial =
+          Advance(best, s, &iterations, std::max(1.0, 1e-4 * conditioning));
+      const std::optional<double> m = trial ? detail::LinearMonitor(*trial, monitor) : std::nullopt;
+      if (!m || !(*m < *m_lo)) {
+        failed = s;
+        continue;
+      }
+      previous = best;
+      m_prev = m_lo;
+      best = *trial;
+      m_lo = m;
+      failed -= s;
+      path->push_back(best);
+    }
+    const double length = detail::MonitorLength(*m_lo, monitor);
+    if (!(length <= 10 * kGrazingTolerance)) return std::nullopt;
+    const OrbitContacts& contacts = best.orbit.contacts;
+    const bool pressed = monitor == Monitor::kDepth && contacts.slowest_pressed;
+    Codim2Point end;
+    end.type = pressed ? Codim2Type::kStickingOnset : detail::GrazingMeeting(type_);
+    end.point = best;
+    end.defining_residual = best.defining.cwiseAbs().maxCoeff();
+    end.second_residual = length;
+    return end;
+  }
+
+  CurveProblem& problem_;
+  SpecialPointType type_;
+  std::vector<detail::SecondTest> tests_;
+  const CurveOptions& options_;
+  const CurveProgress& progress_;
+  NewtonOptions newton_;
+};
+
+/// The start as a point on the curve: corrected at fixed μ2, its tangent
+/// oriented towards increasing μ2.
+CurvePoint StartPoint(CurveProblem& problem, const Eigen::VectorXd& x0,
+                      const CurveOptions& options) {
+  const int size = problem.Size();
+  problem.UpdateBorders(x0);
+  NewtonOptions newton = options.orbit.newton;
+  newton.max_iterations = 4 * options.corrector_iterations;
+  int iterations = 0;
+  const std::optional<Eigen::VectorXd> x = problem.Correct(
+      x0, Eigen::VectorXd::Unit(size, size - 1), CurveProblem::Mu2(x0), newton, &iterations);
+  Require(x.has_value(),
+          "the start could not be put on the curve: the corrector did not converge from it");
+  problem.UpdateBorders(*x);
+  std::optional<CurvePoint> point = problem.Describe(*x, {});
+  Require(point.has_value(), "the start orbit's impact map fails: not a point to continue");
+  if (point->tangent(size - 1) < 0) point->tangent = -point->tangent;
+  return *point;
+}
+
+void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1, double mu2) {
+  const SpecialPointType type = start.special.type;
+  Require(type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
+              type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing,
+          fmt::format("a {} point has no two-parameter curve here (fold, period_doubling, "
+                      "neimark_sacker and grazing have)",
+                      ToString(type)));
+  const bool vanishing = type == SpecialPointType::kGrazing && start.special.vanishing_impact >= 0;
+  Require(!vanishing || start.special.point.orbit.p == 1,
+          "a vanishing impact's curve is the grazing of the orbit with one impact fewer: start "
+          "from that orbit's grazing (ReducedGrazingStart)");
+  Require(type != SpecialPointType::kGrazing || vanishing ||
+              start.special.point.orbit.contacts.clearance,
+          "the grazing start has no flight maximum to follow");
+  Require(mu1 >= options.lower && mu1 <= options.upper,
+          fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter, mu1,
+                      options.lower, options.upper));
+  Require(mu2 >= options.lower2 && mu2 <= options.upper2,
+          fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter2, mu2,
+                      options.lower2, options.upper2));
+}
+
+}  // namespace
+
+std::string ToString(Codim2Type type) {
+  switch (type) {
+    case Codim2Type::kFoldFlip:
+      return "fold_flip";
+    case Codim2Type::kCusp:
+      return "cusp";
+    case Codim2Type::kResonance11:
+      return "resonance_1_1";
+    case Codim2Type::kResonance12:
+      return "resonance_1_2";
+    case Codim2Type::kResonance13:
+      return "resonance_1_3";
+    case Codim2Type::kResonance14:
+      return "resonance_1_4";
+    case Codim2Type::kFoldGrazing:
+      return "fold_grazing";
+    case Codim2Type::kPeriodDoublingGrazing:
+      return "period_doubling_grazing";
+    case Codim2Type::kNeimarkSackerGrazing:
+      return "neimark_sacker_grazing";
+    case Codim2Type::kDoubleGrazing:
+      return "double_grazing";
+    case Codim2Type::kStickingOnset:
+      return "sticking_onset";
+  }
+  return "unknown";
+}
+
+std::string ToString(CurveEnd end) {
+  switch (end) {
+    case CurveEnd::kParameterBound:
+      return "parameter_bound";
+    case CurveEnd::kGrazing:
+      return "grazing";
+    case CurveEnd::kSticking:
+      return "sticking";
+    case CurveEnd::kMaxPoints:
+      return "max_points";
+    case CurveEnd::kCorrectorFailed:
+      return "corrector_failed";
+  }
+  return "unknown";
+}
+
+std::string Codim2Point::Describe(const std::string& name1, const std::string& name2) const {
+  return fmt::format("{} at {} = {:.10g}, {} = {:.10g} (residuals {:.1e}, {:.1e})", ToString(type),
+                     name1, point.parameter, name2, point.parameter2, defining_residual,
+                     second_residual);
+}
+
+bool CurveOptions::IsValid(std::string* error) const {
+  auto fail = [&](std::string message) {
+    if (error) *error = std::move(message);
+    return false;
+  };
+  for (const std::string* name : {&parameter, &parameter2}) {
+    if (*name == "n") return fail("n (the number of masses) is an integer and cannot be continued");
+  }
+  if (parameter == parameter2) {
+    return fail(fmt::format("the two parameters must differ (both {})", parameter));
+  }
+  for (const auto& [lo, hi, name] :
+       {std::tuple{lower, upper, parameter}, std::tuple{lower2, upper2, parameter2}}) {
+    if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi)) {
+      return fail(fmt::format("the bounds of {} must be finite with lower < upper, got [{}, {}]",
+                              name, lo, hi));
+    }
+  }
+  if (!(min_step > 0 && min_step <= initial_step && initial_step <= max_step &&
+        std::isfinite(max_step))) {
+    return fail(fmt::format("steps must satisfy 0 < min <= initial <= max, got {}, {}, {}",
+                            min_step, initial_step, max_step));
+  }
+  if (max_points < 2) return fail(fmt::format("max_points must be >= 2, got {}", max_points));
+  if (corrector_iterations < 1) {
+    return fail(fmt::format("corrector_iterations must be >= 1, got {}", corrector_iterations));
+  }
+  if (!(max_correction > 0 && max_correction <= 1)) {
+    return fail(fmt::format("max_correction must be in (0, 1], got {}", max_correction));
+  }
+  return orbit.IsValid(error);
+}
+
+Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
+                    const CurveProgress& progress) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  std::string error;
+  Require(options.IsValid(&error), error);
+  const SpecialPoint& special = start.special;
+  // A vanishing impact's parameter comes from its defining equation, not
+  // the branch's last point (continuation.hpp).
+  const double mu1 = special.parameter;
+  const double mu2 = GetParameter(start.system, options.parameter2);
+  CheckStart(start, options, mu1, mu2);
+  // P(1,q)'s impact vanishes where the non-impacting response touches the
+  // stop: that is the curve (p = 0 says so).
+  const bool response = special.vanishing_impact >= 0;
+  CurveOptions own = options;
+  own.orbit.p = response ? 0 : special.point.orbit.p;
+  own.orbit.q = response ? 1 : special.point.orbit.q;
+  const OrbitContacts& contacts = special.point.orbit.contacts;
+  CurveProblem problem(start.system, own, special.type, contacts.clearance_flight, response);
+  const Eigen::VectorXd eta = response ? Eigen::VectorXd() : special.point.orbit.eta;
+  const CurvePoint first =
+      StartPoint(problem, problem.Join(eta, contacts.clearance_time, mu1, mu2), own);
+
+  CurveTracer tracer(problem, special.type, own, progress);
+  HalfCurve forward = tracer.Trace(first);
+  CurvePoint reversed = first;
+  reversed.tangent = -first.tangent;
+  problem.UpdateBorders(first.x);
+  HalfCurve backward = tracer.Trace(reversed);
+
+  Curve curve;
+  curve.type = special.type;
+  curve.parameter = options.parameter;
+  curve.parameter2 = options.parameter2;
+  curve.p = own.orbit.p;
+  curve.q = own.orbit.q;
+  for (auto it = backward.points.rbegin(); it + 1 != backward.points.rend(); ++it) {
+    it->arclength = -it->arclength;
+    curve.points.push_back(*it);
+  }
+  for (auto it = backward.codim2.rbegin(); it != backward.codim2.rend(); ++it) {
+    it->point.arclength = -it->point.arclength;
+    curve.codim2_points.push_back(*it);
+  }
+  curve.points.insert(curve.points.end(), forward.points.begin(), forward.points.end());
+  curve.codim2_points.insert(curve.codim2_points.end(), forward.codim2.begin(),
+                             forward.codim2.end());
+  curve.begin = backward.end;
+  curve.begin_message = backward.message;
+  curve.end = forward.end;
+  curve.end_message = forward.message;
+  curve.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return curve;
+}
+
+std::optional<SpecialPoint> LocateSpecialPoint(const BranchStart& start,
+                                               const ContinuationOptions& options,
+                                               SpecialPointType type) {
+  ContinuationOptions both = options;
+  both.direction = ContinuationDirection::kBoth;
+  const Branch branch = ContinueBranch(start, both);
+  const double mu = GetParameter(start.system, options.parameter);
+  std::optional<SpecialPoint> nearest;
+  for (const SpecialPoint& s : branch.special_points) {
+    if (s.type != type) continue;
+    if (!nearest || std::abs(s.parameter - mu) < std::abs(nearest->parameter - mu)) nearest = s;
+  }
+  return nearest;
+}
+
+std::optional<CurveStart> ReducedGrazingStart(const System& system, const Branch& branch,
+                                              const SpecialPoint& graze,
+                                              const ContinuationOptions& options) {
+  Require(graze.type == SpecialPointType::kGrazing && graze.vanishing_impact >= 0 && branch.p >= 2,
+          "ReducedGrazingStart needs a vanishing impact of an orbit with two impacts or more");
+  // The impact after the vanishing one starts the reduced orbit (as in
+  // vanishing_impact.hpp), taken from the branch's last point at its own μ.
+  System last = system;
+  SetParameter(last, branch.parameter, graze.point.parameter);
+  const MapResult path =
+      ImpactMap(last, options.orbit.map).Apply(graze.point.orbit.eta, branch.p, false);
+  if (path.status != MapStatus::kOk) return std::nullopt;
+  OrbitOptions reduced = options.orbit;
+  reduced.p = branch.p - 1;
+  reduced.q = branch.q;
+  const Eigen::VectorXd& seed = path.path[static_cast<std::size_t>(graze.vanishing_impact)];
+  // The grazing itself (clearance 0 within rounding), or just beside it on
+  // the side where the reduced orbit clears the stop.
+  const double scale = std::max(1.0, std::abs(graze.parameter));
+  for (double offset : {0.0, 1e-9, -1e-9, 1e-8, -1e-8}) {
+    CurveStart start{system, {}};
+    SetParameter(start.system, branch.parameter, graze.parameter + offset * scale);
+    PeriodicOrbit orbit;
+    try {
+      if (FindOrbit(start.system, seed, reduced, &orbit).termination != Termination::kConverged ||
+          !orbit.contacts.clearance || !(*orbit.contacts.clearance > 0)) {
+        continue;
+      }
+    } catch (const InvalidInput&) {
+      continue;  // μ outside the parameter's range
+    }
+    start.special.type = SpecialPointType::kGrazing;
+    start.special.parameter = GetParameter(start.system, branch.parameter);
+    start.special.point.parameter = start.special.parameter;
+    start.special.point.orbit = orbit;
+    start.special.monitor = *orbit.contacts.clearance;
+    return start;
+  }
+  return std::nullopt;
+}
+
+double CompareCurveJacobian(const CurveStart& start, const CurveOptions& options,
+                            const CurvePoint& point) {
+  CurveOptions own = options;
+  own.orbit.p = point.orbit.p;
+  own.orbit.q = point.orbit.q;
+  CurveProblem problem(start.system, own, start.special.type,
+                       start.special.point.orbit.contacts.clearance_flight,
+                       start.special.vanishing_impact >= 0);
+  Require(point.x.size() == problem.Size(), "the point is not one of this start's curve");
+  problem.UpdateBorders(point.x);
+  Eigen::MatrixXd used, coarse, middle;
+  Require(problem.Jacobian(point.x, &used) && problem.Jacobian(point.x, &coarse, 100.0) &&
+              problem.Jacobian(point.x, &middle, 50.0),
+          "the curve's Jacobian cannot be evaluated at this point");
+  // Central differences err by c h²: Richardson from h and h/2 cancels it.
+  const Eigen::Index rows = point.defining.size();
+  const Eigen::MatrixXd reference = (4.0 * middle - coarse).bottomRows(rows) / 3.0;
+  const Eigen::MatrixXd difference = used.bottomRows(rows) - reference;
+  return difference.cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff();
+}
+
+}  // namespace impactkit

@@ -1,0 +1,297 @@
+#include "continuation/curve_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "continuation/vanishing_impact.hpp"
+#include "impactkit/model/parameters.hpp"
+
+namespace impactkit::detail {
+namespace {
+
+/// Relative step of the defining rows' central differences. Each map
+/// carries event-time rounding of ~1e-12 (impact_map.hpp): this step leaves
+/// ~1e-6 of it in the gradient, ample for Newton. A step near the cube root
+/// of the rounding (1e-4 to 1e-5) would balance it against the truncation
+/// error for a map of moderate curvature, but near a slow impact (speed v)
+/// the map's curvature grows like 1/v³: on P(1,2)'s fold curve in (Ω, xs),
+/// v ≈ 0.01, 1e-5 left a 1% error in the xs column, 1e-6 leaves 1e-4.
+constexpr double kDefiningStep = 1e-6;
+/// A grazing curve is followed at this clearance, just inside the region
+/// where its orbit exists: at clearance 0 within rounding the event search
+/// sees a touch (an impact slower than min_speed, or a tiny extra impact)
+/// as often as not, and the map fails. It is the tolerance to which a
+/// branch locates a grazing (continuation.cpp), and moves the curve by
+/// 1e-10 / |∂clearance/∂μ| in μ.
+constexpr double kGrazingMargin = 1e-10;
+
+}  // namespace
+
+CurveProblem::CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
+                           int grazing_flight, bool response)
+    : base_(base),
+      options_(options),
+      type_(type),
+      grazing_flight_(grazing_flight),
+      response_(response),
+      eta_size_(response ? 0 : 2 * base.Dof()),
+      size_(response ? 2 : 2 * base.Dof() + 2 + (type == SpecialPointType::kGrazing ? 1 : 0)) {
+  GetParameter(base_, options_.parameter);  // throws for an unknown name
+  GetParameter(base_, options_.parameter2);
+}
+
+Eigen::VectorXd CurveProblem::Join(const Eigen::VectorXd& eta, double contact_time, double mu1,
+                                   double mu2) const {
+  Eigen::VectorXd x(size_);
+  x.head(eta_size_) = eta;
+  if (HasContactTime()) x(eta_size_) = contact_time;
+  x(size_ - 2) = mu1;
+  x(size_ - 1) = mu2;
+  return x;
+}
+
+System CurveProblem::SystemAt(double mu1, double mu2) const {
+  System system = base_;
+  SetParameter(system, options_.parameter2, mu2);
+  SetParameter(system, options_.parameter, mu1);
+  ValidateParameters(system);
+  return system;
+}
+
+const BranchProblem& CurveProblem::Along1(double mu2) const {
+  if (!along1_ || along1_mu2_ != mu2) {
+    System at = base_;
+    SetParameter(at, options_.parameter2, mu2);
+    along1_ = std::make_unique<BranchProblem>(at, options_.parameter, options_.orbit.p,
+                                              options_.orbit.q, options_.orbit.map);
+    along1_mu2_ = mu2;
+  }
+  return *along1_;
+}
+
+const BranchProblem& CurveProblem::Along2(double mu1) const {
+  if (!along2_ || along2_mu1_ != mu1) {
+    System at = base_;
+    SetParameter(at, options_.parameter, mu1);
+    along2_ = std::make_unique<BranchProblem>(at, options_.parameter2, options_.orbit.p,
+                                              options_.orbit.q, options_.orbit.map);
+    along2_mu1_ = mu1;
+  }
+  return *along2_;
+}
+
+double CurveProblem::Sigma(const Eigen::MatrixXd& a) const {
+  const Eigen::Index n = a.rows();
+  Eigen::MatrixXd bordered = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  bordered.topLeftCorner(n, n) = a;
+  bordered.topRightCorner(n, 1) = border_b_;
+  bordered.bottomLeftCorner(1, n) = border_c_.transpose();
+  return bordered.fullPivLu().solve(Eigen::VectorXd::Unit(n + 1, n))(n);
+}
+
+bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const {
+  if (!x.allFinite()) return false;
+  if (response_) {
+    g->resize(1);
+    try {
+      (*g)(0) = NonImpactingClearance(SystemAt(Mu1(x), Mu2(x)));
+    } catch (const InvalidInput&) {
+      return false;  // outside a parameter's range
+    }
+    return std::isfinite((*g)(0));
+  }
+  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  if (!map) return false;
+  const int c = base_.contact_dof, time = map->TimeIndex();
+  const Eigen::VectorXd eta = Eta(x);
+  if (!(eta(time + 1 + c) > 0)) return false;
+  if (type_ == SpecialPointType::kGrazing) {
+    // The flight's state at t*, ignoring the stop: smooth on both sides of
+    // the grazing (Residual rejects the side where the orbit crosses it).
+    const std::optional<Eigen::VectorXd> start = GrazingFlightStart(*map, eta);
+    if (!start) return false;
+    const HybridState at = map->FlightState(*start, x(eta_size_));
+    g->resize(2);
+    *g << at.x(c) - map->GetSystem().stop + kGrazingMargin, at.v(c);
+    return g->allFinite();
+  }
+  const MapResult image = map->Apply(eta, options_.orbit.p, true);
+  if (image.status != MapStatus::kOk) return false;
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(eta_size_, eta_size_);
+  g->resize(1);
+  if (type_ == SpecialPointType::kFold) {
+    (*g)(0) = Sigma(image.jacobian - identity);
+  } else if (type_ == SpecialPointType::kPeriodDoubling) {
+    (*g)(0) = Sigma(image.jacobian + identity);
+  } else {
+    const Eigen::VectorXcd lambda = image.jacobian.eigenvalues();
+    (*g)(0) = BifurcationTests()[2].value(image.jacobian, lambda);
+  }
+  return g->allFinite();
+}
+
+std::optional<Eigen::VectorXd> CurveProblem::GrazingFlightStart(const ImpactMap& map,
+                                                                const Eigen::VectorXd& eta) const {
+  if (grazing_flight_ == 0) return eta;
+  const MapResult before = map.Apply(eta, grazing_flight_, false);
+  if (before.status != MapStatus::kOk) return std::nullopt;
+  return before.eta;
+}
+
+bool CurveProblem::TouchInsideFlight(const Eigen::VectorXd& x) const {
+  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  if (!map) return false;
+  const std::optional<Eigen::VectorXd> start = GrazingFlightStart(*map, Eta(x));
+  if (!start) return false;
+  const MapResult next = map->Apply(*start, 1, false);
+  const double t = x(eta_size_);
+  const int time = map->TimeIndex();
+  return next.status == MapStatus::kOk && t > (*start)(time) && t < next.eta(time);
+}
+
+bool CurveProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* f) const {
+  if (response_) return Defining(x, f);
+  if (!x.allFinite()) return false;
+  Eigen::VectorXd u, g;
+  if (!Along1(Mu2(x)).Residual(BranchProblem::Join(Eta(x), Mu1(x)), &u)) return false;
+  if (!Defining(x, &g)) return false;
+  // Beyond the grazing the flight crosses the stop before t*: the map took
+  // an extra impact there and U is another orbit's.
+  if (IsGrazing() && !TouchInsideFlight(x)) return false;
+  f->resize(size_ - 1);
+  *f << u, g;
+  return true;
+}
+
+bool CurveProblem::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian,
+                            double step_scale) const {
+  if (response_) return DefiningGradient(x, step_scale, jacobian);
+  const Eigen::VectorXd eta = Eta(x);
+  Eigen::MatrixXd along1, along2;
+  if (!Along1(Mu2(x)).Jacobian(BranchProblem::Join(eta, Mu1(x)), &along1)) return false;
+  if (!Along2(Mu1(x)).Jacobian(BranchProblem::Join(eta, Mu2(x)), &along2)) return false;
+  jacobian->setZero(size_ - 1, size_);
+  jacobian->topLeftCorner(eta_size_, eta_size_) = along1.leftCols(eta_size_);
+  jacobian->block(0, size_ - 2, eta_size_, 1) = along1.col(eta_size_);
+  jacobian->block(0, size_ - 1, eta_size_, 1) = along2.col(eta_size_);
+  Eigen::MatrixXd defining;
+  if (!DefiningGradient(x, step_scale, &defining)) return false;
+  jacobian->bottomRows(defining.rows()) = defining;
+  return jacobian->allFinite();
+}
+
+bool CurveProblem::DefiningGradient(const Eigen::VectorXd& x, double step_scale,
+                                    Eigen::MatrixXd* gradient) const {
+  // Central differences, one-sided where one side has no value.
+  Eigen::VectorXd g0;
+  if (!Defining(x, &g0)) return false;
+  gradient->resize(g0.size(), size_);
+  for (int i = 0; i < size_; ++i) {
+    const double h = kDefiningStep * step_scale * std::max(1.0, std::abs(x(i)));
+    Eigen::VectorXd plus = x, minus = x, g_plus, g_minus;
+    plus(i) += h;
+    minus(i) -= h;
+    const bool up = Defining(plus, &g_plus), down = Defining(minus, &g_minus);
+    if (!up && !down) return false;
+    const Eigen::VectorXd& high = up ? g_plus : g0;
+    const Eigen::VectorXd& low = down ? g_minus : g0;
+    gradient->col(i) = (high - low) / ((up ? h : 0.0) + (down ? h : 0.0));
+  }
+  return gradient->allFinite();
+}
+
+Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd f, g;
+  Eigen::MatrixXd gradient;
+  if (!HasContactTime() || Residual(x, &f) || !Defining(x, &g) || !(g(0) > 0) ||
+      !DefiningGradient(x, 1.0, &gradient)) {
+    return x;
+  }
+  // Reflected across the linearised surface x_c(t*) = xs − margin: as far
+  // inside as the prediction was outside.
+  const Eigen::VectorXd normal = gradient.row(0).transpose();
+  const double norm2 = normal.squaredNorm();
+  return norm2 > 0 ? Eigen::VectorXd(x - 2.0 * g(0) * normal / norm2) : x;
+}
+
+void CurveProblem::UpdateBorders(const Eigen::VectorXd& x) {
+  if (type_ != SpecialPointType::kFold && type_ != SpecialPointType::kPeriodDoubling) return;
+  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  if (!map) return;
+  const MapResult image = map->Apply(Eta(x), options_.orbit.p, true);
+  if (image.status != MapStatus::kOk) return;
+  const double sign = type_ == SpecialPointType::kFold ? -1.0 : 1.0;
+  const Eigen::MatrixXd a = image.jacobian + sign * Eigen::MatrixXd::Identity(eta_size_, eta_size_);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  border_b_ = svd.matrixU().col(eta_size_ - 1);
+  border_c_ = svd.matrixV().col(eta_size_ - 1);
+}
+
+std::optional<Eigen::VectorXd> CurveProblem::Correct(const Eigen::VectorXd& guess,
+                                                     const Eigen::VectorXd& c, double value,
+                                                     const NewtonOptions& newton,
+                                                     int* iterations) const {
+  const int n = size_ - 1;
+  const impactkit::Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
+    Eigen::VectorXd fx;
+    if (!Residual(x, &fx)) return false;
+    *f << fx, c.dot(x) - value;
+    return f->allFinite();
+  };
+  const impactkit::Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
+    Eigen::MatrixXd jx;
+    if (!Jacobian(x, &jx)) return false;
+    j->topRows(n) = jx;
+    j->row(n) = c.transpose();
+    return true;
+  };
+  Eigen::VectorXd x = Inside(guess);
+  const SolveSummary summary = SolveNewton(residual, jacobian, newton, &x);
+  *iterations = summary.iterations;
+  if (summary.termination != Termination::kConverged) return std::nullopt;
+  return x;
+}
+
+std::optional<Eigen::VectorXd> CurveProblem::Tangent(const Eigen::VectorXd& x,
+                                                     const Eigen::VectorXd& previous) const {
+  Eigen::MatrixXd j;
+  if (!Jacobian(x, &j)) return std::nullopt;
+  Eigen::VectorXd t;
+  if (previous.size() == size_) {
+    // [J; previousᵀ] t = e_last: regular where the curve turns in any
+    // coordinate, and t continues `previous`.
+    Eigen::MatrixXd bordered(size_, size_);
+    bordered << j, previous.transpose();
+    t = bordered.fullPivLu().solve(Eigen::VectorXd::Unit(size_, size_ - 1));
+  } else {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
+    t = svd.matrixV().col(size_ - 1);
+  }
+  if (!t.allFinite() || t.norm() == 0.0) return std::nullopt;
+  return t.normalized();
+}
+
+std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
+                                                 const Eigen::VectorXd& previous) const {
+  // The tangent first: its differences rebuild the maps at other μ2.
+  const std::optional<Eigen::VectorXd> tangent = Tangent(x, previous);
+  if (!tangent) return std::nullopt;
+  CurvePoint point;
+  if (!Defining(x, &point.defining)) return std::nullopt;
+  point.parameter = Mu1(x);
+  point.parameter2 = Mu2(x);
+  point.x = x;
+  point.tangent = *tangent;
+  if (response_) return point;  // no orbit: the response has no impacts
+  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  const Eigen::VectorXd eta = Eta(x);
+  if (!map || map->Apply(eta, options_.orbit.p, false).status != MapStatus::kOk) {
+    return std::nullopt;
+  }
+  point.orbit = DescribeOrbit(*map, eta, options_.orbit.p, options_.orbit.q);
+  point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
+  if (HasContactTime()) point.contact_time = x(eta_size_);
+  return point;
+}
+
+}  // namespace impactkit::detail

@@ -1,0 +1,95 @@
+#pragma once
+/// \file curve_problem.hpp (private)
+/// The defining system F(X) = 0 of a two-parameter curve (curve.hpp), with
+/// its Jacobian, the bordered corrector and the tangent. U's rows come from
+/// BranchProblem in each parameter; the defining rows are differenced.
+
+#include <Eigen/Dense>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "continuation/branch_problem.hpp"
+#include "impactkit/continuation/curve.hpp"
+
+namespace impactkit::detail {
+
+class CurveProblem {
+ public:
+  /// `grazing_flight`: for a grazing curve, the impact whose flight holds
+  /// the touch. `response`: a grazing curve of the non-impacting response
+  /// instead (where P(1,q)'s impact vanishes): X = (μ1, μ2) and the one
+  /// equation xs − |X_c| = 0. Throws InvalidInput for a parameter the
+  /// system lacks.
+  CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
+               int grazing_flight, bool response = false);
+
+  /// Unknowns: 2N + 2, 2N + 3 for a grazing by a new contact, 2 for the
+  /// response's grazing.
+  int Size() const { return size_; }
+  bool IsGrazing() const { return type_ == SpecialPointType::kGrazing; }
+  /// X holds t* (a grazing of an impacting orbit).
+  bool HasContactTime() const { return IsGrazing() && !response_; }
+
+  /// X from its parts (t* ignored unless grazing), and back.
+  Eigen::VectorXd Join(const Eigen::VectorXd& eta, double contact_time, double mu1,
+                       double mu2) const;
+  Eigen::VectorXd Eta(const Eigen::VectorXd& x) const { return x.head(eta_size_); }
+  static double Mu1(const Eigen::VectorXd& x) { return x(x.size() - 2); }
+  static double Mu2(const Eigen::VectorXd& x) { return x(x.size() - 1); }
+
+  /// The system at (μ1, μ2); throws InvalidInput if not valid.
+  System SystemAt(double mu1, double mu2) const;
+
+  /// F(X) (size Size() − 1); false where the map fails or, for grazing,
+  /// where t* is not inside its flight.
+  bool Residual(const Eigen::VectorXd& x, Eigen::VectorXd* f) const;
+  /// dF/dX; `step_scale` multiplies the difference steps of the defining
+  /// rows (CompareCurveJacobian).
+  bool Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian, double step_scale = 1.0) const;
+
+  /// The fold/PD borders from the singular vectors of D P ∓ I at X
+  /// (between corrector solves only: F must not change during one).
+  void UpdateBorders(const Eigen::VectorXd& x);
+
+  /// F(X) = 0 with c · X = value, from `guess`; empty without convergence.
+  std::optional<Eigen::VectorXd> Correct(const Eigen::VectorXd& guess, const Eigen::VectorXd& c,
+                                         double value, const NewtonOptions& newton,
+                                         int* iterations) const;
+  /// The unit null vector of dF/dX, continuing `previous` (or from the SVD).
+  std::optional<Eigen::VectorXd> Tangent(const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& previous) const;
+  /// The curve point at a converged X; empty if the map fails there.
+  std::optional<CurvePoint> Describe(const Eigen::VectorXd& x,
+                                     const Eigen::VectorXd& previous) const;
+
+ private:
+  const BranchProblem& Along1(double mu2) const;  ///< U in (η, μ1) at μ2
+  const BranchProblem& Along2(double mu1) const;  ///< U in (η, μ2) at μ1
+  /// The defining rows at X (size 1, or 2 for grazing); false if the map fails.
+  bool Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const;
+  /// The defining rows' gradient by central differences (steps scaled).
+  bool DefiningGradient(const Eigen::VectorXd& x, double step_scale,
+                        Eigen::MatrixXd* gradient) const;
+  /// Grazing: a guess beyond the grazing (where U has no value), moved
+  /// back inside; any other guess unchanged.
+  Eigen::VectorXd Inside(const Eigen::VectorXd& x) const;
+  double Sigma(const Eigen::MatrixXd& a) const;
+  /// Grazing: the impact state that starts the flight holding the touch.
+  std::optional<Eigen::VectorXd> GrazingFlightStart(const ImpactMap& map,
+                                                    const Eigen::VectorXd& eta) const;
+  /// Grazing: t* lies after the flight's start and before its next impact.
+  bool TouchInsideFlight(const Eigen::VectorXd& x) const;
+
+  System base_;
+  CurveOptions options_;
+  SpecialPointType type_;
+  int grazing_flight_;
+  bool response_;
+  int eta_size_, size_;
+  Eigen::VectorXd border_b_, border_c_;
+  mutable std::unique_ptr<BranchProblem> along1_, along2_;
+  mutable double along1_mu2_ = 0.0, along2_mu1_ = 0.0;
+};
+
+}  // namespace impactkit::detail

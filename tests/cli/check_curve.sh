@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# `impactkit curve`: the paper's P(1,1) period-doubling curve in (omega, r)
+# from the issue's example runs from bound to bound; its JSON has the
+# documented fields (docs/curves-json.md), its CSV a header named after the
+# parameters and one row per point; the grazing curve in (omega, A1)
+# reports its two meetings with period doubling as codim2_points keyed by
+# the parameter names; a start read from `impactkit continue --json` gives
+# the same curve as the direct start; P(1,2)'s vanishing impact is the
+# non-impacting response's grazing.
+#
+#     check_curve.sh IMPACTKIT
+source "$(dirname "$0")/testlib.sh"
+impactkit=$1
+
+"$impactkit" curve --type period_doubling --p 1 --q 1 --omega 1.6 --param omega --param2 r \
+  --from2 0.5 --to2 0.95 --json "$work/pd.json" --out "$work/pd.csv" >"$work/stdout" ||
+  fail "impactkit curve failed: $(cat "$work/stdout")"
+grep -q "start:      period doubling at omega = 1.61304" "$work/stdout" || fail "start: $(cat "$work/stdout")"
+grep -q "begins:   parameter_bound (reached omega = 1.61564" "$work/stdout" ||
+  fail "no bound at r = 0.5: $(cat "$work/stdout")"
+json=$(tr -d ' \n' <"$work/pd.json")
+for field in '"curves":[{' '"type":"period_doubling"' '"params":["omega","r"]' '"end_reason":"parameter_bound"' \
+             '"points":[{"multipliers":[[' '"omega":1.6156' '"outside":0' '"codim2_points":[]' '"system":{'; do
+  [[ $json == *"$field"* ]] || fail "JSON lacks $field"
+done
+head -1 "$work/pd.csv" | grep -q '^# impactkit curve --type period_doubling --param omega --param2 r' ||
+  fail "CSV provenance missing: $(head -1 "$work/pd.csv")"
+sed -n 2p "$work/pd.csv" | grep -q '^omega,r,arclength,mod1,mod2,mod3,mod4,outside,codim2$' ||
+  fail "unexpected CSV header: $(sed -n 2p "$work/pd.csv")"
+(($(wc -l <"$work/pd.csv") > 20)) || fail "too few CSV rows"
+
+"$impactkit" curve --type grazing --param2 A1 --from 0.5 --to 3 --from2 0.1 --to2 0.6 \
+  --json "$work/g.json" >"$work/stdout" || fail "grazing curve failed: $(cat "$work/stdout")"
+json=$(tr -d ' \n' <"$work/g.json")
+for field in '"type":"grazing"' '"codim2_points":[{' '"type":"period_doubling_grazing"' '"A1":0.389644' \
+             '"A1":0.173921'; do
+  [[ $json == *"$field"* ]] || fail "grazing JSON lacks $field"
+done
+
+"$impactkit" continue --from 0.5 --to 2 --start 1 --json "$work/b.json" >/dev/null || fail "continue failed"
+"$impactkit" curve --start-json "$work/b.json" --point 2 --param2 r --from2 0.5 --to2 0.95 \
+  >"$work/stdout" || fail "--start-json failed: $(cat "$work/stdout")"
+grep -q "begins:   parameter_bound (reached omega = 1.61564" "$work/stdout" ||
+  fail "--start-json gave another curve: $(cat "$work/stdout")"
+# P(1,2)'s impact vanishes: followed as the non-impacting response touching
+# the stop (p = 0 in the JSON, points without multipliers).
+"$impactkit" curve --type grazing --p 1 --q 2 --omega 2.0 --param2 xs --from 0.5 --to 3 \
+  --from2 0.05 --to2 0.2 --json "$work/v.json" >"$work/stdout" || fail "vanishing impact: $(cat "$work/stdout")"
+grep -q "curve:      grazing of the non-impacting response in (omega, xs)" "$work/stdout" ||
+  fail "not the response's grazing: $(cat "$work/stdout")"
+json=$(tr -d ' \n' <"$work/v.json")
+[[ $json == *'"multipliers":[],"omega":'* && $json == *'"p":0'* ]] || fail "response JSON: $json"
+echo ok
