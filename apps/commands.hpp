@@ -21,6 +21,10 @@ void AddOrbitCommand(CLI::App& app);
 /// special points, and the branches born there (continue/).
 void AddContinueCommand(CLI::App& app);
 
+/// `impactkit diagram`: the connected bifurcation diagram over a parameter
+/// range, seeded by a sweep (diagram/).
+void AddDiagramCommand(CLI::App& app);
+
 /// `impactkit paper`: the paper's whole study in one run, summarised and
 /// written into one folder (paper/).
 void AddPaperCommand(CLI::App& app);

@@ -83,6 +83,7 @@ int main(int argc, char** argv) {
   impactkit::cli::AddSimulateCommand(app);
   impactkit::cli::AddOrbitCommand(app);
   impactkit::cli::AddContinueCommand(app);
+  impactkit::cli::AddDiagramCommand(app);
   impactkit::cli::AddPaperCommand(app);
   impactkit::cli::AddSweepCommand(app);
   impactkit::cli::AddImpactMapCommand(app);
