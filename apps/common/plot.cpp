@@ -96,8 +96,8 @@ std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& fil
     const Curve& curve = chart.curves[i];
     if (curve.points) {
       clauses.push_back(fmt::format(
-          "{} using 1:2 with points pointtype 7 pointsize 0.2 linecolor rgb {} title {}",
-          Quoted(files[i].string()), Quoted(curve.color), Quoted(curve.title)));
+          "{} using 1:2 with points pointtype 7 pointsize {} linecolor rgb {} title {}",
+          Quoted(files[i].string()), curve.point_size, Quoted(curve.color), Quoted(curve.title)));
       continue;
     }
     clauses.push_back(

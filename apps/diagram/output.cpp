@@ -135,7 +135,8 @@ LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis) {
   chart.y_label = axis == DiagramAxis::kRange ? "max - min of x_N" : "impact velocity";
   Curve brute;
   brute.points = true;
-  brute.color = "#bbbbbb";
+  brute.color = "#999999";
+  brute.point_size = 0.3;
   brute.title = "brute force";
   for (const SweepPoint& p : swept.sweep.points) {
     if (axis == DiagramAxis::kRange) {
@@ -181,6 +182,7 @@ LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis) {
     if (node.kind != DiagramNodeKind::kSpecialPoint) continue;
     Curve& mark = marks[node.Name()];
     mark.points = true;
+    mark.point_size = 1.2;
     mark.title = node.Name();
     mark.color = NodeColor(node.Name());
     for (double y : AxisValues(node.point.orbit, axis)) {
