@@ -69,6 +69,10 @@ System DiagramSystem(const DiagramRequest& request) {
 SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   Require(request.sweep_values >= 0, "--sweep-values must be >= 0 (0: no sweep seeds)");
   Require(request.threads >= 0, "--threads must be >= 0 (0: all cores)");
+  Require(request.max_depth >= 0,
+          fmt::format("--max-depth must be >= 0, got {}", request.max_depth));
+  Require(request.max_branches >= 1,
+          fmt::format("--max-branches must be >= 1, got {}", request.max_branches));
   const int threads = request.threads > 0
                           ? request.threads
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
