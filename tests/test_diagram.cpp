@@ -316,6 +316,20 @@ TEST_CASE(
   CHECK_THAT(hi, Catch::Matchers::WithinAbs(0.859, 1e-3));
 }
 
+TEST_CASE("diagram: a grazing located just past a bound seeds nothing outside the range",
+          "[diagram]") {
+  // P(1,1)'s new contact at 0.8564 is approached from the branch side and
+  // located below the bound 0.9: the P(2,1) seeded beside it lies outside
+  // [0.9, 1.3] and is skipped (ContinueBranch would refuse it).
+  const System system = PaperSystem(1.0);
+  Diagram diagram;
+  REQUIRE_NOTHROW(diagram = TraceDiagram({{system, testing::SeededOrbit(system, 1, 1), "P(1,1)"}},
+                                         Options(0.9, 1.3, 2)));
+  REQUIRE(diagram.branches.size() == 1);
+  CHECK(diagram.nodes.size() == 2);  // the grazing and the upper bound
+  CheckGraph(diagram);
+}
+
 TEST_CASE("diagram: default options are valid and bad ones are refused", "[diagram]") {
   std::string error;
   DiagramOptions options = Options(0.5, 1.0, 2);

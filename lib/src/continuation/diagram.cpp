@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -137,6 +138,7 @@ class NetworkTracer {
   /// holds. Returns the indices of the added branches.
   std::vector<int> TraceGeneration(const std::vector<PendingStart>& starts) {
     std::vector<Branch> traced(starts.size());
+    std::vector<std::exception_ptr> errors(starts.size());
     std::size_t next_start = 0;
     std::mutex mutex;
     auto work = [&] {
@@ -150,11 +152,17 @@ class NetworkTracer {
         ContinuationOptions options = options_.continuation;
         options.orbit = starts[k].orbit;
         options.direction = starts[k].direction;
-        traced[k] = ContinueBranch(starts[k].start, options, [&](const BranchPoint& point) {
-          if (!progress_) return;
-          std::lock_guard<std::mutex> lock(mutex);
-          progress_(static_cast<int>(diagram_.branches.size()), point);
-        });
+        // An exception may not leave a worker thread (it would terminate
+        // the program): kept, and rethrown or counted after the join.
+        try {
+          traced[k] = ContinueBranch(starts[k].start, options, [&](const BranchPoint& point) {
+            if (!progress_) return;
+            std::lock_guard<std::mutex> lock(mutex);
+            progress_(static_cast<int>(diagram_.branches.size()), point);
+          });
+        } catch (...) {
+          errors[k] = std::current_exception();
+        }
       }
     };
     std::vector<std::thread> workers;
@@ -162,9 +170,21 @@ class NetworkTracer {
     for (int t = 1; t < threads; ++t) workers.emplace_back(work);
     work();
     for (std::thread& t : workers) t.join();
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      if (!errors[k]) continue;
+      // A caller's seed that ContinueBranch refuses is the caller's error;
+      // a start found by switching that it refuses is a switch that failed.
+      if (starts[k].depth == 0) std::rethrow_exception(errors[k]);
+      try {
+        std::rethrow_exception(errors[k]);
+      } catch (const InvalidInput&) {
+        ++diagram_.failed_starts;
+      }
+    }
 
     std::vector<int> added;
     for (std::size_t k = 0; k < starts.size(); ++k) {
+      if (errors[k]) continue;
       if (k > 0 && Traced(starts[k])) {  // an earlier start of this generation was on it
         ++diagram_.duplicate_starts;
         continue;
@@ -204,6 +224,10 @@ class NetworkTracer {
       const std::string where = s.Describe(branch.parameter);
       auto add = [&](BranchStart start, ContinuationDirection direction, int p, int q,
                      const std::string& how) {
+        // A special point located just past a bound (grazings are
+        // approached from the branch side) may seed outside the range.
+        const double mu = GetParameter(start.system, diagram_.parameter);
+        if (mu < options_.continuation.lower || mu > options_.continuation.upper) return;
         OrbitOptions orbit = options_.continuation.orbit;
         orbit.p = p;
         orbit.q = q;
