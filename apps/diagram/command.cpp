@@ -68,6 +68,8 @@ System DiagramSystem(const DiagramRequest& request) {
 
 SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   Require(request.sweep_values >= 0, "--sweep-values must be >= 0 (0: no sweep seeds)");
+  Require(request.sweep_values > 0 || request.start.has_value(),
+          "--sweep-values 0 leaves no seed: give --start");
   Require(request.threads >= 0, "--threads must be >= 0 (0: all cores)");
   Require(request.max_depth >= 0,
           fmt::format("--max-depth must be >= 0, got {}", request.max_depth));
@@ -119,7 +121,6 @@ void RunDiagram(const DiagramRequest& request) {
   const bool tty = ::isatty(STDERR_FILENO) == 1;
   SweptDiagram swept;
   if (request.sweep_values == 0) {
-    Require(!seeds.empty(), "--sweep-values 0 leaves no seed: give --start");
     BranchProgress progress(request.parameter);
     swept.seeds = seeds;
     swept.diagram = TraceDiagram(seeds, options.diagram, std::ref(progress));
