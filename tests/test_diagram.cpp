@@ -246,6 +246,17 @@ TEST_CASE("diagram: the N = 1 oscillator's network from one P(1,1) seed matches 
   }
   CHECK(diagram.branches.front().branch.p == 1);
   CHECK_FALSE(diagram.complete);  // max_depth 1 stops below the doubled branches' own switches
+
+  // The same network on two threads: the same nodes, bit for bit.
+  DiagramOptions two = options;
+  two.threads = 2;
+  const Diagram again =
+      TraceDiagram({{system, testing::SeededOrbit(system, 1, 1), "P(1,1) at 1.3"}}, two);
+  REQUIRE(again.nodes.size() == diagram.nodes.size());
+  REQUIRE(again.edges.size() == diagram.edges.size());
+  for (std::size_t k = 0; k < diagram.nodes.size(); ++k) {
+    CHECK(again.nodes[k].parameter == diagram.nodes[k].parameter);
+  }
 }
 
 TEST_CASE(
@@ -334,6 +345,7 @@ TEST_CASE("diagram: default options are valid and bad ones are refused", "[diagr
   std::string error;
   DiagramOptions options = Options(0.5, 1.0, 2);
   CHECK(options.IsValid(&error));
+  CHECK(SweepSeedOptions{}.IsValid(&error));
   CHECK(SweptDiagramOptions{}.IsValid(&error) == false);  // no range yet: lower == upper
   options.threads = 0;
   CHECK_FALSE(options.IsValid(&error));
