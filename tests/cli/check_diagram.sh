@@ -4,7 +4,8 @@
 # and P(1,1) branches and the period doubling at 0.8372414 in parameter
 # order; --json holds nodes (type, param, multipliers) and edges whose
 # from/to are node ids and whose points run between them; --plot writes a
-# PNG (when gnuplot is there).
+# PNG (when gnuplot is there); --max-branches stops it with an "incomplete"
+# report.
 #
 #     check_diagram.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -32,4 +33,9 @@ nodes=$(grep -o '"id": [0-9]*' "$work/d.json" | wc -l)
 while read -r id; do
   ((id < nodes)) || fail "an edge ends at node $id, but there are $nodes nodes"
 done < <(grep -oE '"(from|to)": [0-9]+' "$work/d.json" | grep -oE '[0-9]+$')
+# A bound on the branches stops the network and says so.
+"$impactkit" diagram --from 0.8 --to 0.9 --sweep-values 41 --sweep-transient 300 --sweep-record 20 \
+  --max-branches 2 >"$work/bounded" || fail "impactkit diagram --max-branches 2 failed"
+grep -q '^diagram: *2 branches, .*incomplete: max_branches (2) reached' "$work/bounded" ||
+  fail "no 'incomplete' report: $(cat "$work/bounded")"
 echo ok

@@ -137,6 +137,10 @@ class NetworkTracer {
   /// order, each branch whose start no earlier branch of the generation
   /// holds. Returns the indices of the added branches.
   std::vector<int> TraceGeneration(const std::vector<PendingStart>& starts) {
+    if (!starts.empty() && static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
+      Incomplete(fmt::format("max_branches ({}) reached", options_.max_branches));
+      return {};  // not traced at all: none of them could be kept
+    }
     std::vector<Branch> traced(starts.size());
     std::vector<std::exception_ptr> errors(starts.size());
     std::size_t next_start = 0;
