@@ -3,9 +3,7 @@
 # seeding sweep: with no start given, it prints the P(2,1), P(3,2), P(4,2)
 # and P(1,1) branches and the period doubling at 0.8372414 in parameter
 # order; --json holds nodes (type, param, multipliers) and edges whose
-# from/to are node ids and whose points run between them; --plot writes a
-# PNG (when gnuplot is there); --max-branches stops it with an "incomplete"
-# report.
+# from/to are node ids; --max-branches stops it with an "incomplete" report.
 #
 #     check_diagram.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
