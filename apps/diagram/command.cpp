@@ -94,8 +94,8 @@ SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   options.sweep.recorded_periods = request.sweep_record;
   options.sweep.classify.period.max_q = request.max_q;
   options.sweep.threads = threads;
-  // Windows narrower than the sweep's spacing are met by switching from
-  // their neighbours or not at all; two values make a window.
+  // One flag bounds the windows seeded: no longer period than the sweep
+  // looks for, and no more impacts per orbit than that.
   options.seeds.max_p = request.max_q;
   std::string error;
   if (!options.IsValid(&error)) throw InvalidInput(error);
