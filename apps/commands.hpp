@@ -24,6 +24,9 @@ void AddContinueCommand(CLI::App& app);
 /// `impactkit curve`: a fold, period-doubling, Neimark-Sacker or grazing
 /// point followed in two parameters, with its codimension-two points (curve/).
 void AddCurveCommand(CLI::App& app);
+/// `impactkit diagram`: the connected bifurcation diagram over a parameter
+/// range, seeded by a sweep (diagram/).
+void AddDiagramCommand(CLI::App& app);
 
 /// `impactkit paper`: the paper's whole study in one run, summarised and
 /// written into one folder (paper/).

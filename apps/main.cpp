@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
   impactkit::cli::AddOrbitCommand(app);
   impactkit::cli::AddContinueCommand(app);
   impactkit::cli::AddCurveCommand(app);
+  impactkit::cli::AddDiagramCommand(app);
   impactkit::cli::AddPaperCommand(app);
   impactkit::cli::AddSweepCommand(app);
   impactkit::cli::AddImpactMapCommand(app);

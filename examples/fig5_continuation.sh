@@ -3,12 +3,14 @@
 # automatic: the P(1,1), P(2,1), P(2,2) and P(1,2) branches continued in Ω
 # with their folds, period doublings and grazings, each branch's PNG, and a
 # Fig. 5(a)-style overlay of the continued branches (lines: stable solid,
-# unstable dashed) on a brute-force sweep (dots).
+# unstable dashed) on a brute-force sweep (dots); and the connected diagram of
+# every branch over Ω 0.1-2.5 seeded by a sweep (`impactkit diagram`).
 #
 #   examples/fig5_continuation.sh [impactkit binary] [figure folder] [data folder]
 #
 # Defaults: ./build/apps/impactkit, ./out/figures, ./out/continuation. The
-# figures are continuation-*.png; the branch CSV/JSON and sweeps are data.
+# figures are continuation-*.png; the branch CSV/JSON, sweeps and the diagram's
+# JSON are data.
 # Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
@@ -66,3 +68,7 @@ GNUPLOT
 overlay "$data/sweep-080-090.csv" "0.80:0.90" "$figures/continuation-overlay-080-090.png"
 overlay "$data/sweep-155-175.csv" "1.55:1.75" "$figures/continuation-overlay-155-175.png"
 echo "wrote: $figures/continuation-overlay-080-090.png $figures/continuation-overlay-155-175.png"
+echo
+echo "The connected diagram, Ω 0.1 to 2.5, seeded by a sweep:"
+"$impactkit" diagram --from 0.1 --to 2.5 --json "$data/diagram.json" \
+  --plot "$figures/continuation-diagram.png"

@@ -10,12 +10,12 @@
 #
 #   examples/parameter_planes.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/curves. The
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/curves. The
 # figures are plane-r.png and plane-xs.png; each curve's CSV and JSON
 # (docs/curves-json.md) are data. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/curves}
 mkdir -p "$figures" "$data"
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds impactkit, then runs the main job on the paper's system, everything
 # into ./out/paper/: `impactkit paper` (modal data, resonance peaks, orbits,
-# continued branches with their special points, the Fig. 3 regimes) and
+# the Fig. 3 regimes, the connected diagram of every branch with its special points) and
 # every examples/fig*.sh, each called alike — binary, figure folder, data
 # folder — so that the paper's Figs. 2-12 land in out/paper/figures/ and
 # their CSV/JSON in out/paper/data/. About 1-2 minutes after the build.
@@ -27,9 +27,9 @@ bash examples/parameter_planes.sh "$impactkit" "$out/figures" "$out/data"
 echo
 echo "Results in $(pwd)/$out/ ($((SECONDS - start)) s after the build):"
 echo "  summary.json      the summary above: modes, peaks, orbits, branches, regimes"
-echo "  branch-*.csv      each continued branch, one row per point"
+echo "  branch-*.csv      each branch of the connected diagram, one row per point"
 echo "  fig3-sweep.csv    the Fig. 3 sweep, one row per value"
-echo "  *.png             Figs. 2 and 3 and the continued branches"
+echo "  *.png             Figs. 2 and 3 and the connected diagram (diagram.png)"
 echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh, and the parameter"
 echo "                    planes plane-*.png from examples/parameter_planes.sh (PNG)"
 echo "  data/             their CSV and JSON"

@@ -26,9 +26,10 @@ struct Curve {
   std::vector<double> y;
   bool dashed = false;
   std::string color = "#000000";  ///< gnuplot colour, "#rrggbb"
-  /// Draw each (x, y) as a dot, unjoined (bifurcation diagrams).
+  /// Draw each (x, y) as a dot, unjoined (bifurcation diagrams), of this
+  /// gnuplot point size (small for dense data, larger for marked points).
   bool points = false;
-  double point_size = 0.2;  ///< gnuplot pointsize of those dots (1: a marker)
+  double point_size = 0.2;
 };
 
 /// A constant y across the chart (a stop, a threshold).

@@ -15,13 +15,13 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/branches.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
-#include "continue/branches.hpp"
-#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/diagram.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 
@@ -118,11 +118,19 @@ void RunContinue(const ContinueRequest& request) {
   fmt::print("system:     {}\n", DescribeSystem(system));
   fmt::print("start:      P({},{}) at {} = {}, {}\n", start.p, start.q, request.parameter,
              GetParameter(system, request.parameter), start.stable ? "stable" : "unstable");
+  // The library's network, one switch deep: the branch through the start
+  // and those born at its special points as the flags ask.
+  DiagramOptions network;
+  network.continuation = options;
+  network.switch_period_doubling = request.switch_period_doubling;
+  network.switch_grazing = request.follow_grazing;
+  network.switch_branch_points = false;
+  network.max_depth = request.switch_period_doubling || request.follow_grazing ? 1 : 0;
   std::vector<TracedBranch> branches;
   {
     BranchProgress progress(request.parameter);
-    branches = TraceBranches(system, start, options,
-                             {request.switch_period_doubling, request.follow_grazing}, progress);
+    branches = LabelBranches(TraceDiagram({{system, start, "from the start", options.direction}},
+                                          network, std::ref(progress)));
   }
   for (const TracedBranch& b : branches) PrintBranch(b);
   // A branch of one point is no branch: exit status 1 before any output.

@@ -17,15 +17,15 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/branches.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/system_options.hpp"
-#include "continue/branches.hpp"
+#include "diagram/output.hpp"
 #include "impactkit/analysis/resonance.hpp"
-#include "impactkit/analysis/sweep.hpp"
-#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/analysis/swept_diagram.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/modal.hpp"
@@ -46,11 +46,12 @@ struct Resolution {
   int sweep_values;  ///< Fig. 3 sweep
   int sweep_transient;
   int sweep_record;
-  int max_q;  ///< longest period the sweep's classification looks for
+  int max_q;      ///< longest period the sweep's classification looks for
+  int max_depth;  ///< switches from a seed's branch in the connected diagram
 };
 
 Resolution ResolutionFor(bool quick) {
-  return quick ? Resolution{200, 121, 200, 20, 8} : Resolution{500, 2401, 500, 100, 64};
+  return quick ? Resolution{200, 121, 200, 20, 8, 1} : Resolution{500, 2401, 500, 100, 64, 8};
 }
 
 /// "[2/5] orbits at the paper's frequencies" on stderr, after what stdout
@@ -158,45 +159,50 @@ nlohmann::json OrbitStage(const System& paper, const Resolution& resolution) {
   return rows;
 }
 
-/// A branch of §3: its start, range and which branches to start from it.
-struct BranchPlan {
-  std::string name;
-  double start, lower, upper;
-  BranchSwitches switches;
-};
-
-nlohmann::json BranchStage(const System& paper, const Resolution& resolution, Folder& folder) {
-  const BranchPlan plans[] = {{"p11", 1.0, 0.5, 2.0, {true, true}},
-                              {"p21", 0.6, 0.4, 1.0, {true, false}},
-                              {"p12", 2.0, 1.0, 3.0, {true, false}}};
-  nlohmann::json j = nlohmann::json::array();
-  std::vector<TracedBranch> all;
-  for (const BranchPlan& plan : plans) {
+/// The connected diagram in omega over the sweep's range (§3 and Fig. 3),
+/// seeded by the P(1,1), P(2,1) and P(1,2) orbits of §3 and by the sweep's
+/// periodic windows: the branches, every special point, and the picture.
+nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, int threads,
+                            const SweepOptions& sweep_options, SweepResult sweep, Folder& folder) {
+  SweptDiagramOptions options;
+  options.diagram.continuation.lower = sweep_options.from;
+  options.diagram.continuation.upper = sweep_options.to;
+  options.diagram.threads = threads;
+  options.diagram.max_depth = resolution.max_depth;
+  options.seeds.max_p = resolution.max_q;
+  std::vector<DiagramSeed> seeds;
+  for (double omega : {1.0, 0.6, 2.0}) {
     System system = paper;
-    system.omega = plan.start;
+    system.omega = omega;
     // The start as `impactkit orbit` finds it; a failure ends the job with
     // its reason rather than leave a branch out of the summary.
     OrbitSeedOptions seed;
     seed.transient = resolution.transient;
-    ContinuationOptions options;
-    const PeriodicOrbit start = FindStartOrbit(system, seed, &options.orbit);
-    options.lower = plan.lower;
-    options.upper = plan.upper;
-    options.direction = ContinuationDirection::kBoth;
-    BranchProgress progress("omega");
-    std::vector<TracedBranch> branches =
-        TraceBranches(system, start, options, plan.switches, progress);
-    for (TracedBranch& b : branches) {
-      b.label = plan.name + "-" + b.label;
-      PrintBranch(b);
-      const std::string csv = "branch-" + b.label + ".csv";
-      WriteBranchRows(AddTable(folder, csv, "paper branch " + b.label, BranchColumns(b.branch)),
-                      b.branch);
-      j.push_back(BranchJson(b));
-      all.push_back(std::move(b));
-    }
+    OrbitOptions orbit;
+    const PeriodicOrbit start = FindStartOrbit(system, seed, &orbit);
+    seeds.push_back({system, start, fmt::format("the orbit at omega = {}", omega)});
   }
-  WriteFile(folder, "branches.png", RenderPng(BranchChart(all)));
+  SweptDiagram swept;
+  swept.seeds = seeds;
+  for (DiagramSeed& s : SeedsFromSweep(paper, sweep_options, sweep, options.seeds)) {
+    swept.seeds.push_back(std::move(s));
+  }
+  {
+    BranchProgress progress("omega");
+    swept.diagram = TraceDiagram(swept.seeds, options.diagram, std::ref(progress));
+  }
+  swept.sweep = std::move(sweep);
+  PrintDiagram(swept.diagram);
+  nlohmann::json j = nlohmann::json::array();
+  for (const TracedBranch& b : LabelBranches(swept.diagram)) {
+    PrintBranch(b);
+    const std::string csv = "branch-" + b.label + ".csv";
+    WriteBranchRows(AddTable(folder, csv, "paper branch " + b.label, BranchColumns(b.branch)),
+                    b.branch);
+    j.push_back(BranchJson(b));
+  }
+  WriteFile(folder, "diagram.json", DiagramJson(swept.diagram).dump(2) + "\n");
+  WriteFile(folder, "diagram.png", RenderPng(DiagramChart(swept, DiagramAxis::kImpactVelocity)));
   return j;
 }
 
@@ -243,8 +249,16 @@ void PrintRegimes(const nlohmann::json& regimes) {
   if (short_runs > 0) fmt::print("  (and {} windows of one or two values)\n", short_runs);
 }
 
-nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int threads,
-                          Folder& folder) {
+/// "sweep 120/2401" on stderr while a person watches.
+SweepProgress SweepProgressLine() {
+  return [tty = ::isatty(STDERR_FILENO) == 1](int done, int total) {
+    if (!tty) return;
+    fmt::print(stderr, "\r\033[K  sweep {}/{}", done, total);
+    if (done == total) fmt::print(stderr, "\r\033[K");
+  };
+}
+
+SweepOptions PaperSweepOptions(const Resolution& resolution, int threads) {
   SweepOptions options;
   options.from = 0.1;
   options.to = 2.5;
@@ -252,12 +266,12 @@ nlohmann::json SweepStage(const System& paper, const Resolution& resolution, int
   options.transient_periods = resolution.sweep_transient;
   options.recorded_periods = resolution.sweep_record;
   options.classify.period.max_q = resolution.max_q;
-  options.threads = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
-  const bool tty = ::isatty(STDERR_FILENO) == 1;
-  const SweepResult sweep = RunSweep(paper, options, [&](int done, int total) {
-    if (tty) fmt::print(stderr, "\r\033[K  sweep {}/{}", done, total);
-  });
-  if (tty) fmt::print(stderr, "\r\033[K");
+  options.threads = threads;
+  return options;
+}
+
+nlohmann::json SweepStage(const System& paper, const SweepOptions& options,
+                          const SweepResult& sweep, Folder& folder) {
   fmt::print("  {}\n", sweep.BriefReport());
   const nlohmann::json regimes = Regimes(sweep);
   PrintRegimes(regimes);
@@ -306,12 +320,20 @@ void RunPaper(const PaperRequest& request) {
   Stage(2, "orbits at the paper's frequencies");
   fmt::print("orbits (from a simulation from rest, refined as fixed points of the impact map):\n");
   summary["orbits"] = OrbitStage(paper, resolution);
-  Stage(3, "continued branches");
-  fmt::print("branches (pseudo-arclength continuation in omega):\n");
-  summary["branches"] = BranchStage(paper, resolution, folder);
-  Stage(4, "brute-force bifurcation diagram (Fig. 3)");
+  const int threads = request.threads > 0
+                          ? request.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  Stage(3, "brute-force bifurcation diagram (Fig. 3)");
   fmt::print("brute-force diagram, omega 0.1 to 2.5 ({} values):\n", resolution.sweep_values);
-  summary["regimes"] = SweepStage(paper, resolution, request.threads, folder);
+  const SweepOptions sweep_options = PaperSweepOptions(resolution, threads);
+  SweepResult sweep = RunSweep(paper, sweep_options, SweepProgressLine());
+  summary["regimes"] = SweepStage(paper, sweep_options, sweep, folder);
+  Stage(4, "connected bifurcation diagram");
+  fmt::print(
+      "branches (the connected diagram in omega, seeded at 1.0, 0.6, 2.0 and by the "
+      "sweep):\n");
+  summary["branches"] =
+      DiagramStage(paper, resolution, threads, sweep_options, std::move(sweep), folder);
   Stage(5, "summary");
   summary["seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

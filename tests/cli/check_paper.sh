@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job in its reduced mode: `impactkit paper --quick` writes every
 # promised file, non-empty, and prints the same special points of the main
-# branches as the library computes directly (paper_points).
+# branches as the library computes directly (paper_points); its connected
+# diagram holds the P(2,2) branch born at the P(1,1) period doubling.
 #
 #     check_paper.sh IMPACTKIT PAPER_POINTS
 source "$(dirname "$0")/testlib.sh"
@@ -10,9 +11,8 @@ points=$2
 
 "$impactkit" paper --quick --out "$work/paper" >"$work/stdout" 2>"$work/stderr" ||
   fail "impactkit paper failed: $(cat "$work/stderr")"
-for file in summary.json fig2-resonance.png fig3-sweep.csv fig3-bifurcation.png branches.png \
-            branch-p11-main.csv branch-p11-pd2.csv branch-p11-graze1.csv branch-p21-main.csv \
-            branch-p21-pd1.csv branch-p12-main.csv branch-p12-pd1.csv; do
+for file in summary.json fig2-resonance.png fig3-sweep.csv fig3-bifurcation.png diagram.png \
+            diagram.json branch-main.csv branch-seed2.csv branch-seed3.csv; do
   [[ -s "$work/paper/$file" ]] || fail "missing or empty: $file"
 done
 for section in "modal data:" "resonance:" "orbits (" "branches (" "brute-force diagram" "wrote into"; do
@@ -29,5 +29,7 @@ for field in '"modes":[' '"resonance_peaks":[' '"orbits":[' '"branches":[' '"reg
              '"special_points":['; do
   [[ $json == *"$field"* ]] || fail "summary.json lacks $field"
 done
-grep -q '^\[4/5\] brute-force' "$work/stderr" || fail "no stage display on stderr"
+grep -q '^\[3/5\] brute-force' "$work/stderr" || fail "no stage display on stderr"
+grep -q '^  [a-z0-9]* *P(2,2) from 1.613045' "$work/stdout" ||
+  fail "no P(2,2) branch from the P(1,1) period doubling at 1.613045"
 echo ok

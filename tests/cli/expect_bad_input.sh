@@ -19,7 +19,7 @@ case $command in
                      --plot "$work/out/plot.png" --json "$work/out/summary.json") ;;
   sweep) outputs=(--out "$work/out/impacts.csv" --summary "$work/out/summary.csv") ;;
   resonance | impactmap | returnmap) outputs=(--out "$work/out/table.csv") ;;
-  orbit | continue | curve | lyapunov) outputs=(--json "$work/out/result.json") ;;
+  orbit | continue | curve | diagram | lyapunov) outputs=(--json "$work/out/result.json") ;;
   paper) outputs=(--out "$work/out/paper") ;;
   *) outputs=() ;;  # not a subcommand: its message is the test
 esac

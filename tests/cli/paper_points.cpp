@@ -1,7 +1,8 @@
-// The special points of the paper's P(1,1), P(2,1) and P(1,2) branches
-// computed directly by the library (ContinueBranch, no CLI code), one
-// SpecialPoint::Describe line each: check_paper.sh expects `impactkit paper`
-// to print the same lines.
+// The special points of the paper's P(1,1), P(2,1) and P(1,2) branches over
+// the paper's range 0.1..2.5 computed directly by the library
+// (ContinueBranch, no CLI code and no diagram), one SpecialPoint::Describe
+// line each: check_paper.sh expects `impactkit paper`, whose connected
+// diagram is seeded with these orbits, to print the same lines.
 #include <cstdio>
 #include <cstdlib>
 
@@ -10,16 +11,13 @@
 
 int main() {
   using namespace impactkit;
-  struct Plan {
-    double start, lower, upper;
-  };
-  for (const Plan& plan : {Plan{1.0, 0.5, 2.0}, Plan{0.6, 0.4, 1.0}, Plan{2.0, 1.0, 3.0}}) {
-    const System system = PaperSystem(plan.start);
+  for (double omega : {1.0, 0.6, 2.0}) {
+    const System system = PaperSystem(omega);
     const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 200);
     if (!seed || !seed->motion.periodic) return EXIT_FAILURE;
     ContinuationOptions options;
-    options.lower = plan.lower;
-    options.upper = plan.upper;
+    options.lower = 0.1;
+    options.upper = 2.5;
     options.direction = ContinuationDirection::kBoth;
     options.orbit.p = static_cast<int>(seed->motion.p);
     options.orbit.q = seed->motion.q;

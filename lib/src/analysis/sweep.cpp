@@ -133,6 +133,9 @@ bool RunValue(const System& system, const SweepOptions& options, HybridState& st
   for (const Impact& i : steady.Impacts()) {
     if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity});
   }
+  if (!steady.Impacts().empty() && steady.Impacts().back().t >= t_record) {
+    point->last_impact = steady.Impacts().back();
+  }
   const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
   point->range_contact = Ranges(periods, system.contact_dof);
   point->range_first = Ranges(periods, 0);

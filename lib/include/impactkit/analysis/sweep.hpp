@@ -93,6 +93,9 @@ struct SweepImpact {
 struct SweepPoint {
   double value = 0.0;  ///< the parameter
   std::vector<SweepImpact> impacts;
+  /// The recorded window's last impact with the full state: a seed for the
+  /// orbit the window shows (diagram seeds, sweep_seeds.hpp).
+  std::optional<Impact> last_impact;
   /// max - min over each recorded forcing period of x_c (the contact mass;
   /// x_N for the paper's chain: its Fig. 3(a)) and of x_1.
   std::vector<double> range_contact;

@@ -1,8 +1,9 @@
 #pragma once
-/// \file continue/branches.hpp
-/// Continued branches as the command line shows them: traced with the
-/// branches born at their special points, printed, written as CSV and JSON,
-/// drawn — shared by `impactkit continue` and `impactkit paper`.
+/// \file common/branches.hpp
+/// The branches of a diagram (impactkit/continuation/diagram.hpp) as the
+/// command line shows them: labelled, printed, written as CSV and JSON,
+/// drawn — shared by `impactkit continue`, `impactkit diagram` and
+/// `impactkit paper`. The tracing and switching are the library's.
 
 #include <chrono>
 #include <nlohmann/json.hpp>
@@ -10,7 +11,7 @@
 #include <vector>
 
 #include "common/plot.hpp"
-#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/diagram.hpp"
 #include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
@@ -24,8 +25,8 @@ class BranchProgress {
   BranchProgress(const BranchProgress&) = delete;
   BranchProgress& operator=(const BranchProgress&) = delete;
 
-  /// One more point on the branch `label`.
-  void operator()(const std::string& label, const BranchPoint& point);
+  /// One more point, with `branches` branches traced before it.
+  void operator()(int branches, const BranchPoint& point);
 
  private:
   const bool enabled_;
@@ -35,24 +36,18 @@ class BranchProgress {
   std::chrono::steady_clock::time_point last_{};
 };
 
-/// A traced branch and where it came from.
+/// A traced branch as the outputs name it.
 struct TracedBranch {
-  std::string label;   ///< "main", "pd1", "graze1", ...
+  std::string label;   ///< "main" (or "seed2", ...), "pd1", "graze2", "bp3"
   std::string origin;  ///< how it was started
   Branch branch;
 };
 
-/// Which branches to start at the special points of a traced branch.
-struct BranchSwitches {
-  bool period_doubling = false;  ///< the P(2p,2q) branch at each period doubling
-  bool grazing = false;          ///< the orbit with one impact more or fewer at a grazing
-};
-
-/// The branch through `start` ("main"), then the branches born at its
-/// special points as `switches` asks ("pd1", "graze2", ...).
-std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbit& start,
-                                        const ContinuationOptions& options, BranchSwitches switches,
-                                        BranchProgress& progress);
+/// The diagram's branches, labelled: the first seed's "main", other seeds'
+/// "seed<k>", and the born ones by the node they start from and their index
+/// ("pd1" at a period doubling, "graze2" at a grazing, "bp3" at a branch
+/// point).
+std::vector<TracedBranch> LabelBranches(const Diagram& diagram);
 
 /// The CSV columns of `branch` (docs/cli.md, `impactkit continue`).
 std::vector<std::string> BranchColumns(const Branch& branch);
@@ -69,6 +64,10 @@ nlohmann::json BranchJson(const TracedBranch& traced);
 /// Impact velocities against the parameter: stable solid, unstable dashed,
 /// special points marked.
 LineChart BranchChart(const std::vector<TracedBranch>& branches);
+
+/// "P(1,1) stable 0.856 to 1.613, unstable 1.613 to 2.5": the branch's
+/// stretches of one stability.
+std::string DescribeStability(const Branch& branch);
 
 /// The branch, its special points and its ends, on stdout.
 void PrintBranch(const TracedBranch& traced);

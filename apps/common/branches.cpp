@@ -1,4 +1,4 @@
-#include "continue/branches.hpp"
+#include "common/branches.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -42,49 +42,6 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
   return j;
 }
 
-std::vector<TracedBranch> SwitchBranches(const System& system, const TracedBranch& main,
-                                         const ContinuationOptions& options,
-                                         BranchSwitches switches, BranchProgress& progress) {
-  std::vector<TracedBranch> born;
-  const std::string& name = options.parameter;
-  for (const SpecialPoint& special : main.branch.special_points) {
-    const bool pd = special.type == SpecialPointType::kPeriodDoubling;
-    const bool graze =
-        special.type == SpecialPointType::kGrazing || special.type == SpecialPointType::kSticking;
-    if (pd && switches.period_doubling) {
-      const std::optional<BranchStart> start =
-          DoubledBranchStart(system, main.branch, special, options);
-      if (!start) continue;
-      ContinuationOptions doubled = options;
-      doubled.orbit.p *= 2;
-      doubled.orbit.q *= 2;
-      doubled.direction = ContinuationDirection::kIncreasing;
-      const std::string label = fmt::format("pd{}", born.size() + 1);
-      born.push_back(
-          {label, "from the " + special.Describe(name),
-           ContinueBranch(*start, doubled, [&](const BranchPoint& p) { progress(label, p); })});
-    }
-    if (graze && switches.grazing) {
-      for (const GrazingSeed& seed : SeedsAtGrazing(system, main.branch, special, options)) {
-        PeriodicOrbit orbit;
-        if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
-            Termination::kConverged) {
-          continue;
-        }
-        ContinuationOptions next = options;
-        next.orbit = seed.orbit;
-        next.direction = ContinuationDirection::kBoth;
-        const std::string label = fmt::format("graze{}", born.size() + 1);
-        born.push_back({label, "seeded at the " + special.Describe(name),
-                        ContinueBranch({seed.system, orbit, {}}, next,
-                                       [&](const BranchPoint& p) { progress(label, p); })});
-        break;  // the seeds on both sides lead to one branch, followed both ways
-      }
-    }
-  }
-  return born;
-}
-
 }  // namespace
 
 BranchProgress::BranchProgress(std::string parameter)
@@ -94,27 +51,47 @@ BranchProgress::~BranchProgress() {
   if (drawn_) fmt::print(stderr, "\r\033[K");
 }
 
-void BranchProgress::operator()(const std::string& label, const BranchPoint& point) {
+void BranchProgress::operator()(int branches, const BranchPoint& point) {
   ++points_;
   const auto now = std::chrono::steady_clock::now();
   if (!enabled_ || now - last_ < std::chrono::milliseconds(100)) return;
   last_ = now;
   drawn_ = true;
-  fmt::print(stderr, "\r\033[Kcontinue {}: {} points, {} = {:.8g}", label, points_, parameter_,
-             point.parameter);
+  fmt::print(stderr, "\r\033[Kcontinue: {} branches done, {} points, {} = {:.8g}", branches,
+             points_, parameter_, point.parameter);
 }
 
-std::vector<TracedBranch> TraceBranches(const System& system, const PeriodicOrbit& start,
-                                        const ContinuationOptions& options, BranchSwitches switches,
-                                        BranchProgress& progress) {
-  std::vector<TracedBranch> branches;
-  branches.push_back({"main", "from the start",
-                      ContinueBranch({system, start, {}}, options,
-                                     [&](const BranchPoint& p) { progress("main", p); })});
-  std::vector<TracedBranch> born =
-      SwitchBranches(system, branches.front(), options, switches, progress);
-  branches.insert(branches.end(), born.begin(), born.end());
-  return branches;
+std::vector<TracedBranch> LabelBranches(const Diagram& diagram) {
+  std::vector<TracedBranch> labelled;
+  for (std::size_t k = 0; k < diagram.branches.size(); ++k) {
+    const DiagramBranch& b = diagram.branches[k];
+    std::string label = k == 0 ? "main" : fmt::format("seed{}", k + 1);
+    if (b.parent >= 0) {
+      const SpecialPointType at = diagram.nodes[b.parent].special;
+      const char* kind = at == SpecialPointType::kPeriodDoubling ? "pd"
+                         : at == SpecialPointType::kBranchPoint  ? "bp"
+                                                                 : "graze";
+      label = fmt::format("{}{}", kind, k);
+    }
+    labelled.push_back({label, b.origin, b.branch});
+  }
+  return labelled;
+}
+
+std::string DescribeStability(const Branch& branch) {
+  std::vector<std::string> stretches;
+  std::size_t from = 0;
+  for (std::size_t i = 1; i <= branch.points.size(); ++i) {
+    if (i < branch.points.size() &&
+        branch.points[i].orbit.stable == branch.points[from].orbit.stable) {
+      continue;
+    }
+    stretches.push_back(fmt::format("{} {:.6g} to {:.6g}",
+                                    branch.points[from].orbit.stable ? "stable" : "unstable",
+                                    branch.points[from].parameter, branch.points[i - 1].parameter));
+    from = i;
+  }
+  return fmt::format("P({},{}) {}", branch.p, branch.q, fmt::join(stretches, ", "));
 }
 
 std::vector<std::string> BranchColumns(const Branch& branch) {

@@ -1,0 +1,327 @@
+// The branch network (diagram.hpp): starts taken breadth first, each traced
+// unless its orbit lies on a branch traced already, and the branches born
+// at each traced branch's special points queued as the next generation.
+
+#include "impactkit/continuation/diagram.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "continuation/diagram_builder.hpp"
+#include "impactkit/core/errors.hpp"
+#include "impactkit/model/parameters.hpp"
+
+namespace impactkit {
+namespace {
+
+/// A branch to trace: where it starts, which way, and where it came from.
+struct PendingStart {
+  BranchStart start;
+  ContinuationDirection direction = ContinuationDirection::kBoth;
+  OrbitOptions orbit;  ///< p and q of the start
+  std::string origin;
+  int depth = 0;
+  int parent = -1;
+};
+
+/// The orbit's impact speeds, sorted: what identifies it on a branch
+/// whichever impact its η starts from.
+std::vector<double> SortedSpeeds(const std::vector<OrbitImpact>& impacts, int p) {
+  std::vector<double> speeds;
+  for (int i = 0; i < p; ++i) speeds.push_back(impacts[i].velocity);
+  std::sort(speeds.begin(), speeds.end());
+  return speeds;
+}
+
+/// The start reduced to its primitive period (a P(2,2) that is P(1,1)
+/// twice is P(1,1)), as ContinueBranch will follow it.
+OrbitPeriod StartPeriod(const PendingStart& pending) {
+  const ImpactMap map(pending.start.system, pending.orbit.map);
+  return PrimitivePeriod(map, pending.start.orbit.eta, pending.orbit.p, pending.orbit.q);
+}
+
+/// Whether the orbit (primitive period `period`, speeds `speeds`, at μ) lies
+/// on `branch`: the same primitive period, and speeds within `tolerance` of
+/// the branch's, linearly interpolated between two consecutive points that
+/// bracket μ (through a fold, either sheet).
+bool OnBranch(const Branch& branch, OrbitPeriod period, double mu,
+              const std::vector<double>& speeds, double tolerance) {
+  if (branch.p != period.p || branch.q != period.q) return false;
+  const double scale = tolerance * (1.0 + speeds.back());
+  for (std::size_t k = 0; k < branch.points.size(); ++k) {
+    const BranchPoint& a = branch.points[k];
+    const BranchPoint& b = branch.points[std::min(k + 1, branch.points.size() - 1)];
+    const double lo = std::min(a.parameter, b.parameter), hi = std::max(a.parameter, b.parameter);
+    if (mu < lo - scale || mu > hi + scale) continue;
+    const double w =
+        hi > lo ? std::clamp((mu - a.parameter) / (b.parameter - a.parameter), 0.0, 1.0) : 0.0;
+    const std::vector<double> sa = SortedSpeeds(a.orbit.impacts, branch.p);
+    const std::vector<double> sb = SortedSpeeds(b.orbit.impacts, branch.p);
+    bool close = true;
+    for (int i = 0; i < branch.p && close; ++i) {
+      close = std::abs((1 - w) * sa[i] + w * sb[i] - speeds[i]) <= scale;
+    }
+    if (close) return true;
+  }
+  return false;
+}
+
+class NetworkTracer {
+ public:
+  NetworkTracer(System system, const DiagramOptions& options, const DiagramProgress& progress)
+      : system_(std::move(system)),
+        options_(options),
+        progress_(progress),
+        builder_(&diagram_, options) {
+    diagram_.parameter = options.continuation.parameter;
+  }
+
+  Diagram Run(const std::vector<DiagramSeed>& seeds) {
+    std::vector<PendingStart> generation;
+    for (std::size_t k = 0; k < seeds.size(); ++k) {
+      OrbitOptions orbit = options_.continuation.orbit;
+      orbit.p = seeds[k].orbit.p;
+      orbit.q = seeds[k].orbit.q;
+      generation.push_back(
+          {{seeds[k].system, seeds[k].orbit, {}},
+           seeds[k].direction,
+           orbit,
+           seeds[k].origin.empty() ? fmt::format("seed {}", k + 1) : seeds[k].origin,
+           0,
+           -1});
+    }
+    while (!generation.empty()) {
+      std::vector<PendingStart> next;
+      for (int index : TraceGeneration(Untraced(std::move(generation)))) {
+        const std::vector<PendingStart> born = Switch(index);
+        next.insert(next.end(), born.begin(), born.end());
+      }
+      generation = std::move(next);
+    }
+    return std::move(diagram_);
+  }
+
+ private:
+  /// Whether the start's orbit lies on a branch in diagram_.
+  bool Traced(const PendingStart& pending) const {
+    const OrbitPeriod period = StartPeriod(pending);
+    const double mu = GetParameter(pending.start.system, diagram_.parameter);
+    const std::vector<double> speeds = SortedSpeeds(pending.start.orbit.impacts, period.p);
+    return std::any_of(
+        diagram_.branches.begin(), diagram_.branches.end(), [&](const DiagramBranch& b) {
+          return OnBranch(b.branch, period, mu, speeds, options_.same_branch_tolerance);
+        });
+  }
+
+  /// The starts not on a traced branch.
+  std::vector<PendingStart> Untraced(std::vector<PendingStart> starts) {
+    std::vector<PendingStart> kept;
+    for (PendingStart& s : starts) {
+      if (Traced(s)) {
+        ++diagram_.duplicate_starts;
+      } else {
+        kept.push_back(std::move(s));
+      }
+    }
+    return kept;
+  }
+
+  /// Traces the starts (on up to options.threads threads) and adds, in
+  /// order, each branch whose start no earlier branch of the generation
+  /// holds. Returns the indices of the added branches.
+  std::vector<int> TraceGeneration(const std::vector<PendingStart>& starts) {
+    if (!starts.empty() && static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
+      Incomplete(fmt::format("max_branches ({}) reached", options_.max_branches));
+      return {};  // not traced at all: none of them could be kept
+    }
+    std::vector<Branch> traced(starts.size());
+    std::vector<std::exception_ptr> errors(starts.size());
+    std::size_t next_start = 0;
+    std::mutex mutex;
+    auto work = [&] {
+      for (;;) {
+        std::size_t k;
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          if (next_start == starts.size()) return;
+          k = next_start++;
+        }
+        ContinuationOptions options = options_.continuation;
+        options.orbit = starts[k].orbit;
+        options.direction = starts[k].direction;
+        // An exception may not leave a worker thread (it would terminate
+        // the program): kept, and rethrown or counted after the join.
+        try {
+          traced[k] = ContinueBranch(starts[k].start, options, [&](const BranchPoint& point) {
+            if (!progress_) return;
+            std::lock_guard<std::mutex> lock(mutex);
+            progress_(static_cast<int>(diagram_.branches.size()), point);
+          });
+        } catch (...) {
+          errors[k] = std::current_exception();
+        }
+      }
+    };
+    std::vector<std::thread> workers;
+    const int threads = std::min<int>(options_.threads, static_cast<int>(starts.size()));
+    for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+    work();
+    for (std::thread& t : workers) t.join();
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      if (!errors[k]) continue;
+      // A caller's seed that ContinueBranch refuses is the caller's error;
+      // a start found by switching that it refuses is a switch that failed.
+      if (starts[k].depth == 0) std::rethrow_exception(errors[k]);
+      try {
+        std::rethrow_exception(errors[k]);
+      } catch (const InvalidInput&) {
+        ++diagram_.failed_starts;
+      }
+    }
+
+    std::vector<int> added;
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      if (errors[k]) continue;
+      if (k > 0 && Traced(starts[k])) {  // an earlier start of this generation was on it
+        ++diagram_.duplicate_starts;
+        continue;
+      }
+      if (static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
+        Incomplete(fmt::format("max_branches ({}) reached", options_.max_branches));
+        break;
+      }
+      diagram_.branches.push_back(
+          {std::move(traced[k]), starts[k].origin, starts[k].depth, starts[k].parent});
+      added.push_back(static_cast<int>(diagram_.branches.size()) - 1);
+    }
+    return added;
+  }
+
+  void Incomplete(const std::string& why) {
+    if (diagram_.complete) diagram_.message = why;
+    diagram_.complete = false;
+  }
+
+  /// Adds branch `index` to the graph and returns the starts born at its
+  /// special points.
+  std::vector<PendingStart> Switch(int index) {
+    const std::vector<int> nodes = builder_.AddBranch(index);
+    const DiagramBranch& traced = diagram_.branches[index];
+    const Branch& branch = traced.branch;
+    std::vector<PendingStart> born;
+    if (traced.depth >= options_.max_depth) {
+      if (!branch.special_points.empty()) {
+        Incomplete(fmt::format("max_depth ({}) reached", options_.max_depth));
+      }
+      return born;
+    }
+    const System& system = system_;
+    for (std::size_t k = 0; k < branch.special_points.size(); ++k) {
+      const SpecialPoint& s = branch.special_points[k];
+      const std::string where = s.Describe(branch.parameter);
+      auto add = [&](BranchStart start, ContinuationDirection direction, int p, int q,
+                     const std::string& how) {
+        // A special point located just past a bound (grazings are
+        // approached from the branch side) may seed outside the range.
+        const double mu = GetParameter(start.system, diagram_.parameter);
+        if (mu < options_.continuation.lower || mu > options_.continuation.upper) return;
+        OrbitOptions orbit = options_.continuation.orbit;
+        orbit.p = p;
+        orbit.q = q;
+        born.push_back(
+            {std::move(start), direction, orbit, how + where, traced.depth + 1, nodes[k]});
+      };
+      if (s.type == SpecialPointType::kPeriodDoubling && options_.switch_period_doubling) {
+        ContinuationOptions options = options_.continuation;
+        options.orbit.p = branch.p;
+        options.orbit.q = branch.q;
+        if (std::optional<BranchStart> start = DoubledBranchStart(system, branch, s, options)) {
+          add(std::move(*start), ContinuationDirection::kIncreasing, 2 * branch.p, 2 * branch.q,
+              "doubled at the ");
+        } else {
+          ++diagram_.failed_starts;
+        }
+      }
+      const bool graze =
+          s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking;
+      if (graze && options_.switch_grazing) {
+        ContinuationOptions options = options_.continuation;
+        options.orbit.p = branch.p;
+        options.orbit.q = branch.q;
+        // Both sides: which side the orbit with an impact more or fewer
+        // lives on depends on the grazing; a side holding none fails to
+        // converge or converges onto a traced branch.
+        for (const GrazingSeed& seed : SeedsAtGrazing(system, branch, s, options)) {
+          PeriodicOrbit orbit;
+          if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
+              Termination::kConverged) {
+            ++diagram_.failed_starts;
+            continue;
+          }
+          add({seed.system, orbit, {}}, ContinuationDirection::kBoth, seed.orbit.p, seed.orbit.q,
+              "seeded at the ");
+        }
+      }
+      if (s.type == SpecialPointType::kBranchPoint && options_.switch_branch_points) {
+        // The orbit here repeats itself: ContinueBranch follows it as the
+        // shorter orbit, whose branch this one meets.
+        System at = system;
+        SetParameter(at, branch.parameter, s.point.parameter);
+        add({at, s.point.orbit, {}}, ContinuationDirection::kBoth, branch.p, branch.q,
+            "the shorter orbit at the ");
+      }
+    }
+    return born;
+  }
+
+  /// The seeds' system: every branch's at some parameter value (switching
+  /// sets the value it needs).
+  const System system_;
+  const DiagramOptions& options_;
+  const DiagramProgress& progress_;
+  Diagram diagram_;
+  detail::DiagramBuilder builder_;
+};
+
+}  // namespace
+
+bool DiagramOptions::IsValid(std::string* error) const {
+  auto fail = [&](std::string message) {
+    if (error) *error = std::move(message);
+    return false;
+  };
+  if (max_depth < 0) return fail(fmt::format("max_depth must be >= 0, got {}", max_depth));
+  if (max_branches < 1) return fail(fmt::format("max_branches must be >= 1, got {}", max_branches));
+  if (threads < 1) return fail(fmt::format("threads must be >= 1, got {}", threads));
+  for (double tolerance : {node_tolerance, node_range_tolerance, same_branch_tolerance}) {
+    if (!(tolerance > 0 && tolerance < 1)) {
+      return fail(fmt::format("the diagram's tolerances must be in (0, 1), got {}", tolerance));
+    }
+  }
+  return continuation.IsValid(error);
+}
+
+Diagram TraceDiagram(const std::vector<DiagramSeed>& seeds, const DiagramOptions& options,
+                     const DiagramProgress& progress) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  std::string error;
+  Require(options.IsValid(&error), error);
+  Require(!seeds.empty(), "TraceDiagram needs at least one seed");
+  for (const DiagramSeed& seed : seeds) {
+    Require(seed.system.Dof() == seeds.front().system.Dof(),
+            "the seeds of one diagram must be orbits of one system");
+  }
+  Diagram diagram = NetworkTracer(seeds.front().system, options, progress).Run(seeds);
+  diagram.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return diagram;
+}
+
+}  // namespace impactkit

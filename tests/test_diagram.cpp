@@ -1,0 +1,354 @@
+// The branch network (continuation/diagram.hpp) and the swept diagram
+// (analysis/swept_diagram.hpp): every node recomputed from its located
+// point (fresh FindOrbit multipliers, CVODE clearances), the graph's shape
+// (both ends of each edge are nodes, no branch traced twice, a repeated
+// orbit followed as its primitive), the N = 1 oscillator's P(1,1) nodes
+// against its closed form, and sweep windows seeding the isolated P(3,2)
+// branch of the paper's system.
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <complex>
+#include <set>
+
+#include "closed_form_sdof.hpp"
+#include "cvode_impacts.hpp"
+#include "impactkit/analysis/swept_diagram.hpp"
+#include "impactkit/continuation/diagram.hpp"
+#include "impactkit/model/parameters.hpp"
+#include "seeded_orbit.hpp"
+
+using namespace impactkit;
+
+namespace {
+
+System At(System system, const std::string& name, double value) {
+  SetParameter(system, name, value);
+  return system;
+}
+
+DiagramOptions Options(double lower, double upper, int max_depth) {
+  DiagramOptions options;
+  options.continuation.lower = lower;
+  options.continuation.upper = upper;
+  options.max_depth = max_depth;
+  return options;
+}
+
+/// The multiplier nearest `target` of a fresh FindOrbit from the node's
+/// located point.
+std::complex<double> RecomputedMultiplier(const System& base, const Diagram& diagram,
+                                          const DiagramNode& node, std::complex<double> target) {
+  OrbitOptions options;
+  options.p = node.p;
+  options.q = node.q;
+  PeriodicOrbit orbit;
+  const System system = At(base, diagram.parameter, node.point.parameter);
+  REQUIRE(FindOrbit(system, node.point.orbit.eta, options, &orbit).termination ==
+          Termination::kConverged);
+  std::complex<double> best = orbit.multipliers(0);
+  for (const std::complex<double>& m : orbit.multipliers) {
+    if (std::abs(m - target) < std::abs(best - target)) best = m;
+  }
+  return best;
+}
+
+/// xs - max x_c over all free flights of the orbit through `eta` (p
+/// impacts), each flight integrated by CVODE (no impact code): sampled, then
+/// golden-section refined around the highest sample.
+double CvodeClearance(const System& system, const Eigen::VectorXd& eta, int p) {
+  const ImpactMap map(system);
+  const MapResult image = map.Apply(eta, p, false);
+  REQUIRE(image.status == MapStatus::kOk);
+  const int c = system.contact_dof, tau = map.TimeIndex();
+  double clearance = 1e300;
+  for (int k = 0; k < p; ++k) {
+    const Eigen::VectorXd& from = k == 0 ? eta : image.path[k - 1];
+    const double t0 = from(tau), duration = image.path[k](tau) - t0;
+    const HybridState before = map.ToState(from);
+    auto height = [&](double t) {
+      if (t - t0 < 1e-9) return before.x(c);  // CVODE needs an interval
+      Eigen::VectorXd x = before.x, v = before.v;
+      v(c) *= -system.restitution;
+      reference::CvodeLinearFlow(system.mass, system.damping, system.stiffness, system.forcing,
+                                 Eigen::VectorXd::Zero(system.Dof()), system.omega, t0, x, v, t);
+      return x(c);
+    };
+    const int samples = 200;
+    int best = 1;
+    for (int i = 2; i < samples; ++i) {
+      if (height(t0 + duration * i / samples) > height(t0 + duration * best / samples)) best = i;
+    }
+    double a = t0 + duration * (best - 1) / samples, b = t0 + duration * (best + 1) / samples;
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    for (int n = 0; n < 60; ++n) {
+      const double m1 = b - g * (b - a), m2 = a + g * (b - a);
+      (height(m1) > height(m2) ? b : a) = height(m1) > height(m2) ? m2 : m1;
+    }
+    const double top = 0.5 * (a + b);
+    // An interior maximum, not the impact the flight starts from (where x_c
+    // = xs trivially).
+    if (top - t0 > 1e-6 && t0 + duration - top > 1e-6) {
+      clearance = std::min(clearance, system.stop - height(top));
+    }
+  }
+  return clearance;
+}
+
+/// Each fold, period doubling and Neimark–Sacker node has its critical
+/// multiplier at ±1 or on the unit circle to 1e-6 in a fresh solve; each
+/// new-contact grazing has a CVODE clearance below 1e-9.
+void CheckNodesRecomputed(const System& system, const Diagram& diagram) {
+  int checked = 0;
+  for (const DiagramNode& node : diagram.nodes) {
+    if (node.kind != DiagramNodeKind::kSpecialPoint) continue;
+    INFO(node.Name() << " at " << node.parameter << " on P(" << node.p << "," << node.q << ")");
+    switch (node.special) {
+      case SpecialPointType::kFold:
+        CHECK(std::abs(RecomputedMultiplier(system, diagram, node, 1.0) - 1.0) < 1e-6);
+        break;
+      case SpecialPointType::kPeriodDoubling:
+        CHECK(std::abs(RecomputedMultiplier(system, diagram, node, -1.0) + 1.0) < 1e-6);
+        break;
+      case SpecialPointType::kNeimarkSacker:
+        CHECK(std::abs(std::abs(RecomputedMultiplier(system, diagram, node, node.multiplier)) -
+                       1.0) < 1e-6);
+        break;
+      case SpecialPointType::kGrazing:
+        if (node.vanishing_impact >= 0) continue;  // checked against closed forms below
+        CHECK(std::abs(CvodeClearance(At(system, diagram.parameter, node.point.parameter),
+                                      node.point.orbit.eta, node.p)) < 1e-9);
+        break;
+      default:
+        continue;
+    }
+    ++checked;
+  }
+  CHECK(checked > 0);
+}
+
+/// Both ends of every edge are nodes, each edge's points lie between its
+/// nodes along its branch, and no two edges of different branches cover
+/// the same orbits: the midpoint of one is not on the other's curve.
+void CheckGraph(const Diagram& diagram) {
+  const int nodes = static_cast<int>(diagram.nodes.size());
+  for (const DiagramEdge& e : diagram.edges) {
+    REQUIRE(e.from >= 0);
+    REQUIRE(e.from < nodes);
+    REQUIRE(e.to >= 0);
+    REQUIRE(e.to < nodes);
+    REQUIRE(e.branch < static_cast<int>(diagram.branches.size()));
+    CHECK(e.first <= e.last);
+    CHECK(e.last < diagram.branches[e.branch].branch.points.size());
+  }
+  for (const DiagramEdge& a : diagram.edges) {
+    const Branch& ba = diagram.branches[a.branch].branch;
+    if (a.last - a.first < 2) continue;
+    const BranchPoint& mid = ba.points[(a.first + a.last) / 2];
+    for (const DiagramEdge& b : diagram.edges) {
+      const Branch& bb = diagram.branches[b.branch].branch;
+      if (b.branch == a.branch || bb.p != ba.p || bb.q != ba.q) continue;
+      // The nearest point of b in (parameter, sorted impact speeds).
+      double nearest = 1e300;
+      for (std::size_t i = b.first; i <= b.last; ++i) {
+        std::vector<double> sa, sb;
+        for (const OrbitImpact& x : mid.orbit.impacts) sa.push_back(x.velocity);
+        for (const OrbitImpact& x : bb.points[i].orbit.impacts) sb.push_back(x.velocity);
+        std::sort(sa.begin(), sa.end());
+        std::sort(sb.begin(), sb.end());
+        double d = std::abs(mid.parameter - bb.points[i].parameter);
+        for (std::size_t k = 0; k < sa.size(); ++k) d = std::max(d, std::abs(sa[k] - sb[k]));
+        nearest = std::min(nearest, d);
+      }
+      INFO("branches " << a.branch << " and " << b.branch << ", P(" << ba.p << "," << ba.q
+                       << ") at " << mid.parameter);
+      CHECK(nearest > 1e-6);
+    }
+  }
+}
+
+/// The P(1,1) branch's special points of the N = 1 oscillator, in closed
+/// form: where u > 0 roots' flip multiplier is -1 (bisection on the
+/// closed-form Jacobian) and where the steady amplitude equals xs.
+double ClosedFormPeriodDoubling(testing::SdofParameters p, const DiagramNode& node) {
+  // The root nearest the node's impact speed, bracketed around its Ω.
+  double lo = node.parameter - 1e-3, hi = node.parameter + 1e-3;
+  auto g = [&](double w) {
+    p.omega = w;
+    const auto roots = testing::SdofP11Solutions(p);
+    REQUIRE(!roots.empty());
+    const testing::SdofP11& o =
+        *std::min_element(roots.begin(), roots.end(), [&](auto& a, auto& b) {
+          return std::abs(a.u - node.point.orbit.eta(1)) < std::abs(b.u - node.point.orbit.eta(1));
+        });
+    return (testing::SdofP11Jacobian(p, o) + Eigen::Matrix2d::Identity()).determinant();
+  };
+  REQUIRE((g(lo) > 0) != (g(hi) > 0));
+  for (int k = 0; k < 60; ++k)
+    ((g(0.5 * (lo + hi)) > 0) == (g(lo) > 0) ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
+}  // namespace
+
+TEST_CASE("diagram: the N = 1 oscillator's network from one P(1,1) seed matches the closed form",
+          "[diagram]") {
+  // m = k = 1, c = 0.1, A = 0.5, xs = 0.1, r = 0.8: the P(1,1) branch from
+  // Ω = 0.6 to 3 has a new contact, three period doublings and an impact
+  // vanishing where the non-impacting amplitude reaches xs.
+  const testing::SdofParameters p{1.0, 1.0, 0.1, 0.5, 0.1, 0.8, 1.3};
+  const System system =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.3, p.xs, p.r);
+  const DiagramOptions options = Options(0.6, 3.0, 1);
+  const Diagram diagram =
+      TraceDiagram({{system, testing::SeededOrbit(system, 1, 1), "P(1,1) at 1.3"}}, options);
+  CheckGraph(diagram);
+  CheckNodesRecomputed(system, diagram);
+
+  // The P(1,1) nodes, in parameter order, against the closed form.
+  std::vector<const DiagramNode*> p11;
+  for (const DiagramNode& n : diagram.nodes) {
+    if (n.kind == DiagramNodeKind::kSpecialPoint && n.p == 1 && n.q == 1) p11.push_back(&n);
+  }
+  std::sort(p11.begin(), p11.end(), [](auto* a, auto* b) { return a->parameter < b->parameter; });
+  REQUIRE(p11.size() == 5);
+  CHECK(p11[0]->special == SpecialPointType::kGrazing);
+  CHECK(p11[0]->vanishing_impact == -1);
+  for (int k = 1; k <= 3; ++k) {
+    REQUIRE(p11[k]->special == SpecialPointType::kPeriodDoubling);
+    CHECK_THAT(p11[k]->parameter,
+               Catch::Matchers::WithinAbs(ClosedFormPeriodDoubling(p, *p11[k]), 1e-8));
+  }
+  // Between them, as the closed form's multipliers say (the flip
+  // multiplier below -1 on 1.065..1.130 and 2.265..): 1.0648, 1.1300, 2.2653.
+  CHECK_THAT(p11[1]->parameter, Catch::Matchers::WithinAbs(1.0648, 1e-4));
+  CHECK_THAT(p11[2]->parameter, Catch::Matchers::WithinAbs(1.1300, 1e-4));
+  CHECK_THAT(p11[3]->parameter, Catch::Matchers::WithinAbs(2.2653, 1e-4));
+  // The amplitude A / sqrt((k - mΩ²)² + (cΩ)²) = xs: Ω² solves
+  // Ω⁴ + (c² - 2) Ω² + 1 - (A/xs)² = 0.
+  const double b = p.c * p.c - 2.0, c = 1.0 - (p.a / p.xs) * (p.a / p.xs);
+  const double vanishing = std::sqrt(0.5 * (-b + std::sqrt(b * b - 4.0 * c)));
+  CHECK(p11[4]->special == SpecialPointType::kGrazing);
+  CHECK(p11[4]->vanishing_impact == 0);
+  CHECK_THAT(p11[4]->parameter, Catch::Matchers::WithinAbs(vanishing, 1e-9));
+
+  // Complete from the one seed: a doubled branch leaves every period
+  // doubling.
+  for (int k = 1; k <= 3; ++k) {
+    const int node = static_cast<int>(p11[k] - diagram.nodes.data());
+    const bool doubled = std::any_of(diagram.edges.begin(), diagram.edges.end(), [&](auto& e) {
+      const Branch& b = diagram.branches[e.branch].branch;
+      return (e.from == node || e.to == node) && b.p == 2 && b.q == 2;
+    });
+    INFO("period doubling at " << p11[k]->parameter);
+    CHECK(doubled);
+  }
+  CHECK(diagram.branches.front().branch.p == 1);
+  CHECK_FALSE(diagram.complete);  // max_depth 1 stops below the doubled branches' own switches
+
+  // The same network on two threads: the same nodes, bit for bit.
+  DiagramOptions two = options;
+  two.threads = 2;
+  const Diagram again =
+      TraceDiagram({{system, testing::SeededOrbit(system, 1, 1), "P(1,1) at 1.3"}}, two);
+  REQUIRE(again.nodes.size() == diagram.nodes.size());
+  REQUIRE(again.edges.size() == diagram.edges.size());
+  for (std::size_t k = 0; k < diagram.nodes.size(); ++k) {
+    CHECK(again.nodes[k].parameter == diagram.nodes[k].parameter);
+  }
+}
+
+TEST_CASE(
+    "diagram: a repeated orbit is followed as its primitive, and a branch reached twice "
+    "is traced once",
+    "[diagram]") {
+  const System system = PaperSystem(1.1);
+  const PeriodicOrbit p11 = testing::SeededOrbit(system, 1, 1);
+  // The same orbit described as P(2,2), and P(1,1) again at another Ω.
+  const PeriodicOrbit twice = DescribeOrbit(ImpactMap(system), p11.eta, 2, 2);
+  const System later = PaperSystem(1.3);
+  const Diagram diagram = TraceDiagram(
+      {{system, twice, "P(1,1) twice"}, {later, testing::SeededOrbit(later, 1, 1), "again"}},
+      Options(1.0, 1.4, 0));
+  REQUIRE(diagram.branches.size() == 1);
+  CHECK(diagram.branches[0].branch.p == 1);
+  CHECK(diagram.branches[0].branch.q == 1);
+  CHECK(diagram.duplicate_starts == 1);
+  // Both ends at the bounds: two nodes, one edge.
+  CHECK(diagram.nodes.size() == 2);
+  REQUIRE(diagram.edges.size() == 1);
+  CHECK(diagram.nodes[diagram.edges[0].from].Name() == "parameter_bound");
+  CHECK(diagram.nodes[diagram.edges[0].to].Name() == "parameter_bound");
+}
+
+TEST_CASE(
+    "diagram: the paper's network near the P(2,1) period doubling joins the doubled "
+    "branch's pitchfork and the sweep's isolated P(3,2) window",
+    "[diagram]") {
+  const System system = PaperSystem(0.8);
+  SweptDiagramOptions options;
+  options.diagram = Options(0.8, 0.9, 3);
+  options.sweep.steps = 41;
+  options.sweep.transient_periods = 300;
+  options.sweep.recorded_periods = 20;
+  options.sweep.classify.period.max_q = 8;
+  const SweptDiagram swept = TraceSweptDiagram(system, {}, options);
+  const Diagram& diagram = swept.diagram;
+  CheckGraph(diagram);
+  CheckNodesRecomputed(system, diagram);
+  // The P(2,1) period doubling near 0.8372 is one node where the P(4,2)
+  // branch starts and, as a branch point, ends: not a fold.
+  const auto pd = std::find_if(diagram.nodes.begin(), diagram.nodes.end(), [](auto& n) {
+    return n.special == SpecialPointType::kPeriodDoubling && n.p == 2 && n.q == 1;
+  });
+  REQUIRE(pd != diagram.nodes.end());
+  CHECK_THAT(pd->parameter, Catch::Matchers::WithinAbs(0.8372, 1e-4));
+  const int pd_node = static_cast<int>(pd - diagram.nodes.begin());
+  std::set<std::pair<int, int>> at_pd;
+  for (const DiagramEdge& e : diagram.edges) {
+    if (e.from != pd_node && e.to != pd_node) continue;
+    const Branch& b = diagram.branches[e.branch].branch;
+    at_pd.insert({b.p, b.q});
+  }
+  CHECK(at_pd.count({2, 1}) == 1);
+  CHECK(at_pd.count({4, 2}) == 1);
+  // The isolated P(3,2) between 0.832 and 0.859, found from the sweep alone.
+  const auto p32 = std::find_if(diagram.branches.begin(), diagram.branches.end(),
+                                [](auto& b) { return b.branch.p == 3 && b.branch.q == 2; });
+  REQUIRE(p32 != diagram.branches.end());
+  CHECK(p32->origin.find("sweep window") == 0);
+  double lo = 1e300, hi = -1e300;
+  for (const BranchPoint& point : p32->branch.points) {
+    lo = std::min(lo, point.parameter);
+    hi = std::max(hi, point.parameter);
+  }
+  CHECK_THAT(lo, Catch::Matchers::WithinAbs(0.832, 1e-3));
+  CHECK_THAT(hi, Catch::Matchers::WithinAbs(0.859, 1e-3));
+}
+
+TEST_CASE("diagram: a grazing located just past a bound seeds nothing outside the range",
+          "[diagram]") {
+  // P(1,1)'s new contact at 0.8564 is approached from the branch side and
+  // located below the bound 0.9: the P(2,1) seeded beside it lies outside
+  // [0.9, 1.3] and is skipped (ContinueBranch would refuse it).
+  const System system = PaperSystem(1.0);
+  Diagram diagram;
+  REQUIRE_NOTHROW(diagram = TraceDiagram({{system, testing::SeededOrbit(system, 1, 1), "P(1,1)"}},
+                                         Options(0.9, 1.3, 2)));
+  REQUIRE(diagram.branches.size() == 1);
+  CHECK(diagram.nodes.size() == 2);  // the grazing and the upper bound
+  CheckGraph(diagram);
+}
+
+TEST_CASE("diagram: default options are valid and bad ones are refused", "[diagram]") {
+  std::string error;
+  DiagramOptions options = Options(0.5, 1.0, 2);
+  CHECK(options.IsValid(&error));
+  CHECK(SweepSeedOptions{}.IsValid(&error));
+  CHECK(SweptDiagramOptions{}.IsValid(&error) == false);  // no range yet: lower == upper
+  options.threads = 0;
+  CHECK_FALSE(options.IsValid(&error));
+  CHECK(error.find("threads") != std::string::npos);
+  CHECK_THROWS_AS(TraceDiagram({}, Options(0.5, 1.0, 2)), InvalidInput);
+}
