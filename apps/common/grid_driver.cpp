@@ -200,7 +200,11 @@ GridProcesses::GridProcesses() {
 
 GridProcesses::~GridProcesses() {
 #if IMPACTKIT_HAVE_MPI
-  if (started_mpi_) mpi::Finish();
+  // Unwinding from an error of this rank alone (an output it could not
+  // open), the others may wait for it in a collective call: finalising
+  // could wait with them. Without it, the process ends with its error,
+  // and mpirun ends the others.
+  if (started_mpi_ && std::uncaught_exceptions() == 0) mpi::Finish();
 #endif
 }
 

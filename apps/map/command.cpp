@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -105,31 +106,69 @@ std::string SummaryJson(const std::string& provenance, const ParameterMapTask& t
 
 using ClassKey = std::tuple<MotionKind, int, int>;
 
-/// A class of the colour map: the motion's label, in legend order by kind,
-/// then q, then p, so the same classes always get the same colours. Only
-/// impacting motions are told apart by period.
+/// Periods drawn in their own colour; the rarer ones share one entry, so
+/// that the legend stays one or two readable columns however many periods
+/// a map holds (the CSV and JSON keep every class).
+constexpr std::size_t kLegendPeriods = 28;
+
+/// A motion as the colour map tells it apart: impacting motions by period,
+/// the others by kind alone.
 ClassKey ClassOf(const GridCell& cell) {
   const bool by_period = cell.kind == MotionKind::kPeriodic || cell.kind == MotionKind::kSticking;
   return by_period ? ClassKey{cell.kind, cell.q, cell.p} : ClassKey{cell.kind, 0, 0};
 }
 
+/// The legend: the kLegendPeriods most frequent periods by kind, q, p (so
+/// the same map always gets the same colours), then "other periods",
+/// non-impacting (near white), chaotic (black), unresolved (grey).
 ClassMap ChartOf(const ParameterMapTask& task, const std::vector<GridCell>& cells) {
   const ParameterMapOptions& o = task.Options();
-  std::map<ClassKey, int> order;
-  for (const GridCell& cell : cells) order[ClassOf(cell)] = 0;
+  std::map<ClassKey, std::int64_t> counts;
+  for (const GridCell& cell : cells) ++counts[ClassOf(cell)];
+  std::vector<std::pair<std::int64_t, ClassKey>> periods;
+  for (const auto& [key, count] : counts) {
+    if (std::get<0>(key) == MotionKind::kPeriodic || std::get<0>(key) == MotionKind::kSticking) {
+      periods.emplace_back(-count, key);  // most frequent first, then by key
+    }
+  }
+  std::sort(periods.begin(), periods.end());
+  const std::size_t shown = std::min(periods.size(), kLegendPeriods);
+  std::vector<ClassKey> legend;
+  for (std::size_t i = 0; i < shown; ++i) legend.push_back(periods[i].second);
+  std::sort(legend.begin(), legend.end());
+
   ClassMap chart;
-  for (auto& [key, index] : order) {
-    index = static_cast<int>(chart.names.size());
+  std::map<ClassKey, int> class_of;
+  for (const ClassKey& key : legend) {
+    class_of[key] = static_cast<int>(chart.names.size());
     GridCell example;
     std::tie(example.kind, example.q, example.p) = key;
     chart.names.push_back(MotionLabel(example));
   }
   chart.colors = ClassColors(static_cast<int>(chart.names.size()));
+  const int other = static_cast<int>(chart.names.size());
+  if (periods.size() > shown) {
+    std::int64_t rare = 0;
+    for (std::size_t i = shown; i < periods.size(); ++i) rare -= periods[i].first;
+    chart.names.push_back(fmt::format("{} other periods ({} cells)", periods.size() - shown, rare));
+    chart.colors.emplace_back("#b0b0b0");
+  }
+  for (const auto& [kind, color] :
+       {std::pair{MotionKind::kNonImpacting, "#f2f2f2"}, std::pair{MotionKind::kChaotic, "#000000"},
+        std::pair{MotionKind::kUnresolved, "#707070"}}) {
+    if (!counts.contains({kind, 0, 0})) continue;
+    class_of[{kind, 0, 0}] = static_cast<int>(chart.names.size());
+    GridCell example;
+    example.kind = kind;
+    chart.names.push_back(MotionLabel(example));
+    chart.colors.emplace_back(color);
+  }
   const std::size_t k = task.Values1().size();
   for (const GridCell& cell : cells) {
     chart.x.push_back(task.Values1()[cell.index % k]);
     chart.y.push_back(task.Values2()[cell.index / k]);
-    chart.cell_class.push_back(order.at(ClassOf(cell)));
+    const auto found = class_of.find(ClassOf(cell));
+    chart.cell_class.push_back(found == class_of.end() ? other : found->second);
   }
   chart.title = fmt::format("Motion over ({}, {})", o.row.parameter, o.parameter2);
   chart.x_label = o.row.parameter;
