@@ -50,7 +50,7 @@ std::vector<std::string> ClassColors(int count) {
   static constexpr std::array<const char*, 18> kFixed = {
       "#332288", "#88ccee", "#44aa99", "#117733", "#999933", "#ddcc77",
       "#cc6677", "#882255", "#aa4499", "#77aadd", "#ee8866", "#eedd88",
-      "#ffaabb", "#99ddff", "#44bb99", "#bbcc33", "#aaaa00", "#d95f02"};
+      "#ffaabb", "#99ddff", "#e7298a", "#bbcc33", "#aaaa00", "#d95f02"};
   std::vector<std::string> colors;
   for (int i = 0; i < count; ++i) {
     if (i < static_cast<int>(kFixed.size())) {
