@@ -48,7 +48,6 @@ int main(int argc, char** argv) {
   options.row.from = 0.1;
   options.row.to = 2.5;
   options.row.steps = argc > 1 ? std::atoi(argv[1]) : 49;
-  options.parameter2 = "r";
   options.from2 = 0.3;
   options.to2 = 0.95;
   options.steps2 = argc > 2 ? std::atoi(argv[2]) : 14;

@@ -14,6 +14,11 @@
 #         of an uninterrupted run, computing only the cells not on record
 #         (their count is the report's); a checkpoint of another grid is
 #         refused with exit 2 and one line
+#     check_map.sh IMPACTKIT plot
+#         --plot with --curves (one curve in (omega, r), drawn; one in
+#         (omega, xs), skipped) writes a PNG; a curves file without
+#         "curves" is refused with exit 2 and one line naming it (skipped,
+#         77, without gnuplot)
 #     check_map.sh IMPACTKIT basins
 #         at omega = 2 (the paper's P(1,2)) the basins of a grid of starts
 #         hold one attractor, P(1,2), whose orbit is the fixed point that
@@ -93,6 +98,28 @@ case $mode in
     [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] ||
       fail "another run's checkpoint: status $status, stderr $(cat "$work/stderr")"
     grep -q "belongs to another run" "$work/stderr" || fail "message: $(cat "$work/stderr")"
+    echo ok
+    ;;
+  plot)
+    command -v gnuplot >/dev/null || { echo "gnuplot not installed: skipped"; exit 77; }
+    cat >"$work/curves.json" <<'JSON'
+{"curves": [
+  {"type": "period_doubling", "p": 1, "q": 1, "params": ["omega", "r"],
+   "points": [{"omega": 1.61, "r": 0.5}, {"omega": 1.62, "r": 0.9}]},
+  {"type": "fold", "p": 1, "q": 2, "params": ["omega", "xs"],
+   "points": [{"omega": 1.8, "xs": 0.1}, {"omega": 1.9, "xs": 0.2}]}]}
+JSON
+    "$impactkit" "${grid[@]}" --plot "$work/map.png" --curves "$work/curves.json" >/dev/null ||
+      fail "map --plot --curves failed"
+    [[ $(head -c 8 "$work/map.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] ||
+      fail "map.png is not a PNG"
+    echo '{"lines": []}' >"$work/bad.json"
+    status=0
+    "$impactkit" "${grid[@]}" --plot "$work/bad.png" --curves "$work/bad.json" \
+      >"$work/stdout" 2>"$work/stderr" || status=$?
+    [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 && ! -e $work/bad.png ]] ||
+      fail "bad curves: status $status, stderr $(cat "$work/stderr")"
+    grep -q "curves file .*bad.json" "$work/stderr" || fail "message: $(cat "$work/stderr")"
     echo ok
     ;;
   basins)
