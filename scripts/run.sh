@@ -4,7 +4,9 @@
 # continued branches with their special points, the Fig. 3 regimes) and
 # every examples/fig*.sh, each called alike — binary, figure folder, data
 # folder — so that the paper's Figs. 2-12 land in out/paper/figures/ and
-# their CSV/JSON in out/paper/data/. About 1-2 minutes after the build.
+# their CSV/JSON in out/paper/data/; then examples/parameter_maps.sh, the
+# (Ω, r) and (Ω, xs) maps and two basin pictures (docs/grids.md), a few
+# minutes more.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -21,6 +23,9 @@ for script in $(printf '%s\n' examples/fig*.sh | sort -V); do
   echo "== $script"
   bash "$script" "$impactkit" "$out/figures" "$out/data"
 done
+echo
+echo "== examples/parameter_maps.sh"
+bash examples/parameter_maps.sh "$impactkit" "$out/figures" "$out/data"
 echo
 echo "Results in $(pwd)/$out/ ($((SECONDS - start)) s after the build):"
 echo "  summary.json      the summary above: modes, peaks, orbits, branches, regimes"
