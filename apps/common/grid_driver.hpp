@@ -3,7 +3,7 @@
 /// How `map` and `basins` run a grid (impactkit/analysis/grid_task.hpp): its
 /// units shared among threads, and under `mpirun` among processes too, with
 /// dynamic load balancing (a unit is handed out when a worker asks, so
-/// expensive sticking rows do not hold up cheap ones); finished units
+/// expensive sticking units do not hold up cheap ones); finished units
 /// recorded in a checkpoint directory when asked; a progress line with the
 /// time left. Rank 0 collects every cell and alone writes; the cells do not
 /// depend on the number of threads or ranks, so neither do the files.

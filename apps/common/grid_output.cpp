@@ -89,8 +89,8 @@ void AddGridRunOptions(CLI::App& command, std::optional<int>& threads, std::stri
       ->group(group);
   command
       .add_option("--checkpoint", checkpoint,
-                  "Directory recording finished rows as they complete; rerun the same command "
-                  "to resume (a directory of another run is refused)")
+                  "Directory recording finished work units as they complete; rerun the same "
+                  "command to resume (a directory of another run is refused)")
       ->type_name("DIR")
       ->check(OutputPath("folder"))
       ->group(group);

@@ -240,7 +240,8 @@ void AddMapCommand(CLI::App& app) {
       "Two-parameter brute-force map: a grid of --param by --param2 values, each row the sweep "
       "of --param at one --param2 value (as 'impactkit sweep'), every cell's motion classified "
       "(periodic P(p,q), sticking P(inf,q), chaotic, non_impacting, unresolved). Uses all cores; "
-      "under 'mpirun -np K impactkit map ...' spreads rows over the ranks. Results are identical "
+      "under 'mpirun -np K impactkit map ...' spreads chunks of rows over the ranks. Results are "
+      "identical "
       "for any --threads and any number of ranks.");
   AddSystemOptions(*command, request->system);
   const std::string group = "Map";

@@ -29,15 +29,16 @@ impactkit=$1
 mode=$2
 shift 2
 
-# A 13 x 5 (omega, r) grid with a row at r = 0.7, 200 + 40 periods a cell.
+# A 13 x 5 (omega, r) grid with a row at r = 0.7, 200 + 40 periods a cell,
+# rows in chunks of 5 values: 15 work units.
 grid=(map --from 0.6 --to 2.4 --steps 13 --param2 r --from2 0.5 --to2 0.9 --steps2 5
-      --transient 200 --record 40)
+      --transient 200 --record 40 --chunk 5)
 
 case $mode in
   row)
     "$impactkit" "${grid[@]}" --out "$work/map.csv" >/dev/null || fail "map failed"
     "$impactkit" sweep --set r=0.7 --from 0.6 --to 2.4 --steps 13 --transient 200 --record 40 \
-      --summary "$work/sweep.csv" >/dev/null || fail "sweep failed"
+      --chunk 5 --summary "$work/sweep.csv" >/dev/null || fail "sweep failed"
     # map: omega,r,kind,p,q,max_v,range_xN,lyapunov; sweep summary:
     # param,kind,p,q,range_xN,...,v_max (11),lyapunov (12).
     awk -F, 'NR > 2 && $2 == "0.7" { print $1","$3","$4","$5","$6","$7","$8 }' "$work/map.csv" \
@@ -71,9 +72,9 @@ case $mode in
     echo ok
     ;;
   resume)
-    # 40 rows of 30 cells: long enough (~2 s) to be killed midway.
+    # 40 rows of 30 cells in units of 10: long enough (~2 s) to be killed midway.
     long=(map --from 0.6 --to 2.4 --steps 30 --param2 r --from2 0.3 --to2 0.95 --steps2 40
-          --transient 300 --record 40 --threads 1)
+          --transient 300 --record 40 --chunk 10 --threads 1)
     "$impactkit" "${long[@]}" --out "$work/whole.csv" >/dev/null || fail "map failed"
     "$impactkit" "${long[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" >/dev/null &
     pid=$!
@@ -85,10 +86,10 @@ case $mode in
     wait $pid 2>/dev/null || true
     [[ ! -e $work/resumed.csv ]] || fail "a killed run wrote its CSV"
     finished=$(find "$work/cp" -name 'unit-*.txt' | wc -l)
-    ((finished >= 3 && finished < 40)) || fail "$finished rows on record, expected 3 to 39"
+    ((finished >= 3 && finished < 120)) || fail "$finished units on record, expected 3 to 119"
     "$impactkit" "${long[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" \
       >"$work/stdout" || fail "the resumed run failed"
-    expected="($((1200 - 30 * finished)) computed, $((30 * finished)) resumed from the checkpoint)"
+    expected="($((1200 - 10 * finished)) computed, $((10 * finished)) resumed from the checkpoint)"
     grep -qF "$expected" "$work/stdout" || fail "expected '$expected': $(cat "$work/stdout")"
     cmp "$work/whole.csv" "$work/resumed.csv" || fail "the resumed CSV differs"
     # The same directory for another grid is refused, and left as it was.

@@ -56,6 +56,7 @@ ParameterMapTask::ParameterMapTask(const System& system, ParameterMapOptions opt
   GetParameter(system_, options_.parameter2);
   values1_ = SweepValues(options_.row);
   values2_ = SweepValues(ColumnSweep(options_));
+  chunks_ = SweepChunks(options_.row);
   // Every cell's parameters, before any work (RunSweep checks a row only
   // when it starts, which may be hours in).
   for (double value2 : values2_) {
@@ -78,14 +79,18 @@ std::int64_t ParameterMapTask::Cells() const {
 }
 
 std::vector<GridCell> ParameterMapTask::RunUnit(int unit) const {
-  SweepOptions row = options_.row;
-  row.threads = 1;
-  const SweepResult sweep = RunSweep(RowSystem(system_, options_, values2_.at(unit)), row);
+  const int row = unit / chunks_, chunk = unit % chunks_;
+  const std::vector<SweepPoint> points =
+      RunSweepChunk(RowSystem(system_, options_, values2_.at(row)), options_.row, chunk);
+  // The chunk's first value: chunks before it are all full.
+  const std::int64_t first =
+      static_cast<std::int64_t>(row) * values1_.size() +
+      static_cast<std::int64_t>(chunk) *
+          (options_.row.chunk_values == 0 ? values1_.size() : options_.row.chunk_values);
   std::vector<GridCell> cells;
-  cells.reserve(sweep.points.size());
-  const std::int64_t first = static_cast<std::int64_t>(unit) * values1_.size();
-  for (std::size_t k = 0; k < sweep.points.size(); ++k) {
-    cells.push_back(CellOf(first + static_cast<std::int64_t>(k), sweep.points[k]));
+  cells.reserve(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    cells.push_back(CellOf(first + static_cast<std::int64_t>(k), points[k]));
   }
   return cells;
 }

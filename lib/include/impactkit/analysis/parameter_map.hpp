@@ -6,8 +6,9 @@
 /// sweep (sweep.hpp) of the row parameter with the column parameter fixed at
 /// that row's value: the row's cells are that sweep's points, with its
 /// start rule (previous value's final state or a fixed state) and its
-/// chunks. A row is one work unit (grid_task.hpp), run by RunSweep on one
-/// thread, so the map is identical for any number of threads or processes.
+/// chunks. A chunk of a row is one work unit (grid_task.hpp), run by
+/// RunSweepChunk, so the map is identical for any number of threads or
+/// processes, and a map of few rows still has many units to share out.
 
 #include <string>
 #include <vector>
@@ -35,7 +36,7 @@ class ParameterMapTask : public GridTask {
   /// before any work. Throws InvalidInput.
   ParameterMapTask(const System& system, ParameterMapOptions options);
 
-  int Units() const override { return static_cast<int>(values2_.size()); }
+  int Units() const override { return static_cast<int>(values2_.size()) * chunks_; }
   std::int64_t Cells() const override;
   std::vector<GridCell> RunUnit(int unit) const override;
   std::string Identity() const override;
@@ -51,6 +52,7 @@ class ParameterMapTask : public GridTask {
   ParameterMapOptions options_;
   std::vector<double> values1_;
   std::vector<double> values2_;
+  int chunks_ = 1;  ///< per row
 };
 
 }  // namespace impactkit
