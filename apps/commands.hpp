@@ -43,6 +43,10 @@ void AddImpactMapCommand(CLI::App& app);
 void AddReturnMapCommand(CLI::App& app);
 void AddLyapunovCommand(CLI::App& app);
 
+/// `impactkit map` and `basins`: two-parameter brute-force maps and basins
+/// of attraction, on all cores and under mpirun, resumable (map/, basins/).
+void AddMapCommand(CLI::App& app);
+void AddBasinsCommand(CLI::App& app);
 /// `impactkit resonance`: resonance curves without the stop (resonance/).
 void AddResonanceCommand(CLI::App& app);
 

@@ -91,6 +91,8 @@ int main(int argc, char** argv) {
   impactkit::cli::AddReturnMapCommand(app);
   impactkit::cli::AddLyapunovCommand(app);
   impactkit::cli::AddResonanceCommand(app);
+  impactkit::cli::AddMapCommand(app);
+  impactkit::cli::AddBasinsCommand(app);
 
   try {
     app.parse(argc, argv);

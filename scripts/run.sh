@@ -4,7 +4,9 @@
 # the Fig. 3 regimes, the connected diagram of every branch with its special points) and
 # every examples/fig*.sh, each called alike — binary, figure folder, data
 # folder — so that the paper's Figs. 2-12 land in out/paper/figures/ and
-# their CSV/JSON in out/paper/data/. About 1-2 minutes after the build.
+# their CSV/JSON in out/paper/data/; then examples/parameter_maps.sh, the
+# (Ω, r) and (Ω, xs) maps and two basin pictures (docs/grids.md), a few
+# minutes more.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -24,6 +26,8 @@ done
 echo
 echo "== examples/parameter_planes.sh"
 bash examples/parameter_planes.sh "$impactkit" "$out/figures" "$out/data"
+echo "== examples/parameter_maps.sh"
+bash examples/parameter_maps.sh "$impactkit" "$out/figures" "$out/data"
 echo
 echo "Results in $(pwd)/$out/ ($((SECONDS - start)) s after the build):"
 echo "  summary.json      the summary above: modes, peaks, orbits, branches, regimes"

@@ -10,6 +10,7 @@ packages=(
   catch2 libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev gnuplot-nox
   clang-format
+  openmpi-bin libopenmpi-dev
 )
 
 missing=()

@@ -231,10 +231,70 @@ std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& fil
       RangeSettings(chart), PlotCommand(chart, files));
 }
 
+/// The cells as "x y class" rows, for gnuplot's `with image`.
+std::string CellData(const ClassMap& map) {
+  std::string text;
+  for (std::size_t i = 0; i < map.cell_class.size(); ++i) {
+    text += fmt::format("{} {} {}\n", map.x[i], map.y[i], map.cell_class[i]);
+  }
+  return text;
+}
+
+/// A palette with one colour per class, and a legend entry per class (a
+/// filled box drawn at NaN, so it shows only in the key).
+std::string ClassMapScript(const ClassMap& map, const fs::path& cells,
+                           const std::vector<fs::path>& overlays) {
+  const int classes = static_cast<int>(map.names.size());
+  std::vector<std::string> palette, keys;
+  for (int c = 0; c < classes; ++c) {
+    palette.push_back(fmt::format("{} \"{}\"", c, map.colors[c]));
+    keys.push_back(fmt::format("NaN with boxes fillstyle solid 1.0 lc rgb \"{}\" title {}",
+                               map.colors[c], Quoted(map.names[c])));
+  }
+  std::string plot = fmt::format("plot {} using 1:2:3 with image notitle", Quoted(cells.string()));
+  for (const std::string& key : keys) plot += ", " + key;
+  for (std::size_t i = 0; i < map.overlays.size(); ++i) {
+    plot += fmt::format(", {} using 1:2 with lines lw 2 lc rgb \"{}\" title {}",
+                        Quoted(overlays[i].string()), map.overlays[i].color,
+                        Quoted(map.overlays[i].title));
+  }
+  // gnuplot's palette needs two colours: one class is drawn as if of two.
+  if (classes == 1) palette.push_back(fmt::format("1 \"{}\"", map.colors[0]));
+  const int colors = static_cast<int>(palette.size());
+  return fmt::format(
+      "set title {}\nset xlabel {}\nset ylabel {}\nunset grid\nunset colorbox\n"
+      "set key outside right top vertical maxrows 32 samplen 1.5 font \",9\"\n"
+      "set palette maxcolors {}\nset palette defined ({})\nset cbrange [-0.5:{}]\n"
+      "set autoscale fix\nset offsets 0, 0, 0, 0\n{}\n",
+      Quoted(map.title), Quoted(map.x_label), Quoted(map.y_label), colors, fmt::join(palette, ", "),
+      colors - 0.5, plot);
+}
+
 }  // namespace
 
 std::string ParameterLabel(std::string_view parameter) {
   return parameter == "omega" ? "Ω" : std::string(parameter);
+}
+
+std::string RenderClassMapPng(const ClassMap& map) {
+  RequireGnuplot();
+  if (map.names.empty()) throw PlotError("a class map needs at least one class");
+  const TemporaryDirectory directory;
+  const fs::path image = directory / "map.png", log = directory / "gnuplot.log";
+  const fs::path cells = directory / "cells.dat";
+  WriteFile(cells, CellData(map));
+  std::vector<fs::path> overlays;
+  for (std::size_t i = 0; i < map.overlays.size(); ++i) {
+    overlays.push_back(directory / fmt::format("overlay{}.dat", i + 1));
+    WriteFile(overlays.back(), CurveData(map.overlays[i]));
+  }
+  const fs::path script_path = directory / "map.gp";
+  WriteFile(script_path, Preamble(map.width, map.height, image, "outside right") +
+                             ClassMapScript(map, cells, overlays));
+  RunGnuplot(script_path, log);
+  std::string png = ReadFile(image);
+  if (png.empty()) throw PlotError("gnuplot produced no image");
+  return png;
 }
 
 void RequireGnuplot() {

@@ -71,6 +71,27 @@ void RequireGnuplot();
 /// The chart as PNG bytes. Throws PlotError.
 std::string RenderPng(const LineChart& chart);
 
+/// A grid of cells coloured by class (a parameter map, a basin picture),
+/// with a legend that names every class: outside on the right, in as many
+/// columns as it takes, so that 30 or more classes stay readable.
+struct ClassMap {
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  /// One (x, y) per cell on a regular grid, with its class in [0, names).
+  std::vector<double> x;
+  std::vector<double> y;
+  std::vector<int> cell_class;
+  std::vector<std::string> names;   ///< per class, in legend order
+  std::vector<std::string> colors;  ///< per class, "#rrggbb"
+  std::vector<Curve> overlays;      ///< drawn over the cells (curves of `impactkit curve`)
+  int width = 1200;                 ///< pixels
+  int height = 800;
+};
+
+/// The map as PNG bytes. Throws PlotError.
+std::string RenderClassMapPng(const ClassMap& map);
+
 /// Several charts stacked top to bottom in one PNG of width x height pixels
 /// (the charts' own sizes are ignored), as PNG bytes. Throws PlotError.
 std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height);

@@ -18,6 +18,7 @@
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -28,19 +29,9 @@ namespace {
 
 struct SweepRequest {
   SystemOptions system;
-  std::string param = "omega";
-  double from = 0.0;
-  double to = 0.0;
-  int steps = 0;
-  int transient = 500;
-  int record = 100;
-  std::string start = "previous";
-  std::string direction = "up";
-  std::vector<double> x0, v0;
+  RangeFlags range;
+  RunFlags run;
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  int chunk = SweepOptions{}.chunk_values;
-  int warmup = SweepOptions{}.warmup_values;
-  int max_q = PeriodOptions{}.max_q;
   std::string out, summary, plot;
 };
 
@@ -80,57 +71,13 @@ class SweepProgressLine {
 
 /// The flags as library options; flag names in the messages.
 SweepOptions OptionsOf(const SweepRequest& request, const System& system) {
-  if (request.steps < 1)
-    throw InvalidInput(fmt::format("--steps must be >= 1, got {}", request.steps));
-  if (request.steps > 1 && request.from == request.to) {
-    throw InvalidInput(
-        fmt::format("--from and --to are both {}: {} steps need a range (or --steps 1)",
-                    request.from, request.steps));
-  }
-  if (request.transient < 0) {
-    throw InvalidInput(fmt::format("--transient must be >= 0, got {}", request.transient));
-  }
-  if (request.record < 1)
-    throw InvalidInput(fmt::format("--record must be >= 1, got {}", request.record));
+  SweepOptions options;
+  ApplyRangeFlags(request.range, request.system, system, "", options);
+  ApplyRunFlags(request.run, system, options);
   if (request.threads < 1) {
     throw InvalidInput(fmt::format("--threads must be >= 1, got {}", request.threads));
   }
-  if (request.chunk < 0)
-    throw InvalidInput(fmt::format("--chunk must be >= 0, got {}", request.chunk));
-  if (request.warmup < 0) {
-    throw InvalidInput(fmt::format("--warmup must be >= 0, got {}", request.warmup));
-  }
-  if (request.max_q < 1)
-    throw InvalidInput(fmt::format("--max-q must be >= 1, got {}", request.max_q));
-  GetParameter(system, request.param);  // "unknown parameter 'x'; allowed: ..."
-  RequireNotSet(request.system, request.param, "--param", "--from and --to");
-  SweepOptions options;
-  options.parameter = request.param;
-  options.from = request.from;
-  options.to = request.to;
-  options.steps = request.steps;
-  options.transient_periods = request.transient;
-  options.recorded_periods = request.record;
-  options.start = request.start == "fixed" ? SweepStart::kFixed : SweepStart::kPrevious;
-  options.direction = request.direction == "down" ? SweepDirection::kDown : SweepDirection::kUp;
   options.threads = request.threads;
-  options.chunk_values = request.chunk;
-  options.warmup_values = request.warmup;
-  options.classify.period.max_q = request.max_q;
-  if (!request.x0.empty() || !request.v0.empty()) {
-    HybridState state = RestState(system);
-    auto fill = [&](const std::vector<double>& given, Eigen::VectorXd& target, const char* flag) {
-      if (given.empty()) return;
-      if (static_cast<int>(given.size()) != system.Dof()) {
-        throw InvalidInput(fmt::format("{} needs {} values (one per mass), got {}", flag,
-                                       system.Dof(), given.size()));
-      }
-      target = Eigen::Map<const Eigen::VectorXd>(given.data(), system.Dof());
-    };
-    fill(request.x0, state.x, "--x0");
-    fill(request.v0, state.v, "--v0");
-    options.fixed_state = state;
-  }
   std::string error;
   if (!options.IsValid(&error)) throw InvalidInput(error);
   return options;
@@ -148,8 +95,7 @@ std::string Provenance(const SweepRequest& request, const System& system,
       ParameterList(system), options.parameter, options.from, options.to, options.steps,
       options.transient_periods, options.recorded_periods, ToString(options.start),
       ToString(options.direction), options.classify.period.max_q);
-  if (!request.x0.empty()) text += fmt::format(" x0={}", fmt::join(request.x0, ","));
-  if (!request.v0.empty()) text += fmt::format(" v0={}", fmt::join(request.v0, ","));
+  text += FixedStateProvenance(request.run);
   if (options.start == SweepStart::kPrevious) {
     text += fmt::format(
         " chunk={} warmup={} (each value from the previous one's final state; every chunk of "
@@ -261,77 +207,11 @@ void AddSweepCommand(CLI::App& app) {
       "Results are identical for any --threads.");
   AddSystemOptions(*command, request->system);
   const std::string group = "Sweep";
-  command
-      ->add_option("--param", request->param, "Parameter to sweep: omega, xs, r, A1..AN, m, k, c")
-      ->type_name("NAME")
-      ->capture_default_str()
-      ->group(group);
-  command->add_option("--from", request->from, "One end of the range")
-      ->type_name("A")
-      ->required()
-      ->group(group);
-  command->add_option("--to", request->to, "The other end of the range")
-      ->type_name("B")
-      ->required()
-      ->group(group);
-  command->add_option("--steps", request->steps, "Number of values K, both ends included")
-      ->type_name("K")
-      ->check(AtMost(kMaxSteps, "values"))
-      ->required()
-      ->group(group);
-  command->add_option("--transient", request->transient, "Forcing periods discarded at each value")
-      ->type_name("P")
-      ->check(AtMost(kMaxPeriods, "forcing periods"))
-      ->capture_default_str()
-      ->group(group);
-  command->add_option("--record", request->record, "Forcing periods recorded at each value")
-      ->type_name("P")
-      ->check(AtMost(kMaxPeriods, "forcing periods"))
-      ->capture_default_str()
-      ->group(group);
-  command
-      ->add_option("--start", request->start,
-                   "'previous': each value from the previous value's final state; 'fixed': each "
-                   "from the fixed state (--x0/--v0, default rest)")
-      ->check(CLI::IsMember({"previous", "fixed"}))
-      ->capture_default_str()
-      ->group(group);
-  command->add_option("--direction", request->direction, "'up' or 'down' through the range")
-      ->check(CLI::IsMember({"up", "down"}))
-      ->capture_default_str()
-      ->group(group);
-  command->add_option("--x0", request->x0, "Fixed state positions x1,...,xN (default 0)")
-      ->type_name("X1,...,XN")
-      ->delimiter(',')
-      ->group(group);
-  command->add_option("--v0", request->v0, "Fixed state velocities v1,...,vN (default 0)")
-      ->type_name("V1,...,VN")
-      ->delimiter(',')
-      ->group(group);
+  AddRangeFlags(*command, request->range, group);
+  AddRunFlags(*command, request->run, group);
   command->add_option("--threads", request->threads, "Worker threads (default: all cores)")
       ->type_name("N")
       ->check(AtMost(kMaxThreads, "threads"))
-      ->group(group);
-  command
-      ->add_option("--chunk", request->chunk,
-                   "With --start previous: values per independently computed chunk (0: one "
-                   "chunk, strictly sequential); part of the result, unlike --threads")
-      ->type_name("N")
-      ->check(AtMost(kMaxSteps, "values"))
-      ->capture_default_str()
-      ->group(group);
-  command
-      ->add_option("--warmup", request->warmup,
-                   "With --start previous: values before each chunk whose transients it runs "
-                   "first, from the fixed state")
-      ->type_name("N")
-      ->check(AtMost(kMaxSteps, "values"))
-      ->capture_default_str()
-      ->group(group);
-  command->add_option("--max-q", request->max_q, "Longest period searched, in forcing periods")
-      ->type_name("Q")
-      ->check(AtMost(kMaxOrbitPeriod, "forcing periods"))
-      ->capture_default_str()
       ->group(group);
   const std::string output = "Output (each written only if asked for, and only whole)";
   command

@@ -18,6 +18,7 @@ case $command in
   simulate) outputs=(--series "$work/out/series.csv" --impacts "$work/out/impacts.csv"
                      --plot "$work/out/plot.png" --json "$work/out/summary.json") ;;
   sweep) outputs=(--out "$work/out/impacts.csv" --summary "$work/out/summary.csv") ;;
+  map | basins) outputs=(--out "$work/out/cells.csv" --json "$work/out/summary.json") ;;
   resonance | impactmap | returnmap) outputs=(--out "$work/out/table.csv") ;;
   orbit | continue | curve | diagram | lyapunov) outputs=(--json "$work/out/result.json") ;;
   paper) outputs=(--out "$work/out/paper") ;;

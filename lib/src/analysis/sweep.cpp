@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -14,6 +15,7 @@
 
 #include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/core/parameter_grid.hpp"
+#include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
 
@@ -251,9 +253,15 @@ std::vector<double> SweepValues(const SweepOptions& options) {
   return values;
 }
 
-SweepResult RunSweep(const System& system, const SweepOptions& options,
-                     const SweepProgress& progress) {
-  const auto start_time = std::chrono::steady_clock::now();
+namespace {
+
+/// Values per chunk of a sweep of `total` values.
+int ChunkSize(const SweepOptions& options, int total) {
+  return options.chunk_values == 0 ? total : std::min(options.chunk_values, total);
+}
+
+/// The systems of every value (checked before any work) and the chunks.
+SweepPlan PlanSweep(const System& system, const SweepOptions& options) {
   SweepPlan plan{options, SweepValues(options), {}};
   GetParameter(system, options.parameter);  // throws for an unknown name
   plan.systems.reserve(plan.values.size());
@@ -266,8 +274,38 @@ SweepResult RunSweep(const System& system, const SweepOptions& options,
     }
   }
   const int total = static_cast<int>(plan.values.size());
-  plan.chunk_size = options.chunk_values == 0 ? total : std::min(options.chunk_values, total);
+  plan.chunk_size = ChunkSize(options, total);
   plan.chunks = (total + plan.chunk_size - 1) / plan.chunk_size;
+  return plan;
+}
+
+}  // namespace
+
+int SweepChunks(const SweepOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  const int size = ChunkSize(options, options.steps);
+  return (options.steps + size - 1) / size;
+}
+
+std::vector<SweepPoint> RunSweepChunk(const System& system, const SweepOptions& options,
+                                      int chunk) {
+  const SweepPlan plan = PlanSweep(system, options);
+  Require(chunk >= 0 && chunk < plan.chunks,
+          fmt::format("sweep chunk {} out of range [0, {})", chunk, plan.chunks));
+  std::vector<SweepPoint> points(plan.values.size());
+  RunChunk(plan, chunk, points, [] {});
+  const int begin = chunk * plan.chunk_size;
+  const int end = std::min<int>(begin + plan.chunk_size, static_cast<int>(points.size()));
+  return {std::make_move_iterator(points.begin() + begin),
+          std::make_move_iterator(points.begin() + end)};
+}
+
+SweepResult RunSweep(const System& system, const SweepOptions& options,
+                     const SweepProgress& progress) {
+  const auto start_time = std::chrono::steady_clock::now();
+  const SweepPlan plan = PlanSweep(system, options);
+  const int total = static_cast<int>(plan.values.size());
 
   SweepResult result;
   result.points.resize(total);

@@ -129,4 +129,13 @@ using SweepProgress = std::function<void(int done, int total)>;
 SweepResult RunSweep(const System& system, const SweepOptions& options,
                      const SweepProgress& progress = {});
 
+/// The number of chunks RunSweep cuts the sweep into (>= 1).
+int SweepChunks(const SweepOptions& options);
+
+/// The points of one chunk of the sweep, `chunk` in [0, SweepChunks), the
+/// values of [chunk * size, ...) in sweep order: the very points RunSweep
+/// computes for them, for drivers that share chunks out themselves (a
+/// parameter map, processes). Throws as RunSweep.
+std::vector<SweepPoint> RunSweepChunk(const System& system, const SweepOptions& options, int chunk);
+
 }  // namespace impactkit

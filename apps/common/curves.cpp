@@ -1,0 +1,43 @@
+#include "common/curves.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "impactkit/core/errors.hpp"
+
+namespace impactkit::cli {
+
+std::vector<Curve> ReadCurves(const std::string& path, const std::string& x_name,
+                              const std::string& y_name) {
+  std::ifstream in(path);
+  Require(static_cast<bool>(in), fmt::format("cannot read curves file {}", path));
+  std::vector<Curve> curves;
+  try {
+    const nlohmann::json json = nlohmann::json::parse(in);
+    for (const nlohmann::json& curve : json.at("curves")) {
+      const auto params = curve.at("params").get<std::vector<std::string>>();
+      const bool in_plane = params.size() == 2 && ((params[0] == x_name && params[1] == y_name) ||
+                                                   (params[0] == y_name && params[1] == x_name));
+      if (!in_plane) continue;
+      Curve line;
+      line.title = fmt::format("{} P({},{})", curve.at("type").get<std::string>(),
+                               curve.value("p", 0), curve.value("q", 0));
+      for (const nlohmann::json& point : curve.at("points")) {
+        line.x.push_back(point.at(x_name).get<double>());
+        line.y.push_back(point.at(y_name).get<double>());
+      }
+      curves.push_back(std::move(line));
+    }
+  } catch (const nlohmann::json::exception& error) {
+    throw InvalidInput(fmt::format("curves file {}: {}", path, error.what()));
+  }
+  // Black and dark grey stand out on the map's colours.
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    curves[i].color = i % 2 == 0 ? "#000000" : "#555555";
+  }
+  return curves;
+}
+
+}  // namespace impactkit::cli

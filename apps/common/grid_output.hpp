@@ -1,0 +1,41 @@
+#pragma once
+/// \file common/grid_output.hpp
+/// What `map` and `basins` write alike: a cell's columns, its motion's label,
+/// the colours of a class map, and the flags that run a grid (threads,
+/// checkpoint), so the two commands format and run identically.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/grid_driver.hpp"
+#include "impactkit/analysis/grid_cell.hpp"
+
+namespace impactkit::cli {
+
+/// "kind,p,q,max_v,range_xN,lyapunov": the CSV columns of a cell after its
+/// coordinates (p = inf when sticking; empty where undefined).
+inline constexpr const char* kCellColumns = "kind,p,q,max_v,range_xN,lyapunov";
+std::string CellFields(const GridCell& cell);
+
+/// "P(2,1)", "P(inf,1)", "non-impacting", "chaotic", "unresolved".
+std::string MotionLabel(const GridCell& cell);
+
+/// `count` distinct colours, "#rrggbb": a fixed qualitative set first, then
+/// hues a golden angle apart, so that any number of classes can be told apart.
+std::vector<std::string> ClassColors(int count);
+
+/// --threads and --checkpoint, into `threads` (unset: automatic) and `checkpoint`.
+void AddGridRunOptions(CLI::App& command, std::optional<int>& threads, std::string& checkpoint);
+
+/// The run's driver options: threads unset means all cores of one process, one
+/// thread per rank under mpirun (run one rank per core there).
+GridDriveOptions DriveOptionsOf(const std::string& label, std::optional<int> threads,
+                                const std::string& checkpoint, const GridProcesses& processes);
+
+/// "2400 cells in 14.2 s on 2 threads x 1 rank (40 resumed from the checkpoint)".
+std::string RunReport(const GridOutcome& outcome, const GridDriveOptions& options,
+                      const GridProcesses& processes);
+
+}  // namespace impactkit::cli

@@ -1,0 +1,82 @@
+#include "impactkit/analysis/grid_task.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "impactkit/core/errors.hpp"
+
+namespace impactkit {
+
+void RunUnits(const GridTask& task, int threads, const NextUnit& next, const UnitDone& done) {
+  Require(threads >= 1, fmt::format("threads must be >= 1, got {}", threads));
+  std::mutex mutex;
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  auto take = [&] {
+    const std::lock_guard<std::mutex> lock(mutex);
+    return failed ? -1 : next();
+  };
+  auto worker = [&] {
+    for (int unit = take(); unit >= 0; unit = take()) {
+      try {
+        std::vector<GridCell> cells = task.RunUnit(unit);
+        const std::lock_guard<std::mutex> lock(mutex);
+        done(unit, cells);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+namespace {
+
+std::string Numbers(const Eigen::MatrixXd& matrix) {
+  return fmt::format("{}", fmt::join(matrix.reshaped(), ","));
+}
+
+}  // namespace
+
+std::string SystemIdentity(const System& system) {
+  return fmt::format("M={} C={} K={} A={} omega={} xs={} r={} contact={}", Numbers(system.mass),
+                     Numbers(system.damping), Numbers(system.stiffness), Numbers(system.forcing),
+                     system.omega, system.stop, system.restitution, system.contact_dof);
+}
+
+std::string SweepIdentity(const SweepOptions& o) {
+  std::string text = fmt::format(
+      "param={} from={} to={} steps={} transient={} record={} start={} direction={} chunk={} "
+      "warmup={} max_q={}",
+      o.parameter, o.from, o.to, o.steps, o.transient_periods, o.recorded_periods,
+      ToString(o.start), ToString(o.direction), o.chunk_values, o.warmup_values,
+      o.classify.period.max_q);
+  if (o.fixed_state) {
+    text += fmt::format(" x0={} v0={}", Numbers(o.fixed_state->x), Numbers(o.fixed_state->v));
+  }
+  return text;
+}
+
+std::vector<GridCell> InIndexOrder(std::vector<GridCell> cells, std::int64_t total) {
+  std::sort(cells.begin(), cells.end(),
+            [](const GridCell& a, const GridCell& b) { return a.index < b.index; });
+  Require(static_cast<std::int64_t>(cells.size()) == total,
+          fmt::format("grid has {} cells, expected {}", cells.size(), total));
+  for (std::int64_t k = 0; k < total; ++k) {
+    Require(cells[k].index == k, fmt::format("grid cell {} missing or repeated", k));
+  }
+  return cells;
+}
+
+}  // namespace impactkit

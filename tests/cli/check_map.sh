@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# `impactkit map` and `impactkit basins` as a user meets them.
+#
+#     check_map.sh IMPACTKIT row
+#         the map's r = 0.7 row is `impactkit sweep --set r=0.7 --summary`
+#         over the same omega values (kind, p, q, largest impact speed,
+#         range of x_N, exponent), number for number
+#     check_map.sh IMPACTKIT threads
+#         CSV and JSON are byte-identical for --threads 1 and 2
+#     check_map.sh IMPACTKIT mpi MPIRUN
+#         `MPIRUN -np 2 impactkit map` writes the CSV of --threads 1
+#     check_map.sh IMPACTKIT resume
+#         a checkpointed run killed (SIGKILL) midway and rerun gives the CSV
+#         of an uninterrupted run, computing only the cells not on record
+#         (their count is the report's); a checkpoint of another grid is
+#         refused with exit 2 and one line
+#     check_map.sh IMPACTKIT plot
+#         --plot with --curves (one curve in (omega, r), drawn; one in
+#         (omega, xs), skipped) writes a PNG; a curves file without
+#         "curves" is refused with exit 2 and one line naming it (skipped,
+#         77, without gnuplot)
+#     check_map.sh IMPACTKIT basins
+#         at omega = 2 (the paper's P(1,2)) the basins of a grid of starts
+#         hold one attractor, P(1,2), whose orbit is the fixed point that
+#         `impactkit orbit --p 1 --q 2` solves for: its impact phase and
+#         speed to 1e-6
+source "$(dirname "$0")/testlib.sh"
+impactkit=$1
+mode=$2
+shift 2
+
+# A 13 x 5 (omega, r) grid with a row at r = 0.7, 200 + 40 periods a cell,
+# rows in chunks of 5 values: 15 work units.
+grid=(map --from 0.6 --to 2.4 --steps 13 --param2 r --from2 0.5 --to2 0.9 --steps2 5
+      --transient 200 --record 40 --chunk 5)
+
+case $mode in
+  row)
+    "$impactkit" "${grid[@]}" --out "$work/map.csv" >/dev/null || fail "map failed"
+    "$impactkit" sweep --set r=0.7 --from 0.6 --to 2.4 --steps 13 --transient 200 --record 40 \
+      --chunk 5 --summary "$work/sweep.csv" >/dev/null || fail "sweep failed"
+    # map: omega,r,kind,p,q,max_v,range_xN,lyapunov; sweep summary:
+    # param,kind,p,q,range_xN,...,v_max (11),lyapunov (12).
+    awk -F, 'NR > 2 && $2 == "0.7" { print $1","$3","$4","$5","$6","$7","$8 }' "$work/map.csv" \
+      >"$work/map-row"
+    awk -F, 'NR > 2 { print $1","$2","$3","$4","$11","$5","$12 }' "$work/sweep.csv" \
+      >"$work/sweep-row"
+    [[ $(wc -l <"$work/map-row") -eq 13 ]] || fail "map has no row of 13 cells at r = 0.7"
+    diff "$work/map-row" "$work/sweep-row" || fail "the map's r = 0.7 row differs from the sweep"
+    echo ok
+    ;;
+  threads)
+    for threads in 1 2; do
+      "$impactkit" "${grid[@]}" --threads $threads --out "$work/map$threads.csv" \
+        --json "$work/map$threads.json" >"$work/stdout" || fail "map failed"
+    done
+    cmp "$work/map1.csv" "$work/map2.csv" || fail "CSV differs between 1 and 2 threads"
+    cmp "$work/map1.json" "$work/map2.json" || fail "JSON differs between 1 and 2 threads"
+    [[ $(sed -n 2p "$work/map1.csv") == omega,r,kind,p,q,max_v,range_xN,lyapunov ]] ||
+      fail "columns: $(sed -n 2p "$work/map1.csv")"
+    grep -q '"cells": 65' "$work/map1.json" || fail "JSON lacks the cell count"
+    echo ok
+    ;;
+  mpi)
+    mpirun=$1
+    "$impactkit" "${grid[@]}" --threads 1 --out "$work/one.csv" >/dev/null || fail "map failed"
+    "$mpirun" --allow-run-as-root --oversubscribe -np 2 "$impactkit" "${grid[@]}" \
+      --out "$work/mpi.csv" >"$work/stdout" 2>"$work/stderr" ||
+      fail "mpirun failed: $(cat "$work/stderr")"
+    grep -q "x 2 ranks" "$work/stdout" || fail "not run on 2 ranks: $(cat "$work/stdout")"
+    cmp "$work/one.csv" "$work/mpi.csv" || fail "CSV differs between 1 process and 2 ranks"
+    echo ok
+    ;;
+  resume)
+    # 20 rows of 30 cells in units of 10: long enough (~1 s) to be killed midway.
+    long=(map --from 0.6 --to 2.4 --steps 30 --param2 r --from2 0.3 --to2 0.95 --steps2 20
+          --transient 300 --record 40 --chunk 10 --threads 1)
+    "$impactkit" "${long[@]}" --out "$work/whole.csv" >/dev/null || fail "map failed"
+    "$impactkit" "${long[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" >/dev/null &
+    pid=$!
+    for _ in $(seq 200); do
+      (($(find "$work/cp" -name 'unit-*.txt' 2>/dev/null | wc -l) >= 3)) && break
+      sleep 0.02
+    done
+    kill -9 $pid 2>/dev/null || fail "the run ended before it could be killed"
+    wait $pid 2>/dev/null || true
+    [[ ! -e $work/resumed.csv ]] || fail "a killed run wrote its CSV"
+    finished=$(find "$work/cp" -name 'unit-*.txt' | wc -l)
+    ((finished >= 3 && finished < 60)) || fail "$finished units on record, expected 3 to 59"
+    "$impactkit" "${long[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" \
+      >"$work/stdout" || fail "the resumed run failed"
+    expected="($((600 - 10 * finished)) computed, $((10 * finished)) resumed from the checkpoint)"
+    grep -qF "$expected" "$work/stdout" || fail "expected '$expected': $(cat "$work/stdout")"
+    cmp "$work/whole.csv" "$work/resumed.csv" || fail "the resumed CSV differs"
+    # The same directory for another grid is refused, and left as it was.
+    status=0
+    "$impactkit" "${grid[@]}" --checkpoint "$work/cp" >"$work/stdout" 2>"$work/stderr" ||
+      status=$?
+    [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] ||
+      fail "another run's checkpoint: status $status, stderr $(cat "$work/stderr")"
+    grep -q "belongs to another run" "$work/stderr" || fail "message: $(cat "$work/stderr")"
+    echo ok
+    ;;
+  plot)
+    command -v gnuplot >/dev/null || { echo "gnuplot not installed: skipped"; exit 77; }
+    cat >"$work/curves.json" <<'JSON'
+{"curves": [
+  {"type": "period_doubling", "p": 1, "q": 1, "params": ["omega", "r"],
+   "points": [{"omega": 1.61, "r": 0.5}, {"omega": 1.62, "r": 0.9}]},
+  {"type": "fold", "p": 1, "q": 2, "params": ["omega", "xs"],
+   "points": [{"omega": 1.8, "xs": 0.1}, {"omega": 1.9, "xs": 0.2}]}]}
+JSON
+    "$impactkit" "${grid[@]}" --plot "$work/map.png" --curves "$work/curves.json" >/dev/null ||
+      fail "map --plot --curves failed"
+    [[ $(head -c 8 "$work/map.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] ||
+      fail "map.png is not a PNG"
+    echo '{"lines": []}' >"$work/bad.json"
+    status=0
+    "$impactkit" "${grid[@]}" --plot "$work/bad.png" --curves "$work/bad.json" \
+      >"$work/stdout" 2>"$work/stderr" || status=$?
+    [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 && ! -e $work/bad.png ]] ||
+      fail "bad curves: status $status, stderr $(cat "$work/stderr")"
+    grep -q "curves file .*bad.json" "$work/stderr" || fail "message: $(cat "$work/stderr")"
+    echo ok
+    ;;
+  basins)
+    "$impactkit" basins --omega 2 --coord x2 --from -1 --to 0.1 --steps 6 --coord2 v2 \
+      --from2 -1.5 --to2 1.5 --steps2 6 --transient 300 --record 40 --json "$work/basins.json" \
+      --out "$work/basins.csv" >/dev/null || fail "basins failed"
+    "$impactkit" orbit --omega 2 --p 1 --q 2 --json "$work/orbit.json" >/dev/null ||
+      fail "orbit failed"
+    # Every start reaches attractor 1, periodic P(1,2).
+    [[ $(awk -F, 'NR > 2 && $3 == 1 && $4 == "periodic" && $5 == 1 && $6 == 2' \
+      "$work/basins.csv" | wc -l) -eq 36 ]] || fail "not all 36 starts reach P(1,2)"
+    grep -q '"share": 1.0' "$work/basins.json" || fail "the share of P(1,2) is not 1"
+    [[ $(grep -c '"id":' "$work/basins.json") -eq 1 ]] || fail "more than one attractor"
+    # JSON values "key": number, one per line, as both commands write them.
+    value() { awk -F': ' -v key="\"$2\"" '$1 ~ key"$" { gsub(/,/, "", $2); print $2; exit }' "$1"; }
+    awk -v a="$(value "$work/basins.json" phase)" -v b="$(value "$work/orbit.json" phase)" \
+      -v c="$(value "$work/basins.json" velocity)" -v d="$(value "$work/orbit.json" v)" \
+      'BEGIN { e1 = a - b; e2 = c - d; exit !(a != "" && c != "" && e1 * e1 < 1e-12 && e2 * e2 < 1e-12) }' ||
+      fail "orbit of the attractor differs from the orbit's fixed point by more than 1e-6"
+    echo ok
+    ;;
+  *) fail "unknown mode $mode" ;;
+esac
