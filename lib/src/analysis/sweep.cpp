@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "impactkit/analysis/steady_window.hpp"
-#include "impactkit/core/parameter_grid.hpp"
 #include "impactkit/core/errors.hpp"
+#include "impactkit/core/parameter_grid.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
 
