@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 
@@ -219,4 +220,55 @@ TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
     CHECK_THROWS_WITH(FindStickingOrbit(impacting, orbit.state, options, &out),
                       Catch::Matchers::Contains("no sticking orbit"));
   }
+}
+TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation stops sticking",
+          "[sticking][continuation]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit start = RefinedOrbit(system);
+  StickingBranchOptions options;
+  options.lower = 0.1;
+  options.upper = 0.6;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
+  REQUIRE(!branch.special_points.empty());
+  const StickingSpecialPoint& end = branch.special_points.back();
+  CHECK(end.type == StickingEvent::kNoSticking);
+  const double omega_end = end.point.parameter;
+  CHECK(omega_end > 0.3);
+  CHECK(omega_end < 0.31);
+
+  // Recomputed from the located point: an orbit there, whose chatter only
+  // just ends in sticking (Fs(t*) small beside its ~0.2 mid-branch) ...
+  StickingOrbitOptions orbit_options;
+  StickingOrbit again;
+  REQUIRE(FindStickingOrbit(PaperSystem(omega_end), end.point.orbit.state, orbit_options, &again)
+              .termination == Termination::kConverged);
+  CHECK((again.state - end.point.orbit.state).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK(again.contact_margin > 0);
+  CHECK(again.contact_margin < 5e-3);
+  // ... and no sticking orbit just beyond it.
+  Eigen::VectorXd beyond_guess = again.state;
+  StickingOrbit beyond;
+  bool sticks = true;
+  try {
+    sticks = FindStickingOrbit(PaperSystem(omega_end + 1e-4), beyond_guess, orbit_options, &beyond)
+                 .termination == Termination::kConverged;
+  } catch (const InvalidInput&) {
+    sticks = false;
+  }
+  CHECK(!sticks);
+  // Independent: the simulator from rest sticks periodically 1e-3 below
+  // the end and not 1e-3 above it.
+  CHECK(SeedStickingFromSimulation(PaperSystem(omega_end - 1e-3), 300, 4));
+  CHECK(!SeedStickingFromSimulation(PaperSystem(omega_end + 1e-3), 300, 4));
+  // The other end of the branch: the lower bound.
+  const StickingBranch down = [&] {
+    StickingBranchOptions o = options;
+    o.increasing = false;
+    return ContinueStickingBranch(system, start, o);
+  }();
+  CHECK(down.end == StickingBranchEnd::kParameterBound);
+  CHECK_THAT(down.points.back().parameter, WithinAbs(0.1, 1e-12));
+  // Every point of the branches is a sticking orbit of its system.
+  for (const StickingBranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
 }

@@ -14,6 +14,7 @@
 #include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/flow.hpp"

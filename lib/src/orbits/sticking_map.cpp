@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -48,10 +49,12 @@ bool StickingMapOptions::IsValid(std::string* error) const {
 /// the Jacobian carried along as (∂y/∂s, ∂t/∂s) of the current state.
 class StickingMap::Cycle {
  public:
-  Cycle(const HybridSystem& hybrid, const StickingMapOptions& options, bool with_jacobian)
+  Cycle(const HybridSystem& hybrid, const StickingMapOptions& options, bool with_jacobian,
+        bool with_contacts)
       : hybrid_(hybrid),
         options_(options),
         with_jacobian_(with_jacobian),
+        with_contacts_(with_contacts),
         n_(hybrid.GetSystem().Dof()),
         c_(hybrid.GetSystem().contact_dof),
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()} {
@@ -60,6 +63,10 @@ class StickingMap::Cycle {
     const LinearOutput release = hybrid.GetStop().Release(hybrid.GetSystem()).output;
     release_gradient_.resize(2 * (n_ - 1));
     release_gradient_ << release.wx, release.wv;
+    if (with_contacts_) {
+      contact_velocity_ = hybrid.FreeFlow().Prepare(
+          {Eigen::RowVectorXd::Zero(n_), Eigen::RowVectorXd::Unit(n_, c_), 0.0, 0.0});
+    }
   }
 
   /// Follows one release to the next; the new section state in *next.
@@ -68,6 +75,9 @@ class StickingMap::Cycle {
 
  private:
   std::optional<double> NextImpact(bool from_release, StickingMapStatus* status);
+  /// xs − the highest interior maximum of x_c on the flight [begin, end]
+  /// (the zeros of v_c where it falls), infinity if there is none.
+  double FlightClearance(double t0, const Eigen::VectorXd& z0, double begin, double end) const;
   bool ChatterEndsAt(double te, double speed, double previous, double* t_star);
   StickingMapStatus StickAndRelease(double te, double t_star, StickingCycle* cycle);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
@@ -88,13 +98,15 @@ class StickingMap::Cycle {
 
   const HybridSystem& hybrid_;
   const StickingMapOptions& options_;
-  const bool with_jacobian_;
+  const bool with_jacobian_, with_contacts_;
   const int n_, c_;
+  PreparedOutput contact_velocity_;  ///< v_c on the free flow (with contacts)
   const EventOptions events_;
   Eigen::VectorXd constraint_direction_;
   Eigen::RowVectorXd release_gradient_;
   double t_ = 0.0;
-  double deadline_ = 0.0;  ///< the cycle must stick before this time
+  double deadline_ = 0.0;   ///< the cycle must stick before this time
+  double clearance_ = 0.0;  ///< the cycle's so far (with contacts)
   Eigen::VectorXd x_, v_;
   Eigen::MatrixXd dy_;     ///< ∂y/∂s of the current state
   Eigen::RowVectorXd dt_;  ///< ∂t/∂s of the current time
@@ -119,6 +131,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   }
   cycle->release = t_;
   cycle->impacts.clear();
+  clearance_ = std::numeric_limits<double>::infinity();
   deadline_ = t_ + options_.max_free_periods * system.ForcingPeriod();
   double previous = -std::numeric_limits<double>::infinity();
   StickingMapStatus status = StickingMapStatus::kOk;
@@ -132,6 +145,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
     if (with_jacobian_) dy_ = hybrid_.GetStop().ResetJacobian(n_) * dy_;
     double t_star;
     if (ChatterEndsAt(*te, speed, previous, &t_star)) {
+      cycle->clearance = clearance_;
       status = StickAndRelease(*te, t_star, cycle);
       if (status != StickingMapStatus::kOk) return status;
       next->resize(m);
@@ -170,6 +184,7 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
     *status = from_release ? StickingMapStatus::kNoImpact : StickingMapStatus::kNoChatter;
     return std::nullopt;
   }
+  if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, begin, *te));
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.State(t0, z0, *te, &x_, &v_);
@@ -180,6 +195,20 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
                   hybrid_.VectorField(*te, x_, v_), Eigen::RowVectorXd::Unit(2 * n_, c_), v_(c_));
   }
   return te;
+}
+
+double StickingMap::Cycle::FlightClearance(double t0, const Eigen::VectorXd& z0, double begin,
+                                           double end) const {
+  const LinearFlow& flow = hybrid_.FreeFlow();
+  const Signal velocity = flow.Output(contact_velocity_, t0, z0);
+  double clearance = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd x, v;
+  for (const double t : SignChanges(velocity, begin, end, events_)) {
+    if (velocity.Derivative().Value(t) >= 0) continue;  // a minimum
+    flow.State(t0, z0, t, &x, &v);
+    clearance = std::min(clearance, hybrid_.GetSystem().stop - x(c_));
+  }
+  return clearance;
 }
 
 /// The simulator's rule (hybrid/simulator.cpp, HybridRun::ApplyImpact and
@@ -282,13 +311,14 @@ void StickingMap::ValidateSection(const Eigen::VectorXd& s) const {
   if (!s.allFinite()) throw InvalidInput("the release state has a NaN or infinite entry");
 }
 
-StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_jacobian) const {
+StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_jacobian,
+                                     bool with_contacts) const {
   if (k < 1) throw InvalidInput(fmt::format("the number of releases must be >= 1, got {}", k));
   ValidateSection(s);
   StickingMapResult result;
   result.state = s;
   if (with_jacobian) result.jacobian = Eigen::MatrixXd::Identity(Size(), Size());
-  Cycle cycle(*hybrid_, options_, with_jacobian);
+  Cycle cycle(*hybrid_, options_, with_jacobian, with_contacts);
   Eigen::VectorXd next;
   Eigen::MatrixXd step_jacobian;
   for (int i = 0; i < k; ++i) {

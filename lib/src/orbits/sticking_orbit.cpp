@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace impactkit {
 namespace {
@@ -16,8 +17,9 @@ Eigen::VectorXd WithPhase(const StickingMap& map, Eigen::VectorXd s) {
   return s;
 }
 
-StickingMapResult ApplyOrThrow(const StickingMap& map, const Eigen::VectorXd& s, int k) {
-  StickingMapResult image = map.Apply(s, k, true);
+StickingMapResult ApplyOrThrow(const StickingMap& map, const Eigen::VectorXd& s, int k,
+                               bool with_contacts = false) {
+  StickingMapResult image = map.Apply(s, k, true, with_contacts);
   if (image.status != StickingMapStatus::kOk) {
     throw InvalidInput(
         fmt::format("no sticking orbit through this release state: after {} of {} releases, {}",
@@ -63,7 +65,7 @@ Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorX
 
 StickingOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorXd& s, int releases,
                                     int q) {
-  const StickingMapResult image = ApplyOrThrow(map, s, releases);
+  const StickingMapResult image = ApplyOrThrow(map, s, releases, true);
   const System& system = map.GetSystem();
   StickingOrbit orbit;
   orbit.releases = releases;
@@ -71,7 +73,11 @@ StickingOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
   orbit.omega = system.omega;
   orbit.state = s;
   orbit.cycles = image.cycles;
+  orbit.contact_margin = std::numeric_limits<double>::infinity();
+  orbit.clearance = std::numeric_limits<double>::infinity();
   for (const StickingCycle& cycle : image.cycles) {
+    orbit.contact_margin = std::min(orbit.contact_margin, cycle.contact_force);
+    orbit.clearance = std::min(orbit.clearance, cycle.clearance);
     orbit.stick_phases.push_back(system.Phase(cycle.accumulation));
     orbit.release_phases.push_back(system.Phase(cycle.next_release));
     orbit.stuck_durations.push_back(cycle.next_release - cycle.accumulation);

@@ -33,6 +33,7 @@
 /// release section (sticking_orbit.hpp).
 
 #include <Eigen/Dense>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -83,6 +84,11 @@ struct StickingCycle {
   double accumulation = 0.0;            ///< t*: the chatter's end, sticking begins
   double contact_force = 0.0;           ///< Fs(t*) > 0
   double next_release = 0.0;            ///< the release it ends at
+  /// xs − the highest interior maximum of x_c in the cycle's free flights:
+  /// > 0 while no flight comes back to the stop before its impact (0 at a
+  /// grazing, a new impact); infinity when no flight has an interior
+  /// maximum. Measured only when Apply is asked for contacts.
+  double clearance = std::numeric_limits<double>::infinity();
 };
 
 /// The result of P_R^k(s).
@@ -101,9 +107,12 @@ class StickingMap {
   /// On a hybrid system already decomposed. Throws InvalidInput for invalid options.
   StickingMap(std::shared_ptr<const HybridSystem> hybrid, const StickingMapOptions& options = {});
 
-  /// P_R^k(s) and, if `with_jacobian`, its analytic Jacobian. Throws
-  /// InvalidInput if s has the wrong size or a non-finite entry, or k < 1.
-  StickingMapResult Apply(const Eigen::VectorXd& s, int k, bool with_jacobian) const;
+  /// P_R^k(s) and, if `with_jacobian`, its analytic Jacobian; with
+  /// `with_contacts` also each cycle's clearance (an event search per
+  /// flight). Throws InvalidInput if s has the wrong size or a non-finite
+  /// entry, or k < 1.
+  StickingMapResult Apply(const Eigen::VectorXd& s, int k, bool with_jacobian,
+                          bool with_contacts = false) const;
 
   /// D P_R^k by central differences, steps relative_step × max(1, |s_j|)
   /// (the forcing period for t). Empty if a perturbed map fails.

@@ -50,6 +50,12 @@ struct StickingOrbit {
   Eigen::VectorXcd multipliers;         ///< on the release section, by decreasing modulus
   bool stable = false;                  ///< every |multiplier| < 1
   double residual = 0.0;                ///< max |U(state)|
+  /// The monitors of what ends a sticking family: the least Fs(t*) of its
+  /// cycles (0: the chatter no longer ends in sticking) and the least
+  /// clearance of its free flights (0: a flight reaches the stop, a new
+  /// impact), as StickingCycle defines them.
+  double contact_margin = 0.0;
+  double clearance = 0.0;
 };
 
 /// The sticking orbit through the fixed point s of P_R^k: cycles, phases,
