@@ -25,7 +25,8 @@ namespace {
 struct OrbitRequest {
   SystemOptions system;
   OrbitSeedOptions seed;
-  StickingRequest sticking;
+  StickingSeedOptions sticking;
+  double min_speed = 1e-3;
   std::string json;
   bool check_jacobian = false;
 };
@@ -75,7 +76,7 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
 void RunOrbit(const OrbitRequest& request) {
   const System system = ResolveSystem(request.system);
   if (const auto seed = ChooseStickingSeed(system, request.seed, request.sticking)) {
-    RunStickingOrbit(system, *seed, request.sticking, request.check_jacobian, request.json);
+    RunStickingOrbit(system, *seed, request.min_speed, request.check_jacobian, request.json);
     return;
   }
   std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
@@ -118,20 +119,9 @@ void AddOrbitCommand(CLI::App& app) {
       "P(inf,q), a fixed point of the map from one release of the contact mass to the next.");
   AddSystemOptions(*command, request->system);
   AddOrbitSeedOptions(*command, request->seed, "Orbit");
+  AddStickingSeedOptions(*command, request->sticking, "Orbit");
   command
-      ->add_flag("--sticking", request->sticking.sticking,
-                 "Refine a sticking orbit P(inf,q): from the steady simulation, or from --guess "
-                 "(a release state: x and v of the other masses, then t) with --q")
-      ->group("Orbit");
-  command
-      ->add_option("--releases", request->sticking.releases,
-                   "With --sticking --guess: sticking phases per orbit")
-      ->type_name("K")
-      ->check(CLI::Range(1, static_cast<int>(kMaxOrbitPeriod)))
-      ->capture_default_str()
-      ->group("Orbit");
-  command
-      ->add_option("--min-speed", request->sticking.min_speed,
+      ->add_option("--min-speed", request->min_speed,
                    "Sticking orbits: list the impacts before each accumulation faster than this")
       ->type_name("V")
       ->check(CLI::NonNegativeNumber)

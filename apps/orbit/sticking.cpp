@@ -96,46 +96,17 @@ nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
 
 }  // namespace
 
-std::optional<StickingSeed> ChooseStickingSeed(const System& system, const OrbitSeedOptions& seed,
-                                               const StickingRequest& request) {
-  if (!request.sticking) {
-    if (seed.p || seed.q || !seed.guess.empty()) return std::nullopt;
-    return SeedStickingFromSimulation(system, seed.transient);
-  }
-  if (seed.p) throw InvalidInput("--sticking orbits have no --p (the chatter has no end count)");
-  if (!seed.guess.empty()) {
-    if (!seed.q) throw InvalidInput("--sticking --guess needs --q");
-    return StickingSeed{request.releases, *seed.q,
-                        Eigen::Map<const Eigen::VectorXd>(
-                            seed.guess.data(), static_cast<Eigen::Index>(seed.guess.size()))};
-  }
-  std::optional<StickingSeed> found = SeedStickingFromSimulation(system, seed.transient);
-  if (!found) {
-    throw std::runtime_error(
-        "the simulated motion does not stick periodically: no sticking orbit to refine");
-  }
-  return found;
-}
-
-void RunStickingOrbit(const System& system, const StickingSeed& seed,
-                      const StickingRequest& request, bool check_jacobian,
-                      const std::string& json) {
+void RunStickingOrbit(const System& system, const StickingSeed& seed, double min_speed,
+                      bool check_jacobian, const std::string& json) {
   std::optional<AtomicOutputFile> file;  // created first: a bad path fails before the work
   if (!json.empty()) file.emplace(json);
-  StickingOrbitOptions options;
-  options.releases = seed.releases;
-  options.q = seed.q;
-  StickingOrbit orbit;
-  const StickingOrbitSummary summary = FindStickingOrbit(system, seed.state, options, &orbit);
-  if (summary.termination != Termination::kConverged) {
-    throw std::runtime_error(
-        fmt::format("no sticking P(inf,{}) orbit found: {}", options.q, summary.BriefReport()));
-  }
-  Print(system, orbit, summary, request.min_speed);
-  nlohmann::json j = OrbitJson(system, orbit, summary, request.min_speed);
+  StickingOrbitSummary summary;
+  const StickingOrbit orbit = RefineStickingOrbit(system, seed, &summary);
+  Print(system, orbit, summary, min_speed);
+  nlohmann::json j = OrbitJson(system, orbit, summary, min_speed);
   if (check_jacobian) {
     const Eigen::MatrixXd fd =
-        StickingMap(system, options.map).FiniteDifferenceJacobian(orbit.state, orbit.releases);
+        StickingMap(system).FiniteDifferenceJacobian(orbit.state, orbit.releases);
     if (fd.size() == 0) {
       throw std::runtime_error(
           "the finite-difference Jacobian cannot be formed here: a perturbed map does not stick");
