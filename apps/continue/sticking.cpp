@@ -19,15 +19,25 @@ double LeadingModulus(const StickingOrbit& orbit) {
 }
 
 std::vector<std::string> Columns(const std::string& parameter) {
-  return {parameter,        "stick_phase", "release_phase", "stuck_duration",
-          "contact_margin", "max_modulus", "stable"};
+  return {parameter,        "stick_phase",    "release_phase",
+          "stuck_duration", "contact_margin", "max_modulus",
+          "stable",         "impacts",        "v1"};
 }
 
+/// One row; `impacts` and `v1` (the first, fastest impact after the
+/// release) of the first sticking phase.
 std::vector<double> Row(const StickingBranchPoint& p) {
   const StickingOrbit& o = p.orbit;
-  return {
-      p.parameter,      o.stick_phases.front(), o.release_phases.front(), o.stuck_durations.front(),
-      o.contact_margin, LeadingModulus(o),      o.stable ? 1.0 : 0.0};
+  const StickingCycle& cycle = o.cycles.front();
+  return {p.parameter,
+          o.stick_phases.front(),
+          o.release_phases.front(),
+          o.stuck_durations.front(),
+          o.contact_margin,
+          LeadingModulus(o),
+          o.stable ? 1.0 : 0.0,
+          static_cast<double>(cycle.impacts.size()),
+          cycle.impacts.front().velocity};
 }
 
 nlohmann::json PointJson(const StickingBranchPoint& p) {
