@@ -356,14 +356,6 @@ Eigen::MatrixXd StickingMap::FiniteDifferenceJacobian(const Eigen::VectorXd& s, 
   return jacobian;
 }
 
-Eigen::VectorXd StickingMap::ToSection(double t, const Eigen::VectorXd& x,
-                                       const Eigen::VectorXd& v) const {
-  const int c = GetSystem().contact_dof;
-  Eigen::VectorXd s(Size());
-  s << WithoutIndex(x, c), WithoutIndex(v, c), t;
-  return s;
-}
-
 HybridState StickingMap::ToState(const Eigen::VectorXd& s) const {
   const int held = GetSystem().Dof() - 1, c = GetSystem().contact_dof;
   HybridState state;

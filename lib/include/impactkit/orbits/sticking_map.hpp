@@ -119,9 +119,6 @@ class StickingMap {
   Eigen::MatrixXd FiniteDifferenceJacobian(const Eigen::VectorXd& s, int k,
                                            double relative_step = 1e-6) const;
 
-  /// The section state of a release at time t with full positions and
-  /// velocities x, v (x_c = xs and v_c = 0 implied).
-  Eigen::VectorXd ToSection(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
   /// The hybrid state (free, x_c = xs, v_c = 0) of a section state.
   HybridState ToState(const Eigen::VectorXd& s) const;
   /// Fs at the section state: 0 on the release surface.
@@ -133,7 +130,6 @@ class StickingMap {
   int TimeIndex() const { return 2 * (GetSystem().Dof() - 1); }
   int Size() const { return 2 * GetSystem().Dof() - 1; }
   const System& GetSystem() const { return hybrid_->GetSystem(); }
-  const StickingMapOptions& Options() const { return options_; }
 
   /// Throws InvalidInput naming the problem if s is no section state.
   void ValidateSection(const Eigen::VectorXd& s) const;
