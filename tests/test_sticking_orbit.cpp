@@ -272,3 +272,32 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   // Every point of the branches is a sticking orbit of its system.
   for (const StickingBranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
 }
+
+TEST_CASE("sticking branch in xs ends at an early release, recomputed there", "[sticking][continuation]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit start = RefinedOrbit(system);
+  StickingBranchOptions options;
+  options.parameter = "xs";
+  options.lower = 0.0;
+  options.upper = 0.6;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kEarlyRelease);
+  const StickingBranchPoint& end = branch.special_points.back().point;
+  // Recomputed at the located xs: an orbit whose stuck phase only just
+  // holds (Fs's interior minimum small beside its Fs(t*) ~ 0.09) ...
+  System at_end = system;
+  at_end.stop = end.parameter;
+  StickingOrbit again;
+  REQUIRE(FindStickingOrbit(at_end, end.orbit.state, StickingOrbitOptions{}, &again).termination ==
+          Termination::kConverged);
+  CHECK(again.hold_margin > 0);
+  CHECK(again.hold_margin < 1e-3);
+  // ... and the simulation 1e-3 beyond it sticks twice per period: the
+  // early release and the sticking that follows it.
+  System beyond = system;
+  beyond.stop = end.parameter + 1e-3;
+  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(beyond, 300, 4);
+  REQUIRE(seed);
+  CHECK(seed->releases == 2);
+  CHECK(seed->q == 1);
+}

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -18,6 +19,8 @@ std::string ToString(StickingEvent event) {
       return "no_sticking";
     case StickingEvent::kNewImpact:
       return "new_impact";
+    case StickingEvent::kEarlyRelease:
+      return "early_release";
     case StickingEvent::kFold:
       return "fold";
     case StickingEvent::kPeriodDoubling:
@@ -34,6 +37,8 @@ std::string ToString(StickingBranchEnd end) {
       return "no_sticking";
     case StickingBranchEnd::kNewImpact:
       return "new_impact";
+    case StickingBranchEnd::kEarlyRelease:
+      return "early_release";
     case StickingBranchEnd::kMaxPoints:
       return "max_points";
     case StickingBranchEnd::kCorrectorFailed:
@@ -218,7 +223,44 @@ double TestFunction(const StickingOrbit& orbit, StickingEvent type) {
 std::optional<StickingEvent> Violation(const StickingOrbit& orbit) {
   if (!(orbit.contact_margin > 0)) return StickingEvent::kNoSticking;
   if (!(orbit.clearance > 0)) return StickingEvent::kNewImpact;
+  if (!(orbit.hold_margin > 0)) return StickingEvent::kEarlyRelease;
   return std::nullopt;
+}
+
+/// The ending monitors of an orbit, in StickingEvent order.
+std::array<double, 3> Monitors(const StickingOrbit& orbit) {
+  return {orbit.contact_margin, orbit.clearance, orbit.hold_margin};
+}
+
+/// The monitor that linear extrapolation from the last two points drives
+/// to 0 first, within `reach` in arclength; none if none does.
+std::optional<StickingEvent> NearestZero(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
+                                         const Eigen::VectorXd& b, const StickingOrbit& orbit_b,
+                                         double reach) {
+  const double step = (b - a).norm();
+  const std::array<double, 3> before = Monitors(orbit_a), after = Monitors(orbit_b);
+  std::optional<StickingEvent> nearest;
+  double best = reach;
+  for (int i = 0; i < 3; ++i) {
+    const double fall = (before[i] - after[i]) / step;  // per unit arclength
+    if (!std::isfinite(after[i]) || !(fall > 0)) continue;
+    if (const double distance = after[i] / fall; distance < best) {
+      best = distance;
+      nearest = static_cast<StickingEvent>(i);
+    }
+  }
+  return nearest;
+}
+
+StickingBranchEnd EndOf(StickingEvent event) {
+  switch (event) {
+    case StickingEvent::kNoSticking:
+      return StickingBranchEnd::kNoSticking;
+    case StickingEvent::kNewImpact:
+      return StickingBranchEnd::kNewImpact;
+    default:
+      return StickingBranchEnd::kEarlyRelease;
+  }
 }
 
 /// Follows one branch; the state of the march between calls of Step().
@@ -238,11 +280,15 @@ class StickingMarch {
                           const Eigen::VectorXd& b, const StickingOrbit& orbit_b);
   void End(StickingBranchEnd end, std::string message);
 
+  /// How far (arclength) an extrapolated monitor zero may lie from the
+  /// last point for the end to be called that event.
+  static constexpr double kExtrapolationReach = 1e-3;
+
   const StickingCurve& curve_;
   const StickingBranchOptions& options_;
   StickingBranch& branch_;
-  Eigen::VectorXd x_, tangent_;
-  StickingOrbit orbit_;
+  Eigen::VectorXd x_, tangent_, previous_;
+  StickingOrbit orbit_, previous_orbit_;
 };
 
 std::optional<Eigen::VectorXd> StickingMarch::Try(double step,
@@ -315,11 +361,12 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
       }
     }
     if (step < options_.min_step) {
+      if (!blocked && previous_.size()) {
+        blocked = NearestZero(previous_, previous_orbit_, x_, orbit_, kExtrapolationReach);
+      }
       if (blocked) {
         branch_.special_points.push_back({*blocked, branch_.points.back()});
-        return End(*blocked == StickingEvent::kNoSticking ? StickingBranchEnd::kNoSticking
-                                                          : StickingBranchEnd::kNewImpact,
-                   branch_.special_points.back().Describe(options_.parameter));
+        return End(EndOf(*blocked), branch_.special_points.back().Describe(options_.parameter));
       }
       return End(StickingBranchEnd::kCorrectorFailed,
                  fmt::format("no convergence even with step {}", step));
@@ -344,6 +391,8 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
       step *= 0.5;
       continue;
     }
+    previous_ = x_;
+    previous_orbit_ = orbit_;
     x_ = *next;
     tangent_ = *t;
     orbit_ = point->orbit;

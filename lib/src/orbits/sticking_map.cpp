@@ -78,6 +78,9 @@ class StickingMap::Cycle {
   /// xs − the highest interior maximum of x_c on the flight [begin, end]
   /// (the zeros of v_c where it falls), infinity if there is none.
   double FlightClearance(double t0, const Eigen::VectorXd& z0, double begin, double end) const;
+  /// The least interior minimum of Fs on (begin, end), from w = −Fs: its
+  /// maxima are the zeros of w' where it falls; infinity if there is none.
+  double HoldMargin(const Signal& release, double begin, double end) const;
   bool ChatterEndsAt(double te, double speed, double previous, double* t_star);
   StickingMapStatus StickAndRelease(double te, double t_star, StickingCycle* cycle);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
@@ -211,6 +214,15 @@ double StickingMap::Cycle::FlightClearance(double t0, const Eigen::VectorXd& z0,
   return clearance;
 }
 
+double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, double end) const {
+  const Signal slope = release.Derivative();
+  double margin = std::numeric_limits<double>::infinity();
+  for (const double t : SignChanges(slope, begin, end, events_)) {
+    if (slope.Derivative().Value(t) < 0) margin = std::min(margin, -release.Value(t));
+  }
+  return margin;
+}
+
 /// The simulator's rule (hybrid/simulator.cpp, HybridRun::ApplyImpact and
 /// AccumulationTime), applied after the reset: a rebound at zero speed
 /// lands at once; otherwise the threshold rule, or Budd & Dux's prediction
@@ -250,6 +262,7 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
   const std::optional<double> tr = FirstUpcrossing(
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
   if (!tr) return StickingMapStatus::kNoRelease;
+  if (with_contacts_) cycle->hold_margin = HoldMargin(release, t_star, *tr);
   flow.State(te, z0, *tr, &x1, &v1);
   if (with_jacobian_) {
     double value, slope;

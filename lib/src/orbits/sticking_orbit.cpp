@@ -75,9 +75,11 @@ StickingOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
   orbit.cycles = image.cycles;
   orbit.contact_margin = std::numeric_limits<double>::infinity();
   orbit.clearance = std::numeric_limits<double>::infinity();
+  orbit.hold_margin = std::numeric_limits<double>::infinity();
   for (const StickingCycle& cycle : image.cycles) {
     orbit.contact_margin = std::min(orbit.contact_margin, cycle.contact_force);
     orbit.clearance = std::min(orbit.clearance, cycle.clearance);
+    orbit.hold_margin = std::min(orbit.hold_margin, cycle.hold_margin);
     orbit.stick_phases.push_back(system.Phase(cycle.accumulation));
     orbit.release_phases.push_back(system.Phase(cycle.next_release));
     orbit.stuck_durations.push_back(cycle.next_release - cycle.accumulation);

@@ -18,8 +18,14 @@
 ///     Fs(t*) is then small but not 0;
 ///   - a new impact: a free flight's interior maximum of x_c reaches the stop
 ///     (beyond, the orbit would pass through it);
-/// both approached from the branch side by halving the step until it falls
-/// below min_step: the last point is the located end, its monitor ~0.
+///   - an early release: an interior minimum of Fs in a stuck phase reaches
+///     0 (beyond, the mass leaves the stop there and the orbit has one more
+///     sticking phase);
+/// each approached from the branch side by halving the step until it falls
+/// below min_step: the last point is the located end. Where no trial point
+/// showed which (the map only jumps there), the end is the monitor whose
+/// linear extrapolation from the last two points reaches 0 first, within
+/// 1e-3 in arclength.
 /// Fold and period doubling of the release map (a section multiplier
 /// through +1 or −1; test functions Π(λ_i − 1), Π(λ_i + 1)) are located by
 /// bisection in arclength and reported; the branch goes on through them.
@@ -57,11 +63,12 @@ struct StickingBranchOptions {
 enum class StickingEvent {
   kNoSticking,      ///< Fs(t*) = 0: the chatter stops ending in sticking (ends the branch)
   kNewImpact,       ///< a free flight grazes the stop (ends the branch)
+  kEarlyRelease,    ///< Fs touches 0 inside a stuck phase (ends the branch)
   kFold,            ///< a section multiplier through +1
   kPeriodDoubling,  ///< a section multiplier through −1
 };
 
-/// "no_sticking", "new_impact", "fold", "period_doubling".
+/// "no_sticking", "new_impact", "early_release", "fold", "period_doubling".
 std::string ToString(StickingEvent event);
 
 struct StickingBranchPoint {
@@ -80,11 +87,13 @@ enum class StickingBranchEnd {
   kParameterBound,   ///< reached lower or upper
   kNoSticking,       ///< ended where the chatter stops ending in sticking
   kNewImpact,        ///< ended where a free flight grazes the stop
+  kEarlyRelease,     ///< ended where Fs touches 0 inside a stuck phase
   kMaxPoints,        ///< max_points reached
   kCorrectorFailed,  ///< no convergence even with the smallest step, no monitor near 0
 };
 
-/// "parameter_bound", "no_sticking", "new_impact", "max_points", "corrector_failed".
+/// "parameter_bound", "no_sticking", "new_impact", "early_release", "max_points",
+/// "corrector_failed".
 std::string ToString(StickingBranchEnd end);
 
 struct StickingBranch {

@@ -89,6 +89,11 @@ struct StickingCycle {
   /// grazing, a new impact); infinity when no flight has an interior
   /// maximum. Measured only when Apply is asked for contacts.
   double clearance = std::numeric_limits<double>::infinity();
+  /// The least interior minimum of Fs during the stuck phase (t*, release):
+  /// > 0 while the stop holds the mass throughout (0: Fs touches 0 before
+  /// the release, an early release); infinity when Fs has no interior
+  /// minimum. Measured only when Apply is asked for contacts.
+  double hold_margin = std::numeric_limits<double>::infinity();
 };
 
 /// The result of P_R^k(s).
@@ -108,9 +113,9 @@ class StickingMap {
   StickingMap(std::shared_ptr<const HybridSystem> hybrid, const StickingMapOptions& options = {});
 
   /// P_R^k(s) and, if `with_jacobian`, its analytic Jacobian; with
-  /// `with_contacts` also each cycle's clearance (an event search per
-  /// flight). Throws InvalidInput if s has the wrong size or a non-finite
-  /// entry, or k < 1.
+  /// `with_contacts` also each cycle's clearance and hold margin (an
+  /// event search per flight and per stuck phase). Throws InvalidInput if s has the wrong size or a
+  /// non-finite entry, or k < 1.
   StickingMapResult Apply(const Eigen::VectorXd& s, int k, bool with_jacobian,
                           bool with_contacts = false) const;
 

@@ -56,6 +56,9 @@ struct StickingOrbit {
   /// impact), as StickingCycle defines them.
   double contact_margin = 0.0;
   double clearance = 0.0;
+  /// The least hold margin of its stuck phases (0: Fs touches 0 before
+  /// the release, an early release), as StickingCycle defines it.
+  double hold_margin = 0.0;
 };
 
 /// The sticking orbit through the fixed point s of P_R^k: cycles, phases,
