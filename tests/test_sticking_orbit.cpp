@@ -273,7 +273,8 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   for (const StickingBranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
 }
 
-TEST_CASE("sticking branch in xs ends at an early release, recomputed there", "[sticking][continuation]") {
+TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
+          "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
   const StickingOrbit start = RefinedOrbit(system);
   StickingBranchOptions options;
