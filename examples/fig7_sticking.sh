@@ -4,7 +4,8 @@
 # 0.6 in 501 values (ΔΩ = 0.001), 500 discarded and 100 recorded forcing
 # periods at each, each value from the previous one's final state. Panel (b)
 # of the PNG is Fig. 7; panel (a) gives the max - min of x2 beside it.
-# Prints the ranges of Ω over which each P(p,q) is found.
+# Prints the ranges of Ω over which each P(p,q) is found. Then the same
+# range by branches, drawn over the sweep: fig7_branches.png.
 #
 #   examples/fig7_sticking.sh [impactkit binary] [figure folder] [data folder]
 #
@@ -25,3 +26,48 @@ awk -F, 'NR > 2 {
   if (label != last) { if (NR > 3) printf "    %s - %s: %s\n", first, prev, last; first = $1; last = label }
   prev = $1 }
   END { printf "    %s - %s: %s\n", first, prev, last }' "$data/fig7-summary.csv"
+
+# The same range covered by branches (docs/continuation.md, "Sticking
+# branches"): the sticking family P(inf,1) from Ω = 0.1 to where its chatter
+# stops ending in sticking (its first, fastest impact), and above it the
+# chatter orbits P(n,1), each continued from the steady motion at a few Ω
+# values with --follow-grazing (one impact more or fewer at each grazing),
+# drawn over the brute-force impact speeds: fig7_branches.png.
+"$impactkit" continue --from 0.1 --to 0.6 --out "$data/fig7-sticking-branch.csv" |
+  grep -E '^(branch|special|end):' | sed 's/^/    /'
+branches=()
+for start in 0.307 0.308 0.309 0.31 0.316 0.32 0.33 0.35 0.4 0.45 0.5 0.55; do
+  if "$impactkit" continue --from "$start" --to 0.6 --follow-grazing \
+    --out "$data/fig7-branch-$start.csv" >"$data/fig7-branch-$start.txt"; then
+    grep -E '^branch' "$data/fig7-branch-$start.txt" | sed 's/^/    /'
+    branches+=("$data"/fig7-branch-"$start"*.csv)
+  else
+    echo "    no branch from Ω = $start"
+  fi
+done
+# One gnuplot term per impact-speed column v1, v2, ... of each branch file.
+terms="'$data/fig7-impacts.csv' using 1:4 with points pt 7 ps 0.25 lc rgb '#555555' title 'simulation (sweep)'"
+terms+=", '$data/fig7-sticking-branch.csv' using 1:(\$7 > 0 ? \$9 : 1/0) with lines lw 2"
+terms+=" lc rgb '#d62728' title 'sticking P(inf,1): first impact'"
+first=1
+for file in "${branches[@]}"; do
+  header=$(sed -n 2p "$file" | tr ',' '\n')
+  while read -r column name; do
+    [[ $name =~ ^v[0-9]+$ ]] || continue
+    title=$([[ $first == 1 ]] && echo "P(n,1) branches (impact map)" || echo "")
+    terms+=", '$file' using 1:$column with lines lw 1.5 lc rgb '#1f77b4' title '$title'"
+    first=0
+  done < <(nl -w1 -s' ' <<<"$header")
+done
+gnuplot <<GNUPLOT
+set terminal pngcairo size 1100,700
+set output '$figures/fig7_branches.png'
+set datafile separator ','
+set key top right
+set xlabel 'Ω'
+set ylabel 'impact velocity v2'
+set xrange [0.1:0.6]
+set yrange [0:*]
+plot $terms
+GNUPLOT
+echo "    wrote $figures/fig7_branches.png"

@@ -20,7 +20,9 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
+#include "continue/sticking.hpp"
 #include "impactkit/continuation/diagram.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
@@ -31,6 +33,7 @@ namespace {
 struct ContinueRequest {
   SystemOptions system;
   OrbitSeedOptions seed;
+  StickingSeedOptions sticking;
   std::string parameter = "omega";
   std::optional<double> from, to, start;
   double step = 0.01, min_step = 1e-7, max_step = 0.02;
@@ -103,6 +106,34 @@ std::string Provenance(const ContinueRequest& request, const System& system) {
                      ParameterList(system));
 }
 
+/// A sticking start: its family through the library's sticking branch
+/// (continue/sticking.hpp); the options the impact branches alone have are
+/// refused.
+void RunSticking(const ContinueRequest& request, const System& system, const StickingOrbit& start,
+                 OutputSet& outputs, AtomicOutputFile* out, AtomicOutputFile* json) {
+  if (request.start || request.switch_period_doubling || request.follow_grazing ||
+      !request.plot.empty()) {
+    throw InvalidInput(
+        "--start, --switch-pd, --follow-grazing and --plot are for impacting branches, not "
+        "sticking ones");
+  }
+  StickingBranchOptions options;
+  options.parameter = request.parameter;
+  options.lower = std::min(*request.from, *request.to);
+  options.upper = std::max(*request.from, *request.to);
+  options.increasing = *request.to > *request.from;
+  options.initial_step = request.step;
+  options.min_step = request.min_step;
+  options.max_step = request.max_step;
+  options.max_points = request.max_points;
+  fmt::print("system:     {}\n", DescribeSystem(system));
+  RunStickingContinue(system, start, options, outputs, out, json, Provenance(request, system));
+  outputs.Commit();
+  for (const std::string& path : {request.out, request.json}) {
+    if (!path.empty()) fmt::print("wrote:      {}\n", path);
+  }
+}
+
 void RunContinue(const ContinueRequest& request) {
   const System system = StartSystem(request);
   if (!request.plot.empty()) RequireGnuplot();
@@ -112,6 +143,9 @@ void RunContinue(const ContinueRequest& request) {
   AtomicOutputFile* out = AddIfAsked(outputs, request.out);
   AtomicOutputFile* json = AddIfAsked(outputs, request.json);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
+  if (const auto seed = ChooseStickingSeed(system, request.seed, request.sticking)) {
+    return RunSticking(request, system, RefineStickingOrbit(system, *seed), outputs, out, json);
+  }
   OrbitOptions orbit_options;
   const PeriodicOrbit start = FindStartOrbit(system, request.seed, &orbit_options);
   const ContinuationOptions options = MakeOptions(request, orbit_options);
@@ -216,6 +250,7 @@ void AddContinueCommand(CLI::App& app) {
                  "where one is found")
       ->group(group);
   AddOrbitSeedOptions(*command, request->seed, "Start orbit");
+  AddStickingSeedOptions(*command, request->sticking, "Start orbit");
   command
       ->add_option("--out", request->out,
                    "CSV, one row per point: parameter, arclength, phase1.., v1.., range_xN, "

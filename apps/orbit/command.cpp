@@ -1,5 +1,6 @@
 /// `impactkit orbit`: a periodic orbit P(p, q) as a fixed point of the impact
-/// map, with its multipliers (impactkit/orbit.hpp does the work).
+/// map, with its multipliers (impactkit/orbit.hpp does the work), or a
+/// sticking orbit P(inf, q) of the release map (orbit/sticking.hpp).
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "orbit/sticking.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -23,6 +25,8 @@ namespace {
 struct OrbitRequest {
   SystemOptions system;
   OrbitSeedOptions seed;
+  StickingSeedOptions sticking;
+  double min_speed = 1e-3;
   std::string json;
   bool check_jacobian = false;
 };
@@ -48,6 +52,7 @@ void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary&
 nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
                          const OrbitSummary& summary) {
   nlohmann::json j;
+  j["kind"] = "impact";
   j["p"] = orbit.p;
   j["q"] = orbit.q;
   j["omega"] = orbit.omega;
@@ -70,6 +75,10 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
 
 void RunOrbit(const OrbitRequest& request) {
   const System system = ResolveSystem(request.system);
+  if (const auto seed = ChooseStickingSeed(system, request.seed, request.sticking)) {
+    RunStickingOrbit(system, *seed, request.min_speed, request.check_jacobian, request.json);
+    return;
+  }
   std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
   if (!request.json.empty()) json.emplace(request.json);
   OrbitOptions options;
@@ -106,14 +115,26 @@ void AddOrbitCommand(CLI::App& app) {
       "Find a periodic orbit P(p,q) (p impacts in q forcing periods) as a fixed point of the "
       "impact map by Newton's method (KINSOL; Levenberg-Marquardt through Ceres as fallback), "
       "and its multipliers and stability. Without --p/--q the system is simulated to steady "
-      "state and the motion found there is refined.");
+      "state and the motion found there is refined: a sticking motion into a sticking orbit "
+      "P(inf,q), a fixed point of the map from one release of the contact mass to the next.");
   AddSystemOptions(*command, request->system);
   AddOrbitSeedOptions(*command, request->seed, "Orbit");
+  AddStickingSeedOptions(*command, request->sticking, "Orbit");
+  command
+      ->add_option("--min-speed", request->min_speed,
+                   "Sticking orbits: list the impacts before each accumulation faster than this")
+      ->type_name("V")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str()
+      ->group("Output");
   command
       ->add_option("--json", request->json,
-                   "Write the orbit as JSON: p, q, omega, impacts [{t, phase, v}], multipliers "
-                   "[[re, im]], stable, residual, iterations, eta, system, jacobian (the method), "
-                   "jacobian_check (with --check-jacobian)")
+                   "Write the orbit as JSON: kind (impact), p, q, omega, impacts [{t, phase, v}], "
+                   "multipliers [[re, im]], stable, residual, iterations, eta, system, jacobian "
+                   "(the method), jacobian_check (with --check-jacobian); for a sticking orbit "
+                   "kind (sticking), q, releases, stick_phases, release_phases, "
+                   "stuck_durations, chatter [{impacts, accumulation, contact_force, "
+                   "fast_impacts [{t, phase, v}]}], multipliers, stable, state")
       ->type_name("FILE.json")
       ->check(OutputPath())
       ->group("Output");

@@ -1,0 +1,129 @@
+#include "orbit/sticking.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <vector>
+
+#include "common/system_options.hpp"
+#include "impactkit/io/output_file.hpp"
+#include "impactkit/io/system_file.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
+
+namespace impactkit::cli {
+namespace {
+
+std::vector<double> ToVector(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+/// The impacts of a cycle faster than the bound (the chatter's tail of ever
+/// slower impacts left out).
+std::vector<StickingImpact> FastImpacts(const StickingCycle& cycle, double min_speed) {
+  std::vector<StickingImpact> fast;
+  for (const StickingImpact& i : cycle.impacts) {
+    if (i.velocity > min_speed) fast.push_back(i);
+  }
+  return fast;
+}
+
+void Print(const System& system, const StickingOrbit& orbit, const StickingOrbitSummary& summary,
+           double min_speed) {
+  fmt::print("system:      {}\n", DescribeSystem(system));
+  fmt::print("orbit:       sticking P(inf,{}) at omega = {}, {} sticking phase{}, {}\n", orbit.q,
+             orbit.omega, orbit.releases, orbit.releases == 1 ? "" : "s",
+             orbit.stable ? "stable" : "unstable");
+  fmt::print(
+      "sticking:    stick phase          release phase        stuck duration  "
+      "(t mod T, T = {:.6g})\n",
+      system.ForcingPeriod());
+  for (std::size_t i = 0; i < orbit.cycles.size(); ++i) {
+    fmt::print("             {:<20.12f} {:<20.12f} {:.12f}\n", orbit.stick_phases[i],
+               orbit.release_phases[i], orbit.stuck_durations[i]);
+  }
+  for (const StickingCycle& cycle : orbit.cycles) {
+    const std::vector<StickingImpact> fast = FastImpacts(cycle, min_speed);
+    fmt::print("impacts:     {} before the accumulation at phase {:.12f}, {} faster than {}:\n",
+               cycle.impacts.size(), system.Phase(cycle.accumulation), fast.size(), min_speed);
+    for (const StickingImpact& i : fast) {
+      fmt::print("             phase {:<22.12f} velocity {:.12f}\n", system.Phase(i.t), i.velocity);
+    }
+  }
+  fmt::print("multipliers: on the release section (sticking collapses x{0}, v{0})\n",
+             system.contact_dof + 1);
+  for (const std::complex<double>& m : orbit.multipliers) {
+    fmt::print("             {:<+20.12e} {:<+20.12e} {:.12f}\n", m.real(), m.imag(), std::abs(m));
+  }
+  fmt::print("solve:       {}\n", summary.BriefReport());
+}
+
+nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
+                         const StickingOrbitSummary& summary, double min_speed) {
+  nlohmann::json j;
+  j["kind"] = "sticking";
+  j["q"] = orbit.q;
+  j["releases"] = orbit.releases;
+  j["omega"] = orbit.omega;
+  j["stable"] = orbit.stable;
+  j["residual"] = orbit.residual;
+  j["iterations"] = summary.iterations;
+  j["stick_phases"] = orbit.stick_phases;
+  j["release_phases"] = orbit.release_phases;
+  j["stuck_durations"] = orbit.stuck_durations;
+  j["min_speed"] = min_speed;
+  j["chatter"] = nlohmann::json::array();
+  for (const StickingCycle& cycle : orbit.cycles) {
+    nlohmann::json impacts = nlohmann::json::array();
+    for (const StickingImpact& i : FastImpacts(cycle, min_speed)) {
+      impacts.push_back({{"t", i.t}, {"phase", system.Phase(i.t)}, {"v", i.velocity}});
+    }
+    j["chatter"].push_back({{"impacts", cycle.impacts.size()},
+                            {"accumulation", cycle.accumulation},
+                            {"contact_force", cycle.contact_force},
+                            {"fast_impacts", impacts}});
+  }
+  j["multipliers"] = nlohmann::json::array();
+  for (const std::complex<double>& m : orbit.multipliers) {
+    j["multipliers"].push_back({m.real(), m.imag()});
+  }
+  j["state"] = ToVector(orbit.state);
+  j["system"] = nlohmann::json::parse(SystemToJson(system));
+  return j;
+}
+
+}  // namespace
+
+void RunStickingOrbit(const System& system, const StickingSeed& seed, double min_speed,
+                      bool check_jacobian, const std::string& json) {
+  std::optional<AtomicOutputFile> file;  // created first: a bad path fails before the work
+  if (!json.empty()) file.emplace(json);
+  StickingOrbitSummary summary;
+  const StickingOrbit orbit = RefineStickingOrbit(system, seed, &summary);
+  Print(system, orbit, summary, min_speed);
+  nlohmann::json j = OrbitJson(system, orbit, summary, min_speed);
+  if (check_jacobian) {
+    const Eigen::MatrixXd fd =
+        StickingMap(system).FiniteDifferenceJacobian(orbit.state, orbit.releases);
+    if (fd.size() == 0) {
+      throw std::runtime_error(
+          "the finite-difference Jacobian cannot be formed here: a perturbed map does not stick");
+    }
+    const double difference = (orbit.jacobian - fd).cwiseAbs().maxCoeff();
+    const double relative = difference / std::max(1.0, orbit.jacobian.cwiseAbs().maxCoeff());
+    fmt::print(
+        "check:       analytic vs finite-difference Jacobian: largest difference {:.3e} "
+        "({:.3e} relative to its largest entry)\n",
+        difference, relative);
+    j["jacobian_check"] = {{"max_difference", difference}, {"max_relative_difference", relative}};
+  }
+  if (file) {
+    file->Write(j.dump(2) + "\n");
+    file->Commit();
+    fmt::print("wrote:       {}\n", json);
+  }
+}
+
+}  // namespace impactkit::cli

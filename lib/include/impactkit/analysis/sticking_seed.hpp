@@ -1,0 +1,30 @@
+#pragma once
+/// \file sticking_seed.hpp
+/// A starting point for FindStickingOrbit (orbits/sticking_orbit.hpp) from a
+/// steady simulation: the last release of the recorded window, with the
+/// number of releases and forcing periods after which the releases repeat.
+
+#include <Eigen/Dense>
+#include <optional>
+
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/system.hpp"
+
+namespace impactkit {
+
+struct StickingSeed {
+  int releases = 0;       ///< k: releases per repetition
+  int q = 0;              ///< forcing periods per repetition
+  Eigen::VectorXd state;  ///< the last release of the window, a section state of sticking_map.hpp
+};
+
+/// Simulates `transient` periods from rest, then 2 max_q + 1 more, and
+/// returns the last release with the least (k, q) for which the release
+/// k earlier is the same state q periods before (to 1e-6 relative); nothing
+/// if the window has no release or its releases do not repeat. Throws
+/// InvalidInput for transient < 0, max_q < 1 or invalid options.
+std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int transient = 500,
+                                                       int max_q = 32,
+                                                       const SimulationOptions& options = {});
+
+}  // namespace impactkit

@@ -1,0 +1,149 @@
+#pragma once
+/// \file sticking_map.hpp
+/// The release map P_R of sticking motions: from one release of the contact
+/// mass c to the next. Its Poincaré section is the release (x_c = xs,
+/// v_c = 0, the contact force Fs falling through 0), with coordinates
+///
+///     s = (x_j for j != c, v_j for j != c, t)            (size 2N − 1)
+///
+/// t the absolute release time. One application follows, as the simulator
+/// does (hybrid/simulator.hpp):
+///
+///     free flight from (s, x_c = xs, v_c = 0), impacts one by one
+///     (v_c <- −r v_c), until the simulator's chatter rule ends the sequence
+///     at an impact te (the accumulation point t* predicted from it);
+///     the other masses follow the stuck subsystem from te (through the
+///     chatter tail and the stuck phase alike); sticking needs Fs(t*) > 0;
+///     the next release: Fs falling through 0 after t*.
+///
+/// The chatter tail and the stuck phase run on the same stuck flow, so the
+/// next release state depends on (te, y(te+)) only, not on t*: the
+/// accumulation time enters the motion's description (the stick phase, the
+/// stuck duration) but not the map.
+///
+/// Analytic Jacobian: with the time carried as a coordinate, every piece is
+/// a flight to an event w(t, y) = 0 (w = l·y + α cos Ωt + β): with
+/// G = e^{S(t' − t0)} (dy0 − f(t0, y0) dt0) the state at fixed t',
+/// dt' = −l G / ẇ(t') and dy(t') = G + f(t', y(t')) dt' (the saltation at
+/// the event). Impacts apply the reset's Jacobian; at te the contact
+/// coordinates are dropped (chatter collapses them); the last event is the
+/// release, w = −Fs on the stuck flow. The image of P_R lies on the release
+/// surface Fs = 0, a hypersurface of the section coordinates, so D P_R has
+/// one exact zero multiplier besides those of the 2N − 2 dimensional
+/// release section (sticking_orbit.hpp).
+
+#include <Eigen/Dense>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/system.hpp"
+
+namespace impactkit {
+
+/// What happened when the release map was applied.
+enum class StickingMapStatus {
+  kOk,           ///< every release followed: the result is valid
+  kNotReleased,  ///< the state is not a release: the contact force still presses the mass into the
+                 ///< stop
+  kNoImpact,     ///< no impact within max_free_periods of a release
+  kNoChatter,    ///< impacts for max_free_periods (or max_impacts of them) without sticking
+  kNoSticking,   ///< the chatter accumulated with Fs <= 0: the mass is not held
+  kNoRelease,    ///< held for max_stuck_periods without a release
+};
+
+std::string ToString(StickingMapStatus status);
+
+struct StickingMapOptions {
+  /// The chatter rule (method, span or threshold) and the event tolerance:
+  /// the map ends chatter exactly as the simulator with these options does.
+  SimulationOptions simulation;
+  /// Impacting for this many forcing periods after a release without a
+  /// chatter sequence accumulating: the motion does not stick (kNoChatter).
+  double max_free_periods = 64.0;
+  /// A stuck phase longer than this many forcing periods counts as endless.
+  double max_stuck_periods = 64.0;
+  /// Impacts between two releases before the map gives up (kNoChatter).
+  int max_impacts = 100000;
+  bool IsValid(std::string* error) const;
+};
+
+/// One impact between two releases.
+struct StickingImpact {
+  double t = 0.0;
+  double velocity = 0.0;  ///< v_c(t−) > 0
+};
+
+/// One application of the map: from a release to the next.
+struct StickingCycle {
+  double release = 0.0;                 ///< the release it starts from
+  std::vector<StickingImpact> impacts;  ///< simulated impacts, the last one te
+  double accumulation = 0.0;            ///< t*: the chatter's end, sticking begins
+  double contact_force = 0.0;           ///< Fs(t*) > 0
+  double next_release = 0.0;            ///< the release it ends at
+  /// xs − the highest interior maximum of x_c in the cycle's free flights:
+  /// > 0 while no flight comes back to the stop before its impact (0 at a
+  /// grazing, a new impact); infinity when no flight has an interior
+  /// maximum. Measured only when Apply is asked for contacts.
+  double clearance = std::numeric_limits<double>::infinity();
+  /// The least interior minimum of Fs during the stuck phase (t*, release):
+  /// > 0 while the stop holds the mass throughout (0: Fs touches 0 before
+  /// the release, an early release); infinity when Fs has no interior
+  /// minimum. Measured only when Apply is asked for contacts.
+  double hold_margin = std::numeric_limits<double>::infinity();
+};
+
+/// The result of P_R^k(s).
+struct StickingMapResult {
+  StickingMapStatus status = StickingMapStatus::kOk;
+  int cycles_done = 0;                ///< releases followed before the status
+  Eigen::VectorXd state;              ///< P_R^k(s) (valid when kOk)
+  Eigen::MatrixXd jacobian;           ///< D(P_R^k)(s), when asked and kOk
+  std::vector<StickingCycle> cycles;  ///< what each application did
+};
+
+class StickingMap {
+ public:
+  /// Throws InvalidInput for an invalid system or options.
+  explicit StickingMap(const System& system, const StickingMapOptions& options = {});
+  /// On a hybrid system already decomposed. Throws InvalidInput for invalid options.
+  StickingMap(std::shared_ptr<const HybridSystem> hybrid, const StickingMapOptions& options = {});
+
+  /// P_R^k(s) and, if `with_jacobian`, its analytic Jacobian; with
+  /// `with_contacts` also each cycle's clearance and hold margin (an
+  /// event search per flight and per stuck phase). Throws InvalidInput if s has the wrong size or a
+  /// non-finite entry, or k < 1.
+  StickingMapResult Apply(const Eigen::VectorXd& s, int k, bool with_jacobian,
+                          bool with_contacts = false) const;
+
+  /// D P_R^k by central differences, steps relative_step × max(1, |s_j|)
+  /// (the forcing period for t). Empty if a perturbed map fails.
+  Eigen::MatrixXd FiniteDifferenceJacobian(const Eigen::VectorXd& s, int k,
+                                           double relative_step = 1e-6) const;
+
+  /// The hybrid state (free, x_c = xs, v_c = 0) of a section state.
+  HybridState ToState(const Eigen::VectorXd& s) const;
+  /// Fs at the section state: 0 on the release surface.
+  double ContactForce(const Eigen::VectorXd& s) const;
+  /// ∂Fs/∂s, the normal of the release surface (size 2N − 1).
+  Eigen::RowVectorXd ContactForceGradient(const Eigen::VectorXd& s) const;
+
+  /// Index of t in s (2N − 2) and the size of s (2N − 1).
+  int TimeIndex() const { return 2 * (GetSystem().Dof() - 1); }
+  int Size() const { return 2 * GetSystem().Dof() - 1; }
+  const System& GetSystem() const { return hybrid_->GetSystem(); }
+
+  /// Throws InvalidInput naming the problem if s is no section state.
+  void ValidateSection(const Eigen::VectorXd& s) const;
+
+ private:
+  class Cycle;  ///< one application, with its Jacobian (sticking_map.cpp)
+
+  std::shared_ptr<const HybridSystem> hybrid_;
+  StickingMapOptions options_;
+};
+
+}  // namespace impactkit

@@ -1,0 +1,438 @@
+#include "impactkit/continuation/sticking_branch.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "impactkit/model/parameters.hpp"
+
+namespace impactkit {
+
+std::string ToString(StickingEvent event) {
+  switch (event) {
+    case StickingEvent::kNoSticking:
+      return "no_sticking";
+    case StickingEvent::kNewImpact:
+      return "new_impact";
+    case StickingEvent::kEarlyRelease:
+      return "early_release";
+    case StickingEvent::kFold:
+      return "fold";
+    case StickingEvent::kPeriodDoubling:
+      return "period_doubling";
+  }
+  return "unknown";
+}
+
+std::string ToString(StickingBranchEnd end) {
+  switch (end) {
+    case StickingBranchEnd::kParameterBound:
+      return "parameter_bound";
+    case StickingBranchEnd::kNoSticking:
+      return "no_sticking";
+    case StickingBranchEnd::kNewImpact:
+      return "new_impact";
+    case StickingBranchEnd::kEarlyRelease:
+      return "early_release";
+    case StickingBranchEnd::kMaxPoints:
+      return "max_points";
+    case StickingBranchEnd::kCorrectorFailed:
+      return "corrector_failed";
+  }
+  return "unknown";
+}
+
+std::string StickingSpecialPoint::Describe(const std::string& parameter_name) const {
+  const StickingOrbit& o = point.orbit;
+  return fmt::format("{} at {} = {:.10g} (stick phase {:.9g}, release phase {:.9g}, Fs(t*) {:.3g})",
+                     ToString(type), parameter_name, point.parameter, o.stick_phases.front(),
+                     o.release_phases.front(), o.contact_margin);
+}
+
+bool StickingBranchOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper)) {
+    return fail(
+        fmt::format("the bounds must be finite with lower < upper, got [{}, {}]", lower, upper));
+  }
+  if (!(min_step > 0 && min_step <= initial_step && initial_step <= max_step &&
+        std::isfinite(max_step))) {
+    return fail(
+        fmt::format("steps must satisfy 0 < min_step <= initial_step <= max_step, got {}, "
+                    "{}, {}",
+                    min_step, initial_step, max_step));
+  }
+  if (max_points < 1) return fail(fmt::format("max_points must be >= 1, got {}", max_points));
+  if (!(locate_tolerance > 0)) {
+    return fail(fmt::format("locate_tolerance must be > 0, got {}", locate_tolerance));
+  }
+  return orbit.IsValid(error);
+}
+
+namespace {
+
+/// The curve U(s, μ) = 0 of one sticking family as a function of X = (s, μ),
+/// with the bordered corrector and the tangent.
+class StickingCurve {
+ public:
+  StickingCurve(const System& base, const StickingBranchOptions& options)
+      : base_(base), options_(options), m_(2 * base.Dof() - 1) {
+    if (!FindParameter(base, options.parameter)) {
+      throw InvalidInput(fmt::format("the system has no parameter '{}'", options.parameter));
+    }
+  }
+
+  int Size() const { return m_ + 1; }
+  Eigen::VectorXd State(const Eigen::VectorXd& x) const { return x.head(m_); }
+  static double Mu(const Eigen::VectorXd& x) { return x(x.size() - 1); }
+
+  /// The release map at μ, or null where μ is not valid for the system.
+  /// The last few are kept: a Jacobian needs μ and μ ± h together.
+  const StickingMap* MapAt(double mu) const {
+    for (const auto& [at, map] : maps_) {
+      if (at == mu) return map.get();
+    }
+    std::unique_ptr<StickingMap> map;
+    try {
+      System system = base_;
+      SetParameter(system, options_.parameter, mu);
+      map = std::make_unique<StickingMap>(system, options_.orbit.map);
+    } catch (const InvalidInput&) {
+      return nullptr;
+    }
+    if (maps_.size() == 3) maps_.erase(maps_.begin());
+    maps_.emplace_back(mu, std::move(map));
+    return maps_.back().second.get();
+  }
+
+  bool Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u, Eigen::MatrixXd* u_s) const {
+    const StickingMap* map = MapAt(Mu(x));
+    if (!map || !x.allFinite()) return false;
+    const StickingMapResult image = map->Apply(State(x), options_.orbit.releases, u_s != nullptr);
+    // Past the family's end the chatter either accumulates where the stop
+    // no longer pushes, or (the acceleration towards the stop vanishing)
+    // no longer accumulates at all: both say it stops ending in sticking.
+    if (image.status == StickingMapStatus::kNoSticking ||
+        image.status == StickingMapStatus::kNoChatter) {
+      saw_no_sticking_ = true;
+    }
+    if (image.status != StickingMapStatus::kOk) return false;
+    *u = image.state - State(x);
+    (*u)(m_ - 1) -= options_.orbit.q * map->GetSystem().ForcingPeriod();
+    if (u_s) {
+      *u_s = image.jacobian;
+      u_s->diagonal().array() -= 1.0;
+    }
+    return u->allFinite();
+  }
+
+  /// [U_s U_μ], U_μ by central differences (Newton needs only an
+  /// approximate one; the map has no closed-form parameter derivative).
+  bool Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian) const {
+    Eigen::VectorXd u, plus, minus;
+    Eigen::MatrixXd u_s;
+    if (!Residual(x, &u, &u_s)) return false;
+    const double h = 1e-6 * std::max(1.0, std::abs(Mu(x)));
+    Eigen::VectorXd xp = x, xm = x;
+    xp(m_) += h;
+    xm(m_) -= h;
+    if (!Residual(xp, &plus, nullptr) || !Residual(xm, &minus, nullptr)) return false;
+    jacobian->resize(m_, m_ + 1);
+    *jacobian << u_s, (plus - minus) / (2 * h);
+    return true;
+  }
+
+  /// U(X) = 0 with c · X = value, from `guess`.
+  std::optional<Eigen::VectorXd> Correct(const Eigen::VectorXd& guess, const Eigen::VectorXd& c,
+                                         double value) const {
+    const impactkit::Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
+      Eigen::VectorXd u;
+      if (!Residual(x, &u, nullptr)) return false;
+      *f << u, c.dot(x) - value;
+      return f->allFinite();
+    };
+    const impactkit::Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
+      Eigen::MatrixXd top;
+      if (!Jacobian(x, &top)) return false;
+      *j << top, c.transpose();
+      return j->allFinite();
+    };
+    NewtonOptions newton = options_.orbit.newton;
+    newton.max_iterations = kCorrectorIterations;
+    Eigen::VectorXd x = guess;
+    const SolveSummary summary = SolveNewton(residual, jacobian, newton, &x);
+    if (summary.termination != Termination::kConverged) return std::nullopt;
+    return x;
+  }
+
+  /// The unit null vector of [U_s U_μ], oriented along `previous` (or
+  /// along ±μ by `increasing` when it is empty).
+  std::optional<Eigen::VectorXd> Tangent(const Eigen::VectorXd& x, const Eigen::VectorXd& previous,
+                                         bool increasing) const {
+    Eigen::MatrixXd jacobian;
+    if (!Jacobian(x, &jacobian)) return std::nullopt;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
+    Eigen::VectorXd t = svd.matrixV().col(m_);
+    const double sense = previous.size() ? t.dot(previous) : (increasing ? t(m_) : -t(m_));
+    if (sense < 0) t = -t;
+    return t;
+  }
+
+  std::optional<StickingBranchPoint> Describe(const Eigen::VectorXd& x) const {
+    const StickingMap* map = MapAt(Mu(x));
+    if (!map) return std::nullopt;
+    try {
+      return StickingBranchPoint{
+          Mu(x), DescribeStickingOrbit(*map, State(x), options_.orbit.releases, options_.orbit.q)};
+    } catch (const InvalidInput&) {
+      return std::nullopt;
+    }
+  }
+
+  /// Whether the map found chatter not ending in sticking since the last
+  /// call (at a trial point of the corrector, say), and forget it.
+  bool TakeNoSticking() const { return std::exchange(saw_no_sticking_, false); }
+
+ private:
+  static constexpr int kCorrectorIterations = 8;
+  System base_;
+  const StickingBranchOptions& options_;
+  int m_;
+  mutable std::vector<std::pair<double, std::unique_ptr<StickingMap>>> maps_;
+  mutable bool saw_no_sticking_ = false;
+};
+
+/// Π(λ_i − 1) and Π(λ_i + 1) over the section multipliers: real, and zero
+/// at a fold or a period doubling.
+double TestFunction(const StickingOrbit& orbit, StickingEvent type) {
+  const double shift = type == StickingEvent::kFold ? -1.0 : 1.0;
+  std::complex<double> product = 1.0;
+  for (const std::complex<double>& lambda : orbit.multipliers) product *= lambda + shift;
+  return product.real();
+}
+
+/// Why a point cannot be on the sticking family, if it cannot.
+std::optional<StickingEvent> Violation(const StickingOrbit& orbit) {
+  if (!(orbit.contact_margin > 0)) return StickingEvent::kNoSticking;
+  if (!(orbit.clearance > 0)) return StickingEvent::kNewImpact;
+  if (!(orbit.hold_margin > 0)) return StickingEvent::kEarlyRelease;
+  return std::nullopt;
+}
+
+/// The ending monitors of an orbit, in StickingEvent order.
+std::array<double, 3> Monitors(const StickingOrbit& orbit) {
+  return {orbit.contact_margin, orbit.clearance, orbit.hold_margin};
+}
+
+/// The monitor that linear extrapolation from the last two points drives
+/// to 0 first, within `reach` in arclength; none if none does.
+std::optional<StickingEvent> NearestZero(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
+                                         const Eigen::VectorXd& b, const StickingOrbit& orbit_b,
+                                         double reach) {
+  const double step = (b - a).norm();
+  const std::array<double, 3> before = Monitors(orbit_a), after = Monitors(orbit_b);
+  std::optional<StickingEvent> nearest;
+  double best = reach;
+  for (int i = 0; i < 3; ++i) {
+    const double fall = (before[i] - after[i]) / step;  // per unit arclength
+    if (!std::isfinite(after[i]) || !(fall > 0)) continue;
+    if (const double distance = after[i] / fall; distance < best) {
+      best = distance;
+      nearest = static_cast<StickingEvent>(i);
+    }
+  }
+  return nearest;
+}
+
+StickingBranchEnd EndOf(StickingEvent event) {
+  switch (event) {
+    case StickingEvent::kNoSticking:
+      return StickingBranchEnd::kNoSticking;
+    case StickingEvent::kNewImpact:
+      return StickingBranchEnd::kNewImpact;
+    default:
+      return StickingBranchEnd::kEarlyRelease;
+  }
+}
+
+/// Follows one branch; the state of the march between calls of Step().
+class StickingMarch {
+ public:
+  StickingMarch(const StickingCurve& curve, const StickingBranchOptions& options,
+                StickingBranch* branch)
+      : curve_(curve), options_(options), branch_(*branch) {}
+
+  void Run(const Eigen::VectorXd& start,
+           const std::function<void(const StickingBranchPoint&)>& progress);
+
+ private:
+  /// One step from x_ of length `step`; the new point, or why not.
+  std::optional<Eigen::VectorXd> Try(double step, std::optional<StickingEvent>* blocked);
+  void LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
+                          const Eigen::VectorXd& b, const StickingOrbit& orbit_b);
+  void End(StickingBranchEnd end, std::string message);
+
+  /// How far (arclength) an extrapolated monitor zero may lie from the
+  /// last point for the end to be called that event.
+  static constexpr double kExtrapolationReach = 1e-3;
+
+  const StickingCurve& curve_;
+  const StickingBranchOptions& options_;
+  StickingBranch& branch_;
+  Eigen::VectorXd x_, tangent_, previous_;
+  StickingOrbit orbit_, previous_orbit_;
+};
+
+std::optional<Eigen::VectorXd> StickingMarch::Try(double step,
+                                                  std::optional<StickingEvent>* blocked) {
+  const Eigen::VectorXd predicted = x_ + step * tangent_;
+  const double mu = StickingCurve::Mu(predicted);
+  const bool beyond = mu < options_.lower || mu > options_.upper;
+  std::optional<Eigen::VectorXd> corrected;
+  if (beyond) {
+    // The last point sits on the bound: μ fixed there, s corrected.
+    const Eigen::VectorXd e_mu = Eigen::VectorXd::Unit(curve_.Size(), curve_.Size() - 1);
+    corrected =
+        curve_.Correct(predicted, e_mu, mu < options_.lower ? options_.lower : options_.upper);
+  } else {
+    corrected = curve_.Correct(predicted, tangent_, tangent_.dot(x_) + step);
+  }
+  if (curve_.TakeNoSticking()) *blocked = StickingEvent::kNoSticking;
+  if (!corrected) return std::nullopt;
+  if ((*corrected - predicted).norm() > 0.5 * step && !beyond) return std::nullopt;
+  return corrected;
+}
+
+void StickingMarch::End(StickingBranchEnd end, std::string message) {
+  branch_.end = end;
+  branch_.end_message = std::move(message);
+}
+
+void StickingMarch::LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
+                                       const Eigen::VectorXd& b, const StickingOrbit& orbit_b) {
+  for (const StickingEvent type : {StickingEvent::kFold, StickingEvent::kPeriodDoubling}) {
+    double g_a = TestFunction(orbit_a, type);
+    if ((g_a > 0) == (TestFunction(orbit_b, type) > 0)) continue;
+    // Bisection along the chord, each trial point corrected onto the curve
+    // at its fraction of the chord.
+    Eigen::VectorXd low = a, high = b;
+    std::optional<StickingBranchPoint> found;
+    for (int i = 0; i < 100 && std::abs(StickingCurve::Mu(high) - StickingCurve::Mu(low)) >
+                                   options_.locate_tolerance;
+         ++i) {
+      const Eigen::VectorXd chord = high - low;
+      const std::optional<Eigen::VectorXd> mid =
+          curve_.Correct(low + 0.5 * chord, chord, chord.dot(low) + 0.5 * chord.squaredNorm());
+      if (!mid) break;
+      found = curve_.Describe(*mid);
+      if (!found) break;
+      const double g = TestFunction(found->orbit, type);
+      ((g > 0) == (g_a > 0) ? low : high) = *mid;
+    }
+    if (found) branch_.special_points.push_back({type, *found});
+  }
+}
+
+void StickingMarch::Run(const Eigen::VectorXd& start,
+                        const std::function<void(const StickingBranchPoint&)>& progress) {
+  x_ = start;
+  const std::optional<StickingBranchPoint> first = curve_.Describe(x_);
+  const std::optional<Eigen::VectorXd> tangent = curve_.Tangent(x_, {}, options_.increasing);
+  if (!first || !tangent) throw InvalidInput("the start is not a sticking orbit of the system");
+  orbit_ = first->orbit;
+  tangent_ = *tangent;
+  branch_.points.push_back(*first);
+  double step = options_.initial_step;
+  std::optional<StickingEvent> blocked;
+  while (static_cast<int>(branch_.points.size()) < options_.max_points) {
+    const double mu = StickingCurve::Mu(x_);
+    if (mu <= options_.lower || mu >= options_.upper) {
+      if (branch_.points.size() > 1) {
+        return End(StickingBranchEnd::kParameterBound,
+                   fmt::format("reached {} = {}", options_.parameter, mu));
+      }
+    }
+    if (step < options_.min_step) {
+      if (!blocked && previous_.size()) {
+        blocked = NearestZero(previous_, previous_orbit_, x_, orbit_, kExtrapolationReach);
+      }
+      if (blocked) {
+        branch_.special_points.push_back({*blocked, branch_.points.back()});
+        return End(EndOf(*blocked), branch_.special_points.back().Describe(options_.parameter));
+      }
+      return End(StickingBranchEnd::kCorrectorFailed,
+                 fmt::format("no convergence even with step {}", step));
+    }
+    const std::optional<Eigen::VectorXd> next = Try(step, &blocked);
+    const std::optional<StickingBranchPoint> point =
+        next ? curve_.Describe(*next) : std::optional<StickingBranchPoint>();
+    if (point) {
+      if (const std::optional<StickingEvent> violation = Violation(point->orbit)) {
+        blocked = violation;
+        step *= 0.5;
+        continue;
+      }
+    }
+    if (!point) {
+      step *= 0.5;
+      continue;
+    }
+    LocateBifurcations(x_, orbit_, *next, point->orbit);
+    const std::optional<Eigen::VectorXd> t = curve_.Tangent(*next, tangent_, options_.increasing);
+    if (!t) {
+      step *= 0.5;
+      continue;
+    }
+    previous_ = x_;
+    previous_orbit_ = orbit_;
+    x_ = *next;
+    tangent_ = *t;
+    orbit_ = point->orbit;
+    branch_.points.push_back(*point);
+    if (progress) progress(*point);
+    blocked.reset();
+    step = std::min(1.5 * step, options_.max_step);
+  }
+  End(StickingBranchEnd::kMaxPoints, fmt::format("{} points", options_.max_points));
+}
+
+}  // namespace
+
+StickingBranch ContinueStickingBranch(
+    const System& system, const StickingOrbit& start, const StickingBranchOptions& requested,
+    const std::function<void(const StickingBranchPoint&)>& progress) {
+  const auto begin = std::chrono::steady_clock::now();
+  StickingBranchOptions options = requested;  // the family is the start's
+  options.orbit.releases = start.releases;
+  options.orbit.q = start.q;
+  std::string error;
+  if (!options.IsValid(&error)) throw InvalidInput(error);
+  const StickingCurve curve(system, options);
+  const double mu = GetParameter(system, options.parameter);
+  if (!(mu >= options.lower && mu <= options.upper)) {
+    throw InvalidInput(fmt::format("the start {} = {} lies outside [{}, {}]", options.parameter, mu,
+                                   options.lower, options.upper));
+  }
+  if (start.state.size() != curve.Size() - 1) {
+    throw InvalidInput("the start is not a sticking orbit of this system (wrong size)");
+  }
+  StickingBranch branch;
+  branch.parameter = options.parameter;
+  branch.releases = options.orbit.releases;
+  branch.q = options.orbit.q;
+  Eigen::VectorXd x(curve.Size());
+  x << start.state, mu;
+  StickingMarch(curve, options, &branch).Run(x, progress);
+  branch.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return branch;
+}
+
+}  // namespace impactkit

@@ -1,0 +1,304 @@
+// Sticking orbits P(∞, q) as fixed points of the release map: against long
+// simulations read through the simulator's recorders, a finite-difference
+// monodromy of the simulator's stroboscopic map, finite differences of the
+// map itself, and the N = 1 oscillator's closed-form release.
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/continuation/sticking_branch.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
+
+using namespace impactkit;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+/// The sticking orbit of `system` refined from its steady simulation.
+StickingOrbit RefinedOrbit(const System& system) {
+  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
+  REQUIRE(seed);
+  StickingOrbitOptions options;
+  options.releases = seed->releases;
+  options.q = seed->q;
+  StickingOrbit orbit;
+  const StickingOrbitSummary summary = FindStickingOrbit(system, seed->state, options, &orbit);
+  REQUIRE(summary.termination == Termination::kConverged);
+  return orbit;
+}
+
+/// The state a time `after` past the orbit's first release, by simulation.
+HybridState OnOrbit(const System& system, const StickingMap& map, const StickingOrbit& orbit,
+                    double after) {
+  HybridState state = map.ToState(orbit.state);
+  Simulator(system).Run(state, state.t + after);
+  return state;
+}
+
+/// y -> y(t + qT) of the simulator from (t, y) free.
+Eigen::VectorXd Strobe(const Simulator& simulator, double t, const Eigen::VectorXd& y,
+                       double span) {
+  const int n = static_cast<int>(y.size()) / 2;
+  HybridState state{t, y.head(n), y.tail(n), false};
+  simulator.Run(state, t + span);
+  Eigen::VectorXd out(2 * n);
+  out << state.x, state.v;
+  return out;
+}
+
+Eigen::VectorXcd SortedEigenvalues(const Eigen::MatrixXd& matrix) {
+  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(matrix).eigenvalues();
+  std::sort(lambda.begin(), lambda.end(), [](const auto& a, const auto& b) {
+    return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : a.imag() > b.imag();
+  });
+  return lambda;
+}
+
+}  // namespace
+
+TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long simulation",
+          "[sticking]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit orbit = RefinedOrbit(system);
+  REQUIRE(orbit.releases == 1);
+  REQUIRE(orbit.q == 1);
+  CHECK(orbit.residual < 1e-11);
+
+  // Independent: 300 periods from rest, the last period's chatter end and
+  // sticking interval as the simulator's recorders saw them.
+  const double period = system.ForcingPeriod();
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, 299 * period);
+  ChatterRecorder chatter;
+  StickingRecorder sticking;
+  ObserverList both;
+  both.Add(chatter);
+  both.Add(sticking);
+  simulator.Run(state, 301 * period, both);
+  REQUIRE(!chatter.EndTimes().empty());
+  REQUIRE(sticking.Intervals().size() >= 2);
+  // The window opens during a stuck phase: the first whole one is the second.
+  const StickingInterval stuck = sticking.Intervals()[1];
+  REQUIRE(stuck.begin == chatter.EndTimes().front());
+  const double stick_phase = system.Phase(chatter.EndTimes().front());
+  CHECK_THAT(orbit.stick_phases[0], WithinAbs(stick_phase, 1e-9));
+  CHECK_THAT(orbit.release_phases[0], WithinAbs(system.Phase(stuck.end), 1e-9));
+  CHECK_THAT(orbit.stuck_durations[0], WithinAbs(stuck.end - stuck.begin, 1e-9));
+  CHECK(orbit.stable);
+}
+
+TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator's monodromy",
+          "[sticking]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit orbit = RefinedOrbit(system);
+  const StickingMap map(system);
+  // A point in the free flight after release, and the stroboscopic map
+  // from there by central differences of the simulator.
+  const double flight = orbit.cycles[0].impacts[0].t - orbit.cycles[0].release;
+  const HybridState start = OnOrbit(system, map, orbit, 0.5 * flight);
+  Eigen::VectorXd y(4);
+  y << start.x, start.v;
+  const Simulator simulator(system);
+  const double h = 1e-6, span = orbit.q * system.ForcingPeriod();
+  Eigen::MatrixXd monodromy(4, 4);
+  for (int j = 0; j < 4; ++j) {
+    Eigen::VectorXd plus = y, minus = y;
+    plus(j) += h;
+    minus(j) -= h;
+    monodromy.col(j) =
+        (Strobe(simulator, start.t, plus, span) - Strobe(simulator, start.t, minus, span)) /
+        (2 * h);
+  }
+  const Eigen::VectorXcd lambda = SortedEigenvalues(monodromy);
+  // Sticking collapses x_2 and v_2: two zero multipliers of the strobe map.
+  CHECK(std::abs(lambda(2)) < 1e-5);
+  CHECK(std::abs(lambda(3)) < 1e-5);
+  REQUIRE(orbit.multipliers.size() == 2);
+  const Eigen::VectorXcd section = SortedEigenvalues(orbit.jacobian).head(2);
+  for (int i = 0; i < 2; ++i) {
+    CHECK(std::abs(orbit.multipliers(i) - lambda(i)) < 1e-5);
+    CHECK(std::abs(section(i) - lambda(i)) < 1e-5);  // D P_R's other multiplier is 0
+  }
+}
+
+TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sticking]") {
+  SECTION("paper system, Omega = 0.2, at the orbit and off it, one and two releases") {
+    const System system = PaperSystem(0.2);
+    const StickingOrbit orbit = RefinedOrbit(system);
+    const StickingMap map(system);
+    Eigen::VectorXd off = orbit.state;
+    off(0) -= 2e-3;  // Fs lower: released a little earlier, still a release
+    off(1) += 1e-3;
+    for (const Eigen::VectorXd& s : {orbit.state, off}) {
+      for (int k : {1, 2}) {
+        const StickingMapResult image = map.Apply(s, k, true);
+        REQUIRE(image.status == StickingMapStatus::kOk);
+        const Eigen::MatrixXd fd = map.FiniteDifferenceJacobian(s, k);
+        REQUIRE(fd.size() == image.jacobian.size());
+        // Map rounding ~1e-12 over steps of 1e-6: ~1e-6 absolute at most.
+        CHECK((image.jacobian - fd).cwiseAbs().maxCoeff() < 1e-5);
+        // The image lies on the release surface: ∇Fs · D P_R = 0.
+        CHECK((map.ContactForceGradient(image.state) * image.jacobian).cwiseAbs().maxCoeff() <
+              1e-10);
+        CHECK(std::abs(map.ContactForce(image.state)) < 1e-10);
+      }
+    }
+  }
+  SECTION("three masses with a coupled mass matrix (the impulse moves the others)") {
+    Eigen::MatrixXd mass = Eigen::MatrixXd::Identity(3, 3);
+    mass(0, 1) = mass(1, 0) = 0.2;
+    mass(1, 2) = mass(2, 1) = 0.1;
+    const Eigen::MatrixXd stiffness = ChainCouplingMatrix(3);
+    const Eigen::MatrixXd damping = 0.1 * stiffness;
+    const System system =
+        GeneralSystem(mass, damping, stiffness, Eigen::Vector3d(0.5, 0.0, 0.0), 0.2, 0.1, 0.7);
+    const StickingOrbit orbit = RefinedOrbit(system);
+    const StickingMap map(system);
+    const Eigen::MatrixXd fd = map.FiniteDifferenceJacobian(orbit.state, orbit.releases);
+    REQUIRE(fd.size() == orbit.jacobian.size());
+    CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() < 1e-5);
+  }
+}
+
+TEST_CASE("N = 1: the sticking orbit's release has the closed form cos(Omega t) = k xs / A",
+          "[sticking]") {
+  // m x'' + c x' + k x = A cos Ωt; held at xs the stop's force is
+  // Fs = A cos Ωt − k xs, which falls through 0 (sin Ωt > 0) at
+  // Ω t_r = arccos(k xs / A): the release phase whatever came before, so
+  // D P_R = 0 and the section has no direction left.
+  const double k = 1.0, xs = 0.1, a = 0.5, omega = 0.2;
+  const System system =
+      UniformChain({1, 1.0, k, 0.1}, Eigen::VectorXd::Constant(1, a), omega, xs, 0.7);
+  const StickingOrbit orbit = RefinedOrbit(system);
+  const double release = std::acos(k * xs / a) / omega;
+  CHECK_THAT(orbit.release_phases[0], WithinAbs(release, 1e-12));
+  CHECK_THAT(orbit.state(0), WithinAbs(release, 1e-12));
+  CHECK(orbit.jacobian.cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(orbit.multipliers.size() == 0);
+  CHECK(orbit.stable);
+  // Sticking can only begin where the stop pushes: Fs(t*) > 0.
+  const double t_star = orbit.stick_phases[0];
+  CHECK(a * std::cos(omega * t_star) - k * xs > 0);
+  CHECK_THAT(orbit.stuck_durations[0],
+             WithinAbs(std::fmod(release - t_star + system.ForcingPeriod(), system.ForcingPeriod()),
+                       1e-12));
+}
+
+TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit orbit = RefinedOrbit(system);
+  StickingOrbitOptions options;
+  StickingOrbit out;
+  SECTION("q = 0 or no releases") {
+    options.q = 0;
+    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.state, options, &out), InvalidInput);
+    options.q = 1;
+    options.releases = 0;
+    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.state, options, &out), InvalidInput);
+  }
+  SECTION("a guess of the wrong size or with a NaN") {
+    CHECK_THROWS_AS(FindStickingOrbit(system, Eigen::VectorXd::Zero(2), options, &out),
+                    InvalidInput);
+    Eigen::VectorXd nan = orbit.state;
+    nan(0) = std::nan("");
+    CHECK_THROWS_AS(FindStickingOrbit(system, nan, options, &out), InvalidInput);
+  }
+  SECTION("a guess where the stop still pushes (no release)") {
+    Eigen::VectorXd held = orbit.state;
+    held(2) = 0.0;  // Fs = 0.5 + x1 - 0.1 > 0 at t = 0
+    CHECK_THROWS_WITH(FindStickingOrbit(system, held, options, &out),
+                      Catch::Matchers::Contains("not a release"));
+  }
+  SECTION("a guess at a system that does not stick (Omega = 0.5: impacts, no chatter)") {
+    const System impacting = PaperSystem(0.5);
+    CHECK_THROWS_WITH(FindStickingOrbit(impacting, orbit.state, options, &out),
+                      Catch::Matchers::Contains("no sticking orbit"));
+  }
+}
+TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation stops sticking",
+          "[sticking][continuation]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit start = RefinedOrbit(system);
+  StickingBranchOptions options;
+  options.lower = 0.1;
+  options.upper = 0.6;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
+  REQUIRE(!branch.special_points.empty());
+  const StickingSpecialPoint& end = branch.special_points.back();
+  CHECK(end.type == StickingEvent::kNoSticking);
+  const double omega_end = end.point.parameter;
+  CHECK(omega_end > 0.3);
+  CHECK(omega_end < 0.31);
+
+  // Recomputed from the located point: an orbit there, whose chatter only
+  // just ends in sticking (Fs(t*) small beside its ~0.2 mid-branch) ...
+  StickingOrbitOptions orbit_options;
+  StickingOrbit again;
+  REQUIRE(FindStickingOrbit(PaperSystem(omega_end), end.point.orbit.state, orbit_options, &again)
+              .termination == Termination::kConverged);
+  CHECK((again.state - end.point.orbit.state).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK(again.contact_margin > 0);
+  CHECK(again.contact_margin < 5e-3);
+  // ... and no sticking orbit just beyond it.
+  Eigen::VectorXd beyond_guess = again.state;
+  StickingOrbit beyond;
+  bool sticks = true;
+  try {
+    sticks = FindStickingOrbit(PaperSystem(omega_end + 1e-4), beyond_guess, orbit_options, &beyond)
+                 .termination == Termination::kConverged;
+  } catch (const InvalidInput&) {
+    sticks = false;
+  }
+  CHECK(!sticks);
+  // Independent: the simulator from rest sticks periodically 1e-3 below
+  // the end and not 1e-3 above it.
+  CHECK(SeedStickingFromSimulation(PaperSystem(omega_end - 1e-3), 300, 4));
+  CHECK(!SeedStickingFromSimulation(PaperSystem(omega_end + 1e-3), 300, 4));
+  // The other end of the branch: the lower bound.
+  const StickingBranch down = [&] {
+    StickingBranchOptions o = options;
+    o.increasing = false;
+    return ContinueStickingBranch(system, start, o);
+  }();
+  CHECK(down.end == StickingBranchEnd::kParameterBound);
+  CHECK_THAT(down.points.back().parameter, WithinAbs(0.1, 1e-12));
+  // Every point of the branches is a sticking orbit of its system.
+  for (const StickingBranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
+}
+
+TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
+          "[sticking][continuation]") {
+  const System system = PaperSystem(0.2);
+  const StickingOrbit start = RefinedOrbit(system);
+  StickingBranchOptions options;
+  options.parameter = "xs";
+  options.lower = 0.0;
+  options.upper = 0.6;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kEarlyRelease);
+  const StickingBranchPoint& end = branch.special_points.back().point;
+  // Recomputed at the located xs: an orbit whose stuck phase only just
+  // holds (Fs's interior minimum small beside its Fs(t*) ~ 0.09) ...
+  System at_end = system;
+  at_end.stop = end.parameter;
+  StickingOrbit again;
+  REQUIRE(FindStickingOrbit(at_end, end.orbit.state, StickingOrbitOptions{}, &again).termination ==
+          Termination::kConverged);
+  CHECK(again.hold_margin > 0);
+  CHECK(again.hold_margin < 1e-3);
+  // ... and the simulation 1e-3 beyond it sticks twice per period: the
+  // early release and the sticking that follows it.
+  System beyond = system;
+  beyond.stop = end.parameter + 1e-3;
+  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(beyond, 300, 4);
+  REQUIRE(seed);
+  CHECK(seed->releases == 2);
+  CHECK(seed->q == 1);
+}
