@@ -10,6 +10,7 @@ packages=(
   catch2 libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev gnuplot-nox
   clang-format
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
 )
 
 missing=()
