@@ -237,6 +237,7 @@ class Sweep(TypedDict):
     q: IntArray
     range_contact: FloatArray
     range_first: FloatArray
+    range_offsets: IntArray
     impact_offsets: IntArray
     impact_t: FloatArray
     impact_phase: FloatArray

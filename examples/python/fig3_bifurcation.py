@@ -31,12 +31,13 @@ def main():
                              steps=args.steps, transient_periods=500, recorded_periods=100,
                              threads=args.threads)
     print(result["report"])
-    values, offsets = result["values"], result["impact_offsets"]
-    # One omega per impact: value k owns impacts offsets[k] .. offsets[k+1].
-    impact_omega = np.repeat(values, np.diff(offsets))
+    values = result["values"]
+    # One omega per entry: value k owns entries offsets[k] .. offsets[k+1].
+    range_omega = np.repeat(values, np.diff(result["range_offsets"]))
+    impact_omega = np.repeat(values, np.diff(result["impact_offsets"]))
 
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(7, 6))
-    top.plot(values, result["range_contact"], ",k")
+    top.plot(range_omega, result["range_contact"], ",k")
     top.set_ylabel("max - min of $x_2$")
     top.set_title("(a)")
     bottom.plot(impact_omega, result["impact_velocity"], ",k")

@@ -13,21 +13,20 @@
 namespace impactkit::python {
 namespace {
 
-/// The sweep's points as columns: one entry per value, and the impacts of
-/// all values concatenated with `impact_offsets` (K + 1) marking where each
-/// value's start (CSR layout: value k owns impacts offsets[k]..offsets[k+1]).
+/// The sweep's points as columns: one entry per value, and the impacts and
+/// the per-period ranges of all values concatenated, `impact_offsets` and
+/// `range_offsets` (K + 1 each) marking where each value's start (value k
+/// owns entries offsets[k] .. offsets[k+1]).
 py::dict SweepArrays(const SweepResult& result) {
   std::vector<double> value, range_contact, range_first, impact_t, impact_phase, impact_velocity;
-  std::vector<std::int64_t> offsets{0}, p, q;
+  std::vector<std::int64_t> offsets{0}, range_offsets{0}, p, q;
   py::list kind, description;
   for (const SweepPoint& point : result.points) {
     value.push_back(point.value);
-    // The largest per-period max - min of the window: the diagram's y value.
-    auto largest = [](const std::vector<double>& r) {
-      return r.empty() ? 0.0 : *std::max_element(r.begin(), r.end());
-    };
-    range_contact.push_back(largest(point.range_contact));
-    range_first.push_back(largest(point.range_first));
+    range_contact.insert(range_contact.end(), point.range_contact.begin(),
+                         point.range_contact.end());
+    range_first.insert(range_first.end(), point.range_first.begin(), point.range_first.end());
+    range_offsets.push_back(static_cast<std::int64_t>(range_contact.size()));
     for (const SweepImpact& impact : point.impacts) {
       impact_t.push_back(impact.t);
       impact_phase.push_back(impact.phase);
@@ -47,6 +46,7 @@ py::dict SweepArrays(const SweepResult& result) {
   out["q"] = MoveToArray(std::move(q));
   out["range_contact"] = MoveToArray(std::move(range_contact));
   out["range_first"] = MoveToArray(std::move(range_first));
+  out["range_offsets"] = MoveToArray(std::move(range_offsets));
   out["impact_offsets"] = MoveToArray(std::move(offsets));
   out["impact_t"] = MoveToArray(std::move(impact_t));
   out["impact_phase"] = MoveToArray(std::move(impact_phase));
@@ -129,10 +129,10 @@ void BindAnalysis(py::module_& module) {
              R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
 first to last, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,
-p, q (0 when not periodic), range_contact and range_first (largest per-period
-max - min of x_c and x_1), impacts of all values concatenated (impact_t,
-impact_phase, impact_velocity) with impact_offsets (K + 1) delimiting each
-value's, and report. each_from: 'previous' (each value from the previous final
+p, q (0 when not periodic); of all values concatenated, the max - min of x_c
+and of x_1 in every recorded forcing period (range_contact, range_first,
+delimited by range_offsets, K + 1) and every recorded impact (impact_t,
+impact_phase, impact_velocity, delimited by impact_offsets); and report. each_from: 'previous' (each value from the previous final
 state) or 'rest'. Releases the GIL; Ctrl-C raises
 KeyboardInterrupt.)");
   module.def("lyapunov", &LyapunovPy, py::arg("system"), py::arg("eta"), py::kw_only(),

@@ -36,5 +36,8 @@ def test_sweep_classifies_the_known_orbits_and_ignores_threads():
     assert (one["kind"][0], one["p"][0], one["q"][0]) == ("periodic", orbit.p, orbit.q)
     for key in ("values", "range_contact", "impact_velocity", "impact_offsets", "p", "q"):
         np.testing.assert_array_equal(one[key], two[key])
-    assert one["impact_offsets"].shape == (6,)
+    assert one["impact_offsets"].shape == (6,) and one["range_offsets"].shape == (6,)
     assert one["impact_offsets"][-1] == one["impact_velocity"].size
+    # P(2,1): two impacts and one max - min per recorded period.
+    assert one["impact_offsets"][1] == 2 * one["range_offsets"][1]
+    assert one["range_offsets"][-1] == one["range_contact"].size == one["range_first"].size
