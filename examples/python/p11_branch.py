@@ -36,8 +36,13 @@ def main():
     unstable = np.where(branch.stable, np.nan, velocity)
     ax.plot(branch.values, stable, "-k", label="stable")
     ax.plot(branch.values, unstable, "--k", label="unstable")
+    colours = {}  # one colour and one legend entry per type
     for sp in branch.special_points:
-        ax.plot(sp.parameter, sp.orbit.impact_velocities[0], "o", label=sp.type.replace("_", " "))
+        label = sp.type.replace("_", " ")
+        new = label not in colours
+        colours.setdefault(label, f"C{len(colours)}")
+        ax.plot(sp.parameter, sp.orbit.impact_velocities[0], "o", color=colours[label],
+                label=label if new else None)
     ax.set_xlabel(r"$\Omega$")
     ax.set_ylabel("impact velocity")
     ax.set_title("P(1,1) branch")

@@ -87,8 +87,10 @@ void BindContinuation(py::module_& module) {
                      "A branch of P(p, q) orbits: its points in order, as arrays, and its "
                      "special points.")
       .def_readonly("parameter", &Branch::parameter, "The continued parameter's name.")
-      .def_readonly("p", &Branch::p)
-      .def_readonly("q", &Branch::q)
+      .def_readonly("p", &Branch::p,
+                    "Impacts per orbit (of the orbit followed: a start that is a shorter orbit "
+                    "traversed several times is followed as that orbit).")
+      .def_readonly("q", &Branch::q, "Forcing periods per orbit.")
       .def_property_readonly(
           "values",
           [](const Branch& b) {
@@ -147,7 +149,7 @@ void BindContinuation(py::module_& module) {
           "end", [](const Branch& b) { return ToString(b.end); },
           "Why the last point is the last: 'parameter_bound', 'grazing', 'sticking', "
           "'branch_point', 'max_points' or 'corrector_failed'.")
-      .def_readonly("end_message", &Branch::end_message)
+      .def_readonly("end_message", &Branch::end_message, "The end in words.")
       .def_property_readonly(
           "begin",
           [](const Branch& b) -> std::optional<std::string> {
@@ -155,7 +157,8 @@ void BindContinuation(py::module_& module) {
             return ToString(*b.begin);
           },
           "With direction='both': why the first point is the first (else None).")
-      .def_readonly("begin_message", &Branch::begin_message)
+      .def_readonly("begin_message", &Branch::begin_message,
+                    "With direction='both': the beginning in words.")
       .def_readonly("seconds", &Branch::seconds, "Wall time.")
       .def("__len__", [](const Branch& b) { return b.points.size(); })
       .def("__repr__", [](const Branch& b) {
