@@ -62,3 +62,23 @@ def test_bad_state_is_a_value_error():
         impactkit.simulate(impactkit.System.paper(), 10.0, x0=[0.0, 0.5])  # beyond the stop
     with pytest.raises(ValueError, match="chatter"):
         impactkit.simulate(impactkit.System.paper(), 10.0, chatter="sometimes")
+
+
+def test_sticking_intervals_match_the_stuck_time_and_the_samples():
+    # Omega = 0.2: the paper's sticking regime (chatter, then held at the stop).
+    s = impactkit.System.paper(0.2)
+    period = s.forcing_period
+    r = impactkit.simulate(s, 60 * period, record_from=50 * period, dt=0.01)
+    intervals = r["sticking"]
+    assert intervals.shape[0] > 0 and r["chatter_jumps"] > 0
+    np.testing.assert_allclose(np.sum(intervals[:, 1] - intervals[:, 0]), r["stuck_time"],
+                               rtol=1e-12)
+    samples = r["samples"]
+    inside = np.zeros_like(samples["stuck"])
+    for begin, end in intervals:
+        inside |= (samples["t"] >= begin) & (samples["t"] <= end)
+    # Every stuck sample is at the stop at rest, inside an interval.
+    stuck = samples["stuck"]
+    assert stuck.any() and np.all(inside[stuck])
+    np.testing.assert_allclose(samples["x"][stuck, 1], 0.1, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(samples["v"][stuck, 1], 0.0, rtol=0, atol=1e-12)
