@@ -1,7 +1,7 @@
 """Type stubs of the impactkit module (python/src/*.cpp); docstrings there."""
 
 from os import PathLike
-from typing import Any, Literal, Optional, TypedDict
+from typing import Any, Literal, Optional, TypedDict, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -214,6 +214,25 @@ class Branch:
     def seconds(self) -> float: ...
     def __len__(self) -> int: ...
 
+class BranchStart:
+    @property
+    def system(self) -> System: ...
+    @property
+    def orbit(self) -> Orbit: ...
+    @property
+    def direction(self) -> FloatArray: ...
+
+class GrazingSeed:
+    @property
+    def system(self) -> System: ...
+    @property
+    def p(self) -> int: ...
+    @property
+    def q(self) -> int: ...
+    @property
+    def eta(self) -> FloatArray: ...
+
+@overload
 def continue_branch(
     system: System,
     orbit: Orbit,
@@ -228,6 +247,26 @@ def continue_branch(
     max_points: int = 10000,
     locate_bifurcations: bool = True,
 ) -> Branch: ...
+@overload
+def continue_branch(
+    start: BranchStart,
+    *,
+    parameter: str = "omega",
+    lower: float,
+    upper: float,
+    direction: Literal["increasing", "decreasing", "both"] = "increasing",
+    initial_step: float = 0.01,
+    min_step: float = 1e-7,
+    max_step: float = 0.02,
+    max_points: int = 10000,
+    locate_bifurcations: bool = True,
+) -> Branch: ...
+def doubled_branch_start(
+    system: System, branch: Branch, period_doubling: SpecialPoint, *, offset: float = 1e-3
+) -> Optional[BranchStart]: ...
+def seeds_at_grazing(
+    system: System, branch: Branch, grazing: SpecialPoint, *, offset: float = 1e-3
+) -> list[GrazingSeed]: ...
 
 class Sweep(TypedDict):
     values: FloatArray

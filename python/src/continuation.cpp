@@ -29,10 +29,9 @@ py::array_t<double> PerPoint(const Branch& branch, Get get) {
   return MoveToArray(std::move(values));
 }
 
-Branch ContinueBranchPy(const System& system, const PeriodicOrbit& orbit,
-                        const std::string& parameter, double lower, double upper,
-                        const std::string& direction, double initial_step, double min_step,
-                        double max_step, int max_points, bool locate_bifurcations) {
+ContinuationOptions MakeOptions(const std::string& parameter, double lower, double upper,
+                                const std::string& direction, double initial_step, double min_step,
+                                double max_step, int max_points, bool locate_bifurcations) {
   ContinuationOptions options;
   options.parameter = parameter;
   options.lower = lower;
@@ -43,11 +42,54 @@ Branch ContinueBranchPy(const System& system, const PeriodicOrbit& orbit,
   options.max_step = max_step;
   options.max_points = max_points;
   options.locate_bifurcations = locate_bifurcations;
-  options.orbit.p = orbit.p;
-  options.orbit.q = orbit.q;
-  const BranchStart start{system, orbit, {}};
+  return options;
+}
+
+Branch ContinueFromStart(const BranchStart& start, const std::string& parameter, double lower,
+                         double upper, const std::string& direction, double initial_step,
+                         double min_step, double max_step, int max_points,
+                         bool locate_bifurcations) {
+  ContinuationOptions options = MakeOptions(parameter, lower, upper, direction, initial_step,
+                                            min_step, max_step, max_points, locate_bifurcations);
+  options.orbit.p = start.orbit.p;
+  options.orbit.q = start.orbit.q;
   return WithoutGil(
       [&] { return ContinueBranch(start, options, [](const BranchPoint&) { CheckInterrupt(); }); });
+}
+
+Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,
+                         const std::string& parameter, double lower, double upper,
+                         const std::string& direction, double initial_step, double min_step,
+                         double max_step, int max_points, bool locate_bifurcations) {
+  return ContinueFromStart({system, orbit, {}}, parameter, lower, upper, direction, initial_step,
+                           min_step, max_step, max_points, locate_bifurcations);
+}
+
+/// The library's switching functions need only the orbit and corrector
+/// options of the branch (its defaults here) and the branch's own p, q and
+/// parameter.
+ContinuationOptions SwitchingOptions(const Branch& branch) {
+  ContinuationOptions options;
+  options.parameter = branch.parameter;
+  options.orbit.p = branch.p;
+  options.orbit.q = branch.q;
+  return options;
+}
+
+std::optional<BranchStart> DoubledStart(const System& system, const Branch& branch,
+                                        const SpecialPoint& pd, double offset) {
+  Require(pd.type == SpecialPointType::kPeriodDoubling,
+          "doubled_branch_start needs a period_doubling point, got " + ToString(pd.type));
+  return WithoutGil(
+      [&] { return DoubledBranchStart(system, branch, pd, SwitchingOptions(branch), offset); });
+}
+
+std::vector<GrazingSeed> GrazingSeeds(const System& system, const Branch& branch,
+                                      const SpecialPoint& graze, double offset) {
+  Require(graze.type == SpecialPointType::kGrazing || graze.type == SpecialPointType::kSticking,
+          "seeds_at_grazing needs a grazing or sticking point, got " + ToString(graze.type));
+  return WithoutGil(
+      [&] { return SeedsAtGrazing(system, branch, graze, SwitchingOptions(branch), offset); });
 }
 
 }  // namespace
@@ -168,18 +210,57 @@ void BindContinuation(py::module_& module) {
                ")";
       });
 
-  module.def("continue_branch", &ContinueBranchPy, py::arg("system"), py::arg("orbit"),
+  py::class_<BranchStart>(module, "BranchStart",
+                          "Where a branch starts: a converged orbit of `system` and the initial "
+                          "direction in (eta, parameter).")
+      .def_readonly("system", &BranchStart::system)
+      .def_readonly("orbit", &BranchStart::orbit)
+      .def_property_readonly(
+          "direction", [](const BranchStart& s) { return s.direction; },
+          "Unit direction in (eta, parameter), size 2N + 1 (empty: from `direction`).");
+
+  py::class_<GrazingSeed>(module, "GrazingSeed",
+                          "A seed at a grazing point for the orbit with one impact more or "
+                          "fewer: refine it with find_orbit(seed.system, p=seed.p, q=seed.q, "
+                          "seed=seed.eta).")
+      .def_readonly("system", &GrazingSeed::system, "At the seed's parameter value.")
+      .def_property_readonly(
+          "p", [](const GrazingSeed& s) { return s.orbit.p; }, "Impacts per orbit (p +- 1).")
+      .def_property_readonly(
+          "q", [](const GrazingSeed& s) { return s.orbit.q; }, "Forcing periods per orbit.")
+      .def_property_readonly(
+          "eta", [](const GrazingSeed& s) { return s.eta; }, "The seed impact state.");
+
+  const char* continue_doc =
+      R"(Follows the branch of `orbit` (found for `system`), or from a BranchStart,
+in a named parameter within [lower, upper] by pseudo-arclength continuation,
+locating folds, period doublings, Neimark-Sacker points, and ending at
+grazing or sticking.
+
+direction: 'increasing', 'decreasing' or 'both' (a BranchStart's own
+direction, when it has one, takes precedence). Returns a Branch. Raises
+ValueError for bad input. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
+  module.def("continue_branch", &ContinueFromOrbit, py::arg("system"), py::arg("orbit"),
              py::kw_only(), py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
              py::arg("direction") = "increasing", py::arg("initial_step") = 0.01,
              py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 10000,
-             py::arg("locate_bifurcations") = true,
-             R"(Follows the branch of `orbit` (found for `system`) in a named parameter
-within [lower, upper] by pseudo-arclength continuation, locating folds,
-period doublings, Neimark-Sacker points, and ending at grazing or sticking.
-
-direction: 'increasing', 'decreasing' or 'both'. Returns a Branch.
-Raises ValueError for bad input. Releases the GIL; Ctrl-C raises
-KeyboardInterrupt.)");
+             py::arg("locate_bifurcations") = true, continue_doc);
+  module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
+             py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
+             py::arg("direction") = "increasing", py::arg("initial_step") = 0.01,
+             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 10000,
+             py::arg("locate_bifurcations") = true, continue_doc);
+  module.def("doubled_branch_start", &DoubledStart, py::arg("system"), py::arg("branch"),
+             py::arg("period_doubling"), py::kw_only(), py::arg("offset") = 1e-3,
+             R"(A first point on the P(2p, 2q) branch born at a period doubling of
+`branch` (continued for `system`), `offset` away along the flip eigenvector,
+heading away from it: a BranchStart for continue_branch, or None when the
+corrector does not reach a genuinely doubled orbit.)");
+  module.def("seeds_at_grazing", &GrazingSeeds, py::arg("system"), py::arg("branch"),
+             py::arg("grazing"), py::kw_only(), py::arg("offset") = 1e-3,
+             R"(Seeds at a grazing (or sticking) point of `branch` for the orbits with one
+impact more and one fewer, `offset` to either side in the parameter: a list
+of GrazingSeed (empty when p would drop to 0).)");
 }
 
 }  // namespace impactkit::python

@@ -44,3 +44,39 @@ def test_special_points_are_objects_at_their_critical_multipliers(branch):
             assert sp.eigenvector.shape == (4,)
         if sp.type == "fold":
             assert abs(sp.multiplier - 1) < 1e-6
+
+
+def test_period_doubling_switches_to_a_genuinely_doubled_branch():
+    system = impactkit.System.paper(1.0)
+    single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       lower=0.5, upper=2.0, direction="both")
+    pd = next(sp for sp in single.special_points if sp.type == "period_doubling")
+    start = impactkit.doubled_branch_start(system, single, pd)
+    assert start is not None and (start.orbit.p, start.orbit.q) == (2, 2)
+    doubled = impactkit.continue_branch(start, lower=1.5, upper=1.8, max_points=40)
+    assert (doubled.p, doubled.q) == (2, 2) and len(doubled) > 5
+    # A point away from the doubling, re-solved by Newton on its own, has two
+    # distinct impact speeds (not P(1,1) traversed twice).
+    i = len(doubled) - 1
+    orbit = impactkit.find_orbit(impactkit.System.paper(doubled.values[i]), p=2, q=2,
+                                 seed=doubled.eta[i])
+    np.testing.assert_allclose(orbit.eta, doubled.eta[i], rtol=0, atol=1e-9)
+    assert abs(orbit.impact_velocities[0] - orbit.impact_velocities[1]) > 1e-3
+    with pytest.raises(ValueError, match="period_doubling"):
+        impactkit.doubled_branch_start(system, single, single.special_points[0])
+
+
+def test_grazing_seeds_refine_to_orbits_with_one_impact_more_or_fewer():
+    system = impactkit.System.paper(1.0)
+    single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       lower=0.5, upper=2.0, direction="both")
+    graze = next(sp for sp in single.special_points if sp.type == "grazing")
+    seeds = impactkit.seeds_at_grazing(system, single, graze)
+    assert seeds and all(s.p in (0, 2) and s.q == 1 for s in seeds)
+    refined = []
+    for seed in seeds:
+        try:
+            refined.append(impactkit.find_orbit(seed.system, p=seed.p, q=seed.q, seed=seed.eta))
+        except impactkit.NumericalError:
+            pass  # a side of the grazing where that orbit does not exist
+    assert refined and all(o.residual < 1e-10 and o.p == 2 for o in refined)
