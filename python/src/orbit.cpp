@@ -35,22 +35,18 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
     Eigen::VectorXd guess;
     if (seed) {
       guess = *seed;
+      options.p = p.value_or(1);
+      options.q = q.value_or(1);
     } else {
       Require(transient >= 0, "transient must be >= 0, got " + std::to_string(transient));
       const std::optional<OrbitSeed> found = SeedFromSimulation(system, transient);
       Require(found.has_value(), "no seed: the simulation from rest has no impact");
-      if (!p || !q) {
-        Require(found->motion.periodic && !found->motion.sticking,
-                "no p and q given, and the simulation from rest shows " + found->motion.ToString() +
-                    "; give p and q");
-      }
+      Require((p && q) || (found->motion.periodic && !found->motion.sticking),
+              "no p and q given, and the simulation from rest shows " + found->motion.ToString() +
+                  "; give p and q");
       guess = found->eta;
       options.p = p.value_or(static_cast<int>(found->motion.p));
       options.q = q.value_or(found->motion.q);
-    }
-    if (seed) {
-      options.p = p.value_or(1);
-      options.q = q.value_or(1);
     }
     return FindOrbit(system, guess, options, &orbit);
   });

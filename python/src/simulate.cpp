@@ -1,8 +1,10 @@
 // impactkit.simulate: hybrid/simulator.hpp and the recorders of
 // hybrid/recorders.hpp, with every result as numpy arrays.
+#include <fmt/format.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,6 +15,10 @@
 
 namespace impactkit::python {
 namespace {
+
+/// Samples of one run (2N + 2 numbers each, held in memory): 10^8 is
+/// gigabytes, far beyond any plot; more is a mistyped dt.
+constexpr double kMaxSamples = 1e8;
 
 /// Impacts in flat row-major arrays, so that 10^6 of them reach numpy as a
 /// handful of buffers (MoveToArray) instead of 10^6 Python objects.
@@ -90,10 +96,15 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   if (x0) state.x = *x0;
   if (v0) state.v = *v0;
   Require(std::isfinite(record_from) && record_from >= 0.0,
-          "record_from must be finite and >= 0, got " + std::to_string(record_from));
+          fmt::format("record_from must be finite and >= 0, got {}", record_from));
   Require(std::isfinite(t_end) && t_end >= record_from,
-          "t_end must be finite and >= record_from, got " + std::to_string(t_end));
-  Require(std::isfinite(dt) && dt >= 0.0, "dt must be finite and >= 0 (0: no time series)");
+          fmt::format("t_end must be finite and >= record_from = {}, got {}", record_from, t_end));
+  Require(std::isfinite(dt) && dt >= 0.0,
+          fmt::format("dt must be finite and >= 0 (0: no time series), got {}", dt));
+  Require(dt == 0.0 || (t_end - record_from) / dt <= kMaxSamples,
+          fmt::format("dt = {} gives {:.3g} samples from record_from to t_end; at most {:.0e} "
+                      "(the series is held in memory)",
+                      dt, (t_end - record_from) / dt, kMaxSamples));
 
   FlatImpactRecorder impacts;
   TimeSeriesRecorder series(record_from, dt > 0.0 ? dt : 1.0);

@@ -56,6 +56,12 @@ void BindSystem(py::module_& module) {
           [](const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
              const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing, double omega,
              double xs, double r, std::optional<int> contact_dof) {
+            // 0-based here, as numpy indexes (the library's message would
+            // name the 1-based range of the files and the command line).
+            const auto n = static_cast<int>(mass.rows());
+            Require(!contact_dof || (*contact_dof >= 0 && *contact_dof < n),
+                    "contact_dof must be in [0, " + std::to_string(n - 1) + "] (0-based), got " +
+                        std::to_string(contact_dof.value_or(0)));
             System system =
                 GeneralSystem(mass, damping, stiffness, forcing, omega, xs, r, contact_dof);
             Validate(system);

@@ -6,6 +6,7 @@ import os
 import signal
 import subprocess
 
+import numpy as np
 import pytest
 
 import impactkit
@@ -68,3 +69,16 @@ def test_ctrl_c_stops_a_long_sweep():
     interrupt_after(0.2)
     with pytest.raises(KeyboardInterrupt):
         impactkit.sweep(impactkit.System.paper(), steps=2000, threads=2, chunk_values=5)
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda: impactkit.simulate(impactkit.System.paper(), 1e9, dt=1e-9), "at most 1e+08"),
+    (lambda: impactkit.System.general(np.eye(2), np.zeros((2, 2)), np.eye(2), [1, 0],
+                                      contact_dof=2), r"contact_dof must be in \[0, 1\]"),
+    (lambda: impactkit.find_orbit(impactkit.System.paper(), seed=[1, 2]), "has 4 entries, got 2"),
+    (lambda: impactkit.sweep(impactkit.System.paper(), steps=0), "steps must be >= 1"),
+    (lambda: impactkit.lyapunov(impactkit.System.paper(), [1, 2, 3]), "has 4 entries, got 3"),
+])
+def test_bad_input_is_refused_before_any_work(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
