@@ -23,6 +23,17 @@ for script in $(printf '%s\n' examples/fig*.sh | sort -V); do
   echo "== $script"
   bash "$script" "$impactkit" "$out/figures" "$out/data"
 done
+# The same Fig. 3 and P(1,1) branch from Python (docs/python.md), when the
+# module was built (it needs pybind11, which setup.sh installs).
+if compgen -G "build/python/impactkit*.so" > /dev/null; then
+  for script in examples/python/*.py; do
+    name=$(basename "$script" .py)
+    echo
+    echo "== $script"
+    PYTHONPATH=build/python /usr/bin/python3 "$script" "$out/figures/${name}_python.png" |
+      sed 's/^/    /'
+  done
+fi
 echo
 echo "== examples/parameter_planes.sh"
 bash examples/parameter_planes.sh "$impactkit" "$out/figures" "$out/data"
@@ -34,6 +45,7 @@ echo "  summary.json      the summary above: modes, peaks, orbits, branches, reg
 echo "  branch-*.csv      each branch of the connected diagram, one row per point"
 echo "  fig3-sweep.csv    the Fig. 3 sweep, one row per value"
 echo "  *.png             Figs. 2 and 3 and the connected diagram (diagram.png)"
-echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh, and the parameter"
-echo "                    planes plane-*.png from examples/parameter_planes.sh (PNG)"
+echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh, the parameter"
+echo "                    planes plane-*.png from examples/parameter_planes.sh, the maps"
+echo "                    from examples/parameter_maps.sh and *_python.png from examples/python/"
 echo "  data/             their CSV and JSON"

@@ -1,0 +1,321 @@
+"""Type stubs of the impactkit module (python/src/*.cpp); docstrings there."""
+
+from os import PathLike
+from typing import Any, Literal, Optional, TypedDict, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+FloatArray = npt.NDArray[np.float64]
+ComplexArray = npt.NDArray[np.complex128]
+BoolArray = npt.NDArray[np.bool_]
+IntArray = npt.NDArray[np.int64]
+
+class NumericalError(RuntimeError): ...
+
+class System:
+    def __init__(self) -> None: ...
+    @staticmethod
+    def paper(omega: float = 1.0) -> System: ...
+    @staticmethod
+    def chain(
+        *,
+        n: int = 2,
+        m: float = 1.0,
+        k: float = 1.0,
+        c: float = 0.1,
+        forcing: Optional[npt.ArrayLike] = None,
+        omega: float = 1.0,
+        xs: float = 0.1,
+        r: float = 0.7,
+    ) -> System: ...
+    @staticmethod
+    def general(
+        mass: npt.ArrayLike,
+        damping: npt.ArrayLike,
+        stiffness: npt.ArrayLike,
+        forcing: npt.ArrayLike,
+        *,
+        omega: float = 1.0,
+        xs: float = 0.1,
+        r: float = 0.7,
+        contact_dof: Optional[int] = None,
+    ) -> System: ...
+    @staticmethod
+    def from_file(path: str | PathLike[str]) -> System: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def mass(self) -> FloatArray: ...
+    @property
+    def damping(self) -> FloatArray: ...
+    @property
+    def stiffness(self) -> FloatArray: ...
+    @property
+    def forcing(self) -> FloatArray: ...
+    @property
+    def contact_dof(self) -> int: ...
+    @property
+    def is_chain(self) -> bool: ...
+    @property
+    def forcing_period(self) -> float: ...
+    def parameter_names(self) -> list[str]: ...
+    def get(self, name: str) -> float: ...
+    def set(self, name: str, value: float) -> None: ...
+    def with_parameter(self, name: str, value: float) -> System: ...
+    def __getitem__(self, name: str) -> float: ...
+    def __setitem__(self, name: str, value: float) -> None: ...
+    def validate(self) -> None: ...
+    def to_json(self) -> str: ...
+    def __copy__(self) -> System: ...
+    def __deepcopy__(self, memo: dict[int, Any]) -> System: ...
+
+class Samples(TypedDict):
+    t: FloatArray
+    x: FloatArray
+    v: FloatArray
+    stuck: BoolArray
+
+class Impacts(TypedDict):
+    t: FloatArray
+    phase: FloatArray
+    velocity: FloatArray
+    x: FloatArray
+    v: FloatArray
+
+class State(TypedDict):
+    t: float
+    x: FloatArray
+    v: FloatArray
+    stuck: bool
+
+class Simulation(TypedDict):
+    samples: Samples
+    impacts: Impacts
+    strobe: Samples
+    sticking: FloatArray
+    status: str
+    chatter_jumps: int
+    stuck_time: float
+    seconds: float
+    final_state: State
+
+def simulate(
+    system: System,
+    t_end: float,
+    *,
+    x0: Optional[npt.ArrayLike] = None,
+    v0: Optional[npt.ArrayLike] = None,
+    record_from: float = 0.0,
+    dt: float = 0.0,
+    chatter: Literal["accumulation", "threshold"] = "accumulation",
+    chatter_span: float = 1e-4,
+    chatter_threshold: float = 1e-4,
+    max_events: int = 200_000_000,
+) -> Simulation: ...
+
+class Orbit:
+    @property
+    def p(self) -> int: ...
+    @property
+    def q(self) -> int: ...
+    @property
+    def omega(self) -> float: ...
+    @property
+    def eta(self) -> FloatArray: ...
+    @property
+    def jacobian(self) -> FloatArray: ...
+    @property
+    def multipliers(self) -> ComplexArray: ...
+    @property
+    def stable(self) -> bool: ...
+    @property
+    def residual(self) -> float: ...
+    @property
+    def impact_times(self) -> FloatArray: ...
+    @property
+    def impact_phases(self) -> FloatArray: ...
+    @property
+    def impact_velocities(self) -> FloatArray: ...
+    @property
+    def clearance(self) -> Optional[float]: ...
+
+def find_orbit(
+    system: System,
+    *,
+    p: Optional[int] = None,
+    q: Optional[int] = None,
+    seed: Optional[npt.ArrayLike] = None,
+    jacobian: Literal["analytic", "finite_difference"] = "analytic",
+    residual_tolerance: float = 1e-11,
+    max_iterations: int = 50,
+    least_squares_fallback: bool = True,
+    transient: int = 500,
+) -> Orbit: ...
+
+SpecialPointType = Literal[
+    "fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point"
+]
+BranchEnd = Literal[
+    "parameter_bound", "grazing", "sticking", "branch_point", "max_points", "corrector_failed"
+]
+
+class SpecialPoint:
+    @property
+    def type(self) -> SpecialPointType: ...
+    @property
+    def parameter(self) -> float: ...
+    @property
+    def multiplier(self) -> complex: ...
+    @property
+    def multipliers(self) -> ComplexArray: ...
+    @property
+    def eigenvector(self) -> FloatArray: ...
+    @property
+    def monitor(self) -> float: ...
+    @property
+    def vanishing_impact(self) -> int: ...
+    @property
+    def orbit(self) -> Orbit: ...
+    def describe(self, parameter_name: str) -> str: ...
+
+class Branch:
+    @property
+    def parameter(self) -> str: ...
+    @property
+    def p(self) -> int: ...
+    @property
+    def q(self) -> int: ...
+    @property
+    def values(self) -> FloatArray: ...
+    @property
+    def arclength(self) -> FloatArray: ...
+    @property
+    def eta(self) -> FloatArray: ...
+    @property
+    def multipliers(self) -> ComplexArray: ...
+    @property
+    def stable(self) -> BoolArray: ...
+    @property
+    def orbits(self) -> list[Orbit]: ...
+    @property
+    def special_points(self) -> list[SpecialPoint]: ...
+    @property
+    def end(self) -> BranchEnd: ...
+    @property
+    def end_message(self) -> str: ...
+    @property
+    def begin(self) -> Optional[BranchEnd]: ...
+    @property
+    def begin_message(self) -> str: ...
+    @property
+    def seconds(self) -> float: ...
+    def __len__(self) -> int: ...
+
+class BranchStart:
+    @property
+    def system(self) -> System: ...
+    @property
+    def orbit(self) -> Orbit: ...
+    @property
+    def direction(self) -> FloatArray: ...
+
+class GrazingSeed:
+    @property
+    def system(self) -> System: ...
+    @property
+    def p(self) -> int: ...
+    @property
+    def q(self) -> int: ...
+    @property
+    def eta(self) -> FloatArray: ...
+
+@overload
+def continue_branch(
+    system: System,
+    orbit: Orbit,
+    *,
+    parameter: str = "omega",
+    lower: float,
+    upper: float,
+    direction: Literal["increasing", "decreasing", "both"] = "increasing",
+    initial_step: float = 0.01,
+    min_step: float = 1e-7,
+    max_step: float = 0.02,
+    max_points: int = 10000,
+    locate_bifurcations: bool = True,
+) -> Branch: ...
+@overload
+def continue_branch(
+    start: BranchStart,
+    *,
+    parameter: str = "omega",
+    lower: float,
+    upper: float,
+    direction: Literal["increasing", "decreasing", "both"] = "increasing",
+    initial_step: float = 0.01,
+    min_step: float = 1e-7,
+    max_step: float = 0.02,
+    max_points: int = 10000,
+    locate_bifurcations: bool = True,
+) -> Branch: ...
+def doubled_branch_start(
+    system: System, branch: Branch, period_doubling: SpecialPoint, *, offset: float = 1e-3
+) -> Optional[BranchStart]: ...
+def seeds_at_grazing(
+    system: System, branch: Branch, grazing: SpecialPoint, *, offset: float = 1e-3
+) -> list[GrazingSeed]: ...
+
+class Sweep(TypedDict):
+    values: FloatArray
+    kind: list[str]
+    description: list[str]
+    p: IntArray
+    q: IntArray
+    range_contact: FloatArray
+    range_first: FloatArray
+    range_offsets: IntArray
+    impact_offsets: IntArray
+    impact_t: FloatArray
+    impact_phase: FloatArray
+    impact_velocity: FloatArray
+    report: str
+
+def sweep(
+    system: System,
+    *,
+    parameter: str = "omega",
+    first: float = 0.1,
+    last: float = 2.5,
+    steps: int = 2401,
+    transient_periods: int = 500,
+    recorded_periods: int = 100,
+    threads: int = 1,
+    each_from: Literal["previous", "rest"] = "previous",
+    chunk_values: int = 100,
+) -> Sweep: ...
+
+class Lyapunov(TypedDict):
+    exponents: FloatArray
+    largest: float
+    impacts_used: int
+    time_span: float
+
+def lyapunov(
+    system: System, eta: npt.ArrayLike, *, impacts: int = 2000, transient_impacts: int = 200
+) -> Lyapunov: ...
+
+class Peak(TypedDict):
+    dof: int
+    omega: float
+    range: float
+
+class Resonance(TypedDict):
+    omega: FloatArray
+    range: FloatArray
+    phase: FloatArray
+    peaks: list[Peak]
+
+def resonance(system: System, *, first: float, last: float, steps: int) -> Resonance: ...

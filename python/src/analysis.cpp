@@ -1,0 +1,151 @@
+// impactkit.sweep, impactkit.lyapunov, impactkit.resonance:
+// analysis/sweep.hpp, analysis/lyapunov.hpp, analysis/resonance.hpp.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "bindings.hpp"
+#include "impactkit/analysis/lyapunov.hpp"
+#include "impactkit/analysis/resonance.hpp"
+#include "impactkit/analysis/sweep.hpp"
+
+namespace impactkit::python {
+namespace {
+
+/// The sweep's points as columns: one entry per value, and the impacts and
+/// the per-period ranges of all values concatenated, `impact_offsets` and
+/// `range_offsets` (K + 1 each) marking where each value's start (value k
+/// owns entries offsets[k] .. offsets[k+1]).
+py::dict SweepArrays(const SweepResult& result) {
+  std::vector<double> value, range_contact, range_first, impact_t, impact_phase, impact_velocity;
+  std::vector<std::int64_t> offsets{0}, range_offsets{0}, p, q;
+  py::list kind, description;
+  for (const SweepPoint& point : result.points) {
+    value.push_back(point.value);
+    range_contact.insert(range_contact.end(), point.range_contact.begin(),
+                         point.range_contact.end());
+    range_first.insert(range_first.end(), point.range_first.begin(), point.range_first.end());
+    range_offsets.push_back(static_cast<std::int64_t>(range_contact.size()));
+    for (const SweepImpact& impact : point.impacts) {
+      impact_t.push_back(impact.t);
+      impact_phase.push_back(impact.phase);
+      impact_velocity.push_back(impact.velocity);
+    }
+    offsets.push_back(static_cast<std::int64_t>(impact_t.size()));
+    kind.append(ToString(point.classification.kind));
+    description.append(point.classification.ToString());
+    p.push_back(point.classification.period.periodic ? point.classification.period.p : 0);
+    q.push_back(point.classification.period.periodic ? point.classification.period.q : 0);
+  }
+  py::dict out;
+  out["values"] = MoveToArray(std::move(value));
+  out["kind"] = kind;
+  out["description"] = description;
+  out["p"] = MoveToArray(std::move(p));
+  out["q"] = MoveToArray(std::move(q));
+  out["range_contact"] = MoveToArray(std::move(range_contact));
+  out["range_first"] = MoveToArray(std::move(range_first));
+  out["range_offsets"] = MoveToArray(std::move(range_offsets));
+  out["impact_offsets"] = MoveToArray(std::move(offsets));
+  out["impact_t"] = MoveToArray(std::move(impact_t));
+  out["impact_phase"] = MoveToArray(std::move(impact_phase));
+  out["impact_velocity"] = MoveToArray(std::move(impact_velocity));
+  out["report"] = result.BriefReport();
+  return out;
+}
+
+py::dict SweepPy(const System& system, const std::string& parameter, double from, double to,
+                 int steps, int transient_periods, int recorded_periods, int threads,
+                 const std::string& each_from, int chunk_values) {
+  SweepOptions options;
+  options.parameter = parameter;
+  options.from = from;
+  options.to = to;
+  options.steps = steps;
+  options.transient_periods = transient_periods;
+  options.recorded_periods = recorded_periods;
+  options.threads = threads;
+  options.chunk_values = chunk_values;
+  if (each_from == "previous") {
+    options.start = SweepStart::kPrevious;
+  } else if (each_from == "rest") {
+    options.start = SweepStart::kFixed;
+  } else {
+    throw InvalidInput("each_from must be 'previous' or 'rest', got '" + each_from + "'");
+  }
+  const SweepResult result =
+      WithoutGil([&] { return RunSweep(system, options, [](int, int) { CheckInterrupt(); }); });
+  return SweepArrays(result);
+}
+
+py::dict LyapunovPy(const System& system, const Eigen::VectorXd& eta, int impacts,
+                    int transient_impacts) {
+  LyapunovOptions options;
+  options.impacts = impacts;
+  options.transient_impacts = transient_impacts;
+  const LyapunovResult result = WithoutGil([&] { return ImpactMapLyapunov(system, eta, options); });
+  if (!result.valid) ThrowNumericalError(result.message);
+  std::vector<double> exponents = result.exponents;
+  py::dict out;
+  out["exponents"] = MoveToArray(std::move(exponents));
+  out["largest"] = result.largest;
+  out["impacts_used"] = result.impacts_used;
+  out["time_span"] = result.time_span;
+  return out;
+}
+
+py::dict ResonancePy(const System& system, double from, double to, int steps) {
+  const std::vector<ResonancePoint> curve = ResonanceCurve(system, from, to, steps);
+  const auto n = static_cast<py::ssize_t>(curve.size());
+  const py::ssize_t dof = system.Dof();
+  std::vector<double> omega, range, phase;
+  for (const ResonancePoint& point : curve) {
+    omega.push_back(point.omega);
+    range.insert(range.end(), point.range.begin(), point.range.end());
+    phase.insert(phase.end(), point.phase.begin(), point.phase.end());
+  }
+  py::list peaks;
+  for (const ResonancePeak& peak : ResonancePeaks(system, curve)) {
+    peaks.append(py::dict(py::arg("dof") = peak.dof, py::arg("omega") = peak.omega,
+                          py::arg("range") = peak.range));
+  }
+  py::dict out;
+  out["omega"] = MoveToArray(std::move(omega));
+  out["range"] = MoveToArray<double, 2>(std::move(range), {n, dof});
+  out["phase"] = MoveToArray<double, 2>(std::move(phase), {n, dof});
+  out["peaks"] = peaks;
+  return out;
+}
+
+}  // namespace
+
+void BindAnalysis(py::module_& module) {
+  module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(), py::arg("parameter") = "omega",
+             py::arg("first") = 0.1, py::arg("last") = 2.5, py::arg("steps") = 2401,
+             py::arg("transient_periods") = 500, py::arg("recorded_periods") = 100,
+             py::arg("threads") = 1, py::arg("each_from") = "previous",
+             py::arg("chunk_values") = 100,
+             R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
+first to last, each simulated to steady state and classified.
+Results do not depend on `threads`. Returns a dict: values, kind, description,
+p, q (0 when not periodic); of all values concatenated, the max - min of x_c
+and of x_1 in every recorded forcing period (range_contact, range_first,
+delimited by range_offsets, K + 1) and every recorded impact (impact_t,
+impact_phase, impact_velocity, delimited by impact_offsets); and report. each_from: 'previous' (each value from the previous final
+state) or 'rest'. Releases the GIL; Ctrl-C raises
+KeyboardInterrupt.)");
+  module.def("lyapunov", &LyapunovPy, py::arg("system"), py::arg("eta"), py::kw_only(),
+             py::arg("impacts") = 2000, py::arg("transient_impacts") = 200,
+             R"(Lyapunov exponents of the impact map from the impact state eta, per unit
+time, descending. Returns a dict: exponents (2N,), largest, impacts_used,
+time_span. Raises NumericalError when the map fails (chatter, grazing, a lost
+impact), with the library's message. Releases the GIL.)");
+  module.def("resonance", &ResonancePy, py::arg("system"), py::kw_only(), py::arg("first"),
+             py::arg("last"), py::arg("steps"),
+             R"(Closed-form resonance curves of the system without its stop: omega (n,),
+range (n, N) = max - min of each x_i (2 |X_i|), phase (n, N), and peaks (a
+list of {dof, omega, range}).)");
+}
+
+}  // namespace impactkit::python

@@ -1,0 +1,67 @@
+#pragma once
+/// \file bindings.hpp
+/// The parts of the `impactkit` Python module, one Bind function per library
+/// area (each in its own source), and what they share: arrays handed to
+/// numpy without copies, the exception for numerical failures, and the
+/// Ctrl-C check of long calls. The module has no numerics of its own.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace impactkit::python {
+
+namespace py = pybind11;
+
+void BindSystem(py::module_& module);
+void BindSimulate(py::module_& module);
+void BindOrbit(py::module_& module);
+void BindContinuation(py::module_& module);
+void BindAnalysis(py::module_& module);
+
+/// impactkit.NumericalError (a RuntimeError): a computation that did not
+/// converge or could not go on. Created by the module before any Bind.
+py::object& NumericalErrorType();
+/// Raises NumericalError(message).
+[[noreturn]] void ThrowNumericalError(const std::string& message);
+
+/// Thrown out of a library callback when Python has a pending signal
+/// (Ctrl-C): it unwinds the library call, and the binding, holding the GIL
+/// again, re-raises the Python error (KeyboardInterrupt).
+struct Interrupted : std::exception {};
+/// From a library callback running without the GIL: takes the GIL, runs
+/// the signal handlers and throws Interrupted if one raised. Only Python's
+/// main thread sees signals; elsewhere it returns.
+void CheckInterrupt();
+/// Runs `call` without the GIL; an Interrupted from it becomes the pending
+/// Python exception.
+template <class Call>
+auto WithoutGil(Call&& call) {
+  try {
+    py::gil_scoped_release release;
+    return call();
+  } catch (const Interrupted&) {
+    throw py::error_already_set();
+  }
+}
+
+/// The values of `data` as a numpy array of the given shape, without a
+/// copy: the vector moves to the heap and the array's base owns it.
+template <class T, std::size_t Rank>
+py::array_t<T> MoveToArray(std::vector<T>&& data, const std::array<py::ssize_t, Rank>& shape) {
+  auto* owned = new std::vector<T>(std::move(data));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::vector<py::ssize_t>(shape.begin(), shape.end()), owned->data(), owner);
+}
+template <class T>
+py::array_t<T> MoveToArray(std::vector<T>&& data) {
+  const auto size = static_cast<py::ssize_t>(data.size());
+  return MoveToArray<T, 1>(std::move(data), {size});
+}
+
+}  // namespace impactkit::python

@@ -1,0 +1,266 @@
+// impactkit.continue_branch, Branch and SpecialPoint:
+// continuation/continuation.hpp.
+#include "impactkit/continuation/continuation.hpp"
+
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+#include "bindings.hpp"
+
+namespace impactkit::python {
+namespace {
+
+ContinuationDirection DirectionFromName(const std::string& name) {
+  if (name == "increasing") return ContinuationDirection::kIncreasing;
+  if (name == "decreasing") return ContinuationDirection::kDecreasing;
+  if (name == "both") return ContinuationDirection::kBoth;
+  throw InvalidInput("direction must be 'increasing', 'decreasing' or 'both', got '" + name + "'");
+}
+
+/// One value per branch point, as an array.
+template <class Get>
+py::array_t<double> PerPoint(const Branch& branch, Get get) {
+  std::vector<double> values;
+  values.reserve(branch.points.size());
+  for (const BranchPoint& point : branch.points) values.push_back(get(point));
+  return MoveToArray(std::move(values));
+}
+
+ContinuationOptions MakeOptions(const std::string& parameter, double lower, double upper,
+                                const std::string& direction, double initial_step, double min_step,
+                                double max_step, int max_points, bool locate_bifurcations) {
+  ContinuationOptions options;
+  options.parameter = parameter;
+  options.lower = lower;
+  options.upper = upper;
+  options.direction = DirectionFromName(direction);
+  options.initial_step = initial_step;
+  options.min_step = min_step;
+  options.max_step = max_step;
+  options.max_points = max_points;
+  options.locate_bifurcations = locate_bifurcations;
+  return options;
+}
+
+Branch ContinueFromStart(const BranchStart& start, const std::string& parameter, double lower,
+                         double upper, const std::string& direction, double initial_step,
+                         double min_step, double max_step, int max_points,
+                         bool locate_bifurcations) {
+  ContinuationOptions options = MakeOptions(parameter, lower, upper, direction, initial_step,
+                                            min_step, max_step, max_points, locate_bifurcations);
+  options.orbit.p = start.orbit.p;
+  options.orbit.q = start.orbit.q;
+  return WithoutGil(
+      [&] { return ContinueBranch(start, options, [](const BranchPoint&) { CheckInterrupt(); }); });
+}
+
+Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,
+                         const std::string& parameter, double lower, double upper,
+                         const std::string& direction, double initial_step, double min_step,
+                         double max_step, int max_points, bool locate_bifurcations) {
+  return ContinueFromStart({system, orbit, {}}, parameter, lower, upper, direction, initial_step,
+                           min_step, max_step, max_points, locate_bifurcations);
+}
+
+/// The library's switching functions need only the orbit and corrector
+/// options of the branch (its defaults here) and the branch's own p, q and
+/// parameter.
+ContinuationOptions SwitchingOptions(const Branch& branch) {
+  ContinuationOptions options;
+  options.parameter = branch.parameter;
+  options.orbit.p = branch.p;
+  options.orbit.q = branch.q;
+  return options;
+}
+
+std::optional<BranchStart> DoubledStart(const System& system, const Branch& branch,
+                                        const SpecialPoint& pd, double offset) {
+  Require(pd.type == SpecialPointType::kPeriodDoubling,
+          "doubled_branch_start needs a period_doubling point, got " + ToString(pd.type));
+  return WithoutGil(
+      [&] { return DoubledBranchStart(system, branch, pd, SwitchingOptions(branch), offset); });
+}
+
+std::vector<GrazingSeed> GrazingSeeds(const System& system, const Branch& branch,
+                                      const SpecialPoint& graze, double offset) {
+  Require(graze.type == SpecialPointType::kGrazing || graze.type == SpecialPointType::kSticking,
+          "seeds_at_grazing needs a grazing or sticking point, got " + ToString(graze.type));
+  return WithoutGil(
+      [&] { return SeedsAtGrazing(system, branch, graze, SwitchingOptions(branch), offset); });
+}
+
+}  // namespace
+
+void BindContinuation(py::module_& module) {
+  py::class_<SpecialPoint>(module, "SpecialPoint",
+                           "A located fold, period doubling, Neimark-Sacker, grazing, sticking "
+                           "or branch point of a branch.")
+      .def_property_readonly(
+          "type", [](const SpecialPoint& s) { return ToString(s.type); },
+          "'fold', 'period_doubling', 'neimark_sacker', 'grazing', 'sticking' or "
+          "'branch_point'.")
+      .def_readonly("parameter", &SpecialPoint::parameter, "The parameter value there.")
+      .def_readonly("multiplier", &SpecialPoint::multiplier,
+                    "The critical multiplier (fold, period doubling, Neimark-Sacker).")
+      .def_property_readonly(
+          "multipliers", [](const SpecialPoint& s) { return s.point.orbit.multipliers; },
+          "All multipliers of the orbit at the located point.")
+      .def_property_readonly(
+          "eigenvector", [](const SpecialPoint& s) { return s.eigenvector; },
+          "Period doubling: the real eigenvector of D P for -1 (else empty).")
+      .def_readonly("monitor", &SpecialPoint::monitor,
+                    "The test function, or the clearance/depth for grazing and sticking.")
+      .def_readonly("vanishing_impact", &SpecialPoint::vanishing_impact,
+                    "Grazing/sticking: which impact vanishes (-1 for a new contact).")
+      .def_property_readonly(
+          "orbit", [](const SpecialPoint& s) { return s.point.orbit; },
+          "The orbit at the located point.")
+      .def("describe", &SpecialPoint::Describe, py::arg("parameter_name"),
+           "One line, as the command line prints it.")
+      .def("__repr__", [](const SpecialPoint& s) {
+        return "impactkit.SpecialPoint(" + ToString(s.type) +
+               ", parameter=" + py::repr(py::float_(s.parameter)).cast<std::string>() + ")";
+      });
+
+  py::class_<Branch>(module, "Branch",
+                     "A branch of P(p, q) orbits: its points in order, as arrays, and its "
+                     "special points.")
+      .def_readonly("parameter", &Branch::parameter, "The continued parameter's name.")
+      .def_readonly("p", &Branch::p,
+                    "Impacts per orbit (of the orbit followed: a start that is a shorter orbit "
+                    "traversed several times is followed as that orbit).")
+      .def_readonly("q", &Branch::q, "Forcing periods per orbit.")
+      .def_property_readonly(
+          "values",
+          [](const Branch& b) {
+            return PerPoint(b, [](const BranchPoint& p) { return p.parameter; });
+          },
+          "The parameter at each point, shape (n,).")
+      .def_property_readonly(
+          "arclength",
+          [](const Branch& b) {
+            return PerPoint(b, [](const BranchPoint& p) { return p.arclength; });
+          },
+          "Signed arclength from the start, shape (n,).")
+      .def_property_readonly(
+          "eta",
+          [](const Branch& b) {
+            const auto n = static_cast<py::ssize_t>(b.points.size());
+            const py::ssize_t size = n == 0 ? 0 : b.points.front().orbit.eta.size();
+            std::vector<double> eta;
+            for (const BranchPoint& p : b.points)
+              eta.insert(eta.end(), p.orbit.eta.begin(), p.orbit.eta.end());
+            return MoveToArray<double, 2>(std::move(eta), {n, size});
+          },
+          "The fixed point at each point, shape (n, 2N).")
+      .def_property_readonly(
+          "multipliers",
+          [](const Branch& b) {
+            const auto n = static_cast<py::ssize_t>(b.points.size());
+            const py::ssize_t size = n == 0 ? 0 : b.points.front().orbit.multipliers.size();
+            std::vector<std::complex<double>> m;
+            for (const BranchPoint& p : b.points) {
+              m.insert(m.end(), p.orbit.multipliers.begin(), p.orbit.multipliers.end());
+            }
+            return MoveToArray<std::complex<double>, 2>(std::move(m), {n, size});
+          },
+          "The multipliers at each point (complex), shape (n, 2N).")
+      .def_property_readonly(
+          "stable",
+          [](const Branch& b) {
+            py::array_t<bool> stable(static_cast<py::ssize_t>(b.points.size()));
+            for (std::size_t i = 0; i < b.points.size(); ++i) {
+              stable.mutable_at(static_cast<py::ssize_t>(i)) = b.points[i].orbit.stable;
+            }
+            return stable;
+          },
+          "Stability at each point, shape (n,) bool.")
+      .def_property_readonly(
+          "orbits",
+          [](const Branch& b) {
+            py::list orbits;
+            for (const BranchPoint& p : b.points) orbits.append(py::cast(p.orbit));
+            return orbits;
+          },
+          "The orbit at each point (a list of Orbit).")
+      .def_readonly("special_points", &Branch::special_points, "In order along the branch.")
+      .def_property_readonly(
+          "end", [](const Branch& b) { return ToString(b.end); },
+          "Why the last point is the last: 'parameter_bound', 'grazing', 'sticking', "
+          "'branch_point', 'max_points' or 'corrector_failed'.")
+      .def_readonly("end_message", &Branch::end_message, "The end in words.")
+      .def_property_readonly(
+          "begin",
+          [](const Branch& b) -> std::optional<std::string> {
+            if (!b.begin) return std::nullopt;
+            return ToString(*b.begin);
+          },
+          "With direction='both': why the first point is the first (else None).")
+      .def_readonly("begin_message", &Branch::begin_message,
+                    "With direction='both': the beginning in words.")
+      .def_readonly("seconds", &Branch::seconds, "Wall time.")
+      .def("__len__", [](const Branch& b) { return b.points.size(); })
+      .def("__repr__", [](const Branch& b) {
+        return "impactkit.Branch(P(" + std::to_string(b.p) + "," + std::to_string(b.q) + ") in " +
+               b.parameter + ", " + std::to_string(b.points.size()) + " points, " +
+               std::to_string(b.special_points.size()) + " special points, end " + ToString(b.end) +
+               ")";
+      });
+
+  py::class_<BranchStart>(module, "BranchStart",
+                          "Where a branch starts: a converged orbit of `system` and the initial "
+                          "direction in (eta, parameter).")
+      .def_readonly("system", &BranchStart::system)
+      .def_readonly("orbit", &BranchStart::orbit)
+      .def_property_readonly(
+          "direction", [](const BranchStart& s) { return s.direction; },
+          "Unit direction in (eta, parameter), size 2N + 1 (empty: from `direction`).");
+
+  py::class_<GrazingSeed>(module, "GrazingSeed",
+                          "A seed at a grazing point for the orbit with one impact more or "
+                          "fewer: refine it with find_orbit(seed.system, p=seed.p, q=seed.q, "
+                          "seed=seed.eta).")
+      .def_readonly("system", &GrazingSeed::system, "At the seed's parameter value.")
+      .def_property_readonly(
+          "p", [](const GrazingSeed& s) { return s.orbit.p; }, "Impacts per orbit (p +- 1).")
+      .def_property_readonly(
+          "q", [](const GrazingSeed& s) { return s.orbit.q; }, "Forcing periods per orbit.")
+      .def_property_readonly(
+          "eta", [](const GrazingSeed& s) { return s.eta; }, "The seed impact state.");
+
+  const char* continue_doc =
+      R"(Follows the branch of `orbit` (found for `system`), or from a BranchStart,
+in a named parameter within [lower, upper] by pseudo-arclength continuation,
+locating folds, period doublings, Neimark-Sacker points, and ending at
+grazing or sticking.
+
+direction: 'increasing', 'decreasing' or 'both' (a BranchStart's own
+direction, when it has one, takes precedence). Returns a Branch. Raises
+ValueError for bad input. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
+  module.def("continue_branch", &ContinueFromOrbit, py::arg("system"), py::arg("orbit"),
+             py::kw_only(), py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
+             py::arg("direction") = "increasing", py::arg("initial_step") = 0.01,
+             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 10000,
+             py::arg("locate_bifurcations") = true, continue_doc);
+  module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
+             py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
+             py::arg("direction") = "increasing", py::arg("initial_step") = 0.01,
+             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 10000,
+             py::arg("locate_bifurcations") = true, continue_doc);
+  module.def("doubled_branch_start", &DoubledStart, py::arg("system"), py::arg("branch"),
+             py::arg("period_doubling"), py::kw_only(), py::arg("offset") = 1e-3,
+             R"(A first point on the P(2p, 2q) branch born at a period doubling of
+`branch` (continued for `system`), `offset` away along the flip eigenvector,
+heading away from it: a BranchStart for continue_branch, or None when the
+corrector does not reach a genuinely doubled orbit.)");
+  module.def("seeds_at_grazing", &GrazingSeeds, py::arg("system"), py::arg("branch"),
+             py::arg("grazing"), py::kw_only(), py::arg("offset") = 1e-3,
+             R"(Seeds at a grazing (or sticking) point of `branch` for the orbits with one
+impact more and one fewer, `offset` to either side in the parameter: a list
+of GrazingSeed (empty when p would drop to 0).)");
+}
+
+}  // namespace impactkit::python

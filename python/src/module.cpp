@@ -1,0 +1,50 @@
+// The `impactkit` Python module: a thin layer over the C++ library.
+//
+// Errors: the library's InvalidInput is a std::invalid_argument, which
+// pybind11 raises as ValueError with the same message; numerical failures
+// (no convergence) raise impactkit.NumericalError, a RuntimeError.
+#include <Python.h>
+
+#include "bindings.hpp"
+
+namespace impactkit::python {
+
+py::object& NumericalErrorType() {
+  // Leaked on purpose: the type lives as long as the interpreter, and
+  // destroying it at exit would need the GIL after finalisation.
+  static py::object* type = nullptr;
+  if (type == nullptr) {
+    type = new py::object(py::reinterpret_steal<py::object>(
+        PyErr_NewExceptionWithDoc("impactkit.NumericalError",
+                                  "A computation that did not converge or could not go on "
+                                  "(the message is the library's summary).",
+                                  PyExc_RuntimeError, nullptr)));
+  }
+  return *type;
+}
+
+void ThrowNumericalError(const std::string& message) {
+  PyErr_SetString(NumericalErrorType().ptr(), message.c_str());
+  throw py::error_already_set();
+}
+
+void CheckInterrupt() {
+  py::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) throw Interrupted();
+}
+
+}  // namespace impactkit::python
+
+PYBIND11_MODULE(impactkit, module) {
+  using namespace impactkit::python;
+  module.doc() =
+      "impactkit: exact simulation, periodic orbits, continuation and analysis of "
+      "multi-degree-of-freedom impact oscillators (Python interface to the C++ library).";
+  module.attr("__version__") = IMPACTKIT_VERSION;
+  module.attr("NumericalError") = NumericalErrorType();
+  BindSystem(module);
+  BindSimulate(module);
+  BindOrbit(module);
+  BindContinuation(module);
+  BindAnalysis(module);
+}

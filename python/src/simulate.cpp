@@ -1,0 +1,176 @@
+// impactkit.simulate: hybrid/simulator.hpp and the recorders of
+// hybrid/recorders.hpp, with every result as numpy arrays.
+#include <fmt/format.h>
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "bindings.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+
+namespace impactkit::python {
+namespace {
+
+/// Samples of one run (2N + 2 numbers each, held in memory): 10^8 is
+/// gigabytes, far beyond any plot; more is a mistyped dt.
+constexpr double kMaxSamples = 1e8;
+
+/// Impacts in flat row-major arrays, so that 10^6 of them reach numpy as a
+/// handful of buffers (MoveToArray) instead of 10^6 Python objects.
+class FlatImpactRecorder : public Observer {
+ public:
+  void OnImpact(const Impact& impact) override {
+    t.push_back(impact.t);
+    phase.push_back(impact.phase);
+    velocity.push_back(impact.velocity);
+    x.insert(x.end(), impact.x.begin(), impact.x.end());
+    v.insert(v.end(), impact.v.begin(), impact.v.end());
+  }
+  std::vector<double> t, phase, velocity, x, v;
+};
+
+/// Asks the simulator to stop when Python has a pending signal. The
+/// simulator asks after every event; the GIL is taken every 4096 of them
+/// only, which keeps the check's cost out of the event loop.
+class InterruptWatch : public Observer {
+ public:
+  bool ShouldStop() const override {
+    if (++calls_ % 4096 != 0) return false;
+    CheckInterrupt();
+    return false;
+  }
+
+ private:
+  mutable std::uint64_t calls_ = 0;
+};
+
+/// Samples (t, x, v, stuck) as arrays of shapes (n,), (n, N), (n, N), (n,).
+py::dict SampleArrays(const std::vector<Sample>& samples, int dof) {
+  std::vector<double> t, x, v;
+  std::vector<bool> stuck_bits;
+  for (const Sample& s : samples) {
+    t.push_back(s.t);
+    x.insert(x.end(), s.x.begin(), s.x.end());
+    v.insert(v.end(), s.v.begin(), s.v.end());
+  }
+  const auto n = static_cast<py::ssize_t>(samples.size());
+  py::array_t<bool> stuck(n);
+  for (py::ssize_t i = 0; i < n; ++i) stuck.mutable_at(i) = samples[i].stuck;
+  py::dict out;
+  out["t"] = MoveToArray(std::move(t));
+  out["x"] = MoveToArray<double, 2>(std::move(x), {n, dof});
+  out["v"] = MoveToArray<double, 2>(std::move(v), {n, dof});
+  out["stuck"] = stuck;
+  return out;
+}
+
+SimulationOptions MakeOptions(const std::string& chatter, double chatter_span,
+                              double chatter_threshold, std::int64_t max_events) {
+  SimulationOptions options;
+  if (chatter == "accumulation") {
+    options.chatter = ChatterMethod::kAccumulation;
+  } else if (chatter == "threshold") {
+    options.chatter = ChatterMethod::kThreshold;
+  } else {
+    throw InvalidInput("chatter must be 'accumulation' or 'threshold', got '" + chatter + "'");
+  }
+  options.chatter_span = chatter_span;
+  options.chatter_threshold = chatter_threshold;
+  options.max_events = max_events;
+  return options;
+}
+
+py::dict Simulate(const System& system, double t_end, std::optional<Eigen::VectorXd> x0,
+                  std::optional<Eigen::VectorXd> v0, double record_from, double dt,
+                  const std::string& chatter, double chatter_span, double chatter_threshold,
+                  std::int64_t max_events) {
+  const SimulationOptions options =
+      MakeOptions(chatter, chatter_span, chatter_threshold, max_events);
+  const Simulator simulator(system, options);
+  HybridState state = RestState(system);
+  if (x0) state.x = *x0;
+  if (v0) state.v = *v0;
+  Require(std::isfinite(record_from) && record_from >= 0.0,
+          fmt::format("record_from must be finite and >= 0, got {}", record_from));
+  Require(std::isfinite(t_end) && t_end >= record_from,
+          fmt::format("t_end must be finite and >= record_from = {}, got {}", record_from, t_end));
+  Require(std::isfinite(dt) && dt >= 0.0,
+          fmt::format("dt must be finite and >= 0 (0: no time series), got {}", dt));
+  Require(dt == 0.0 || (t_end - record_from) / dt <= kMaxSamples,
+          fmt::format("dt = {} gives {:.3g} samples from record_from to t_end; at most {:.0e} "
+                      "(the series is held in memory)",
+                      dt, (t_end - record_from) / dt, kMaxSamples));
+
+  FlatImpactRecorder impacts;
+  TimeSeriesRecorder series(record_from, dt > 0.0 ? dt : 1.0);
+  StroboscopicRecorder strobe(system.ForcingPeriod());
+  StickingRecorder sticking;
+  InterruptWatch watch;
+  ObserverList recorded;
+  recorded.Add(impacts);
+  if (dt > 0.0) recorded.Add(series);
+  recorded.Add(strobe);
+  recorded.Add(sticking);
+  recorded.Add(watch);
+
+  const SimulationSummary summary = WithoutGil([&] {
+    simulator.Run(state, record_from, watch);
+    return simulator.Run(state, t_end, recorded);
+  });
+
+  const int dof = system.Dof();
+  const auto m = static_cast<py::ssize_t>(impacts.t.size());
+  py::dict impact_arrays;
+  impact_arrays["t"] = MoveToArray(std::move(impacts.t));
+  impact_arrays["phase"] = MoveToArray(std::move(impacts.phase));
+  impact_arrays["velocity"] = MoveToArray(std::move(impacts.velocity));
+  impact_arrays["x"] = MoveToArray<double, 2>(std::move(impacts.x), {m, dof});
+  impact_arrays["v"] = MoveToArray<double, 2>(std::move(impacts.v), {m, dof});
+
+  std::vector<double> intervals;
+  for (const StickingInterval& interval : sticking.Intervals()) {
+    intervals.push_back(interval.begin);
+    intervals.push_back(interval.end);
+  }
+  const auto k = static_cast<py::ssize_t>(sticking.Intervals().size());
+
+  py::dict result;
+  result["samples"] = SampleArrays(series.Samples(), dof);
+  result["impacts"] = impact_arrays;
+  result["strobe"] = SampleArrays(strobe.Points(), dof);
+  result["sticking"] = MoveToArray<double, 2>(std::move(intervals), {k, 2});
+  result["status"] = ToString(summary.status);
+  result["chatter_jumps"] = summary.chatter_jumps;
+  result["stuck_time"] = summary.stuck_time;
+  result["seconds"] = summary.elapsed_seconds;
+  result["final_state"] = py::dict(py::arg("t") = state.t, py::arg("x") = state.x,
+                                   py::arg("v") = state.v, py::arg("stuck") = state.stuck);
+  return result;
+}
+
+}  // namespace
+
+void BindSimulate(py::module_& module) {
+  module.def("simulate", &Simulate, py::arg("system"), py::arg("t_end"), py::kw_only(),
+             py::arg("x0") = py::none(), py::arg("v0") = py::none(), py::arg("record_from") = 0.0,
+             py::arg("dt") = 0.0, py::arg("chatter") = "accumulation",
+             py::arg("chatter_span") = 1e-4, py::arg("chatter_threshold") = 1e-4,
+             py::arg("max_events") = 200'000'000,
+             R"(Simulates from (x0, v0) at t = 0 (rest by default) to t_end, exactly.
+
+Nothing is recorded before record_from. Returns a dict of numpy arrays:
+  samples   {t (n,), x (n, N), v (n, N), stuck (n,) bool} every dt from
+            record_from (empty when dt = 0)
+  impacts   {t, phase, velocity (m,), x (m, N), v (m, N) just before impact}
+  strobe    the state at every t = k T (forcing phase 0), as samples
+  sticking  (k, 2) [begin, end] of each interval held at the stop
+and status ('reached end', 'event limit reached', ...), chatter_jumps, stuck_time,
+seconds, final_state. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
+}
+
+}  // namespace impactkit::python

@@ -1,0 +1,82 @@
+"""impactkit.continue_branch: each point re-solved by Newton on its own, and
+the special points' multipliers at their critical values."""
+
+import numpy as np
+import pytest
+
+import impactkit
+
+TYPES = {"fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point"}
+
+
+@pytest.fixture(scope="module")
+def branch(paper_orbit):
+    system, orbit = paper_orbit
+    return impactkit.continue_branch(system, orbit, lower=1.5, upper=1.8, direction="both")
+
+
+def test_arrays(branch):
+    n = len(branch)
+    assert n > 10 and branch.parameter == "omega" and (branch.p, branch.q) == (1, 1)
+    assert branch.values.shape == (n,) and branch.eta.shape == (n, 4)
+    assert branch.multipliers.shape == (n, 4) and branch.multipliers.dtype == np.complex128
+    assert branch.stable.dtype == np.bool_
+    np.testing.assert_array_equal(branch.stable, np.all(np.abs(branch.multipliers) < 1, axis=1))
+    assert np.all((branch.values >= 1.5) & (branch.values <= 1.8))
+    assert branch.begin is not None and branch.end in {"parameter_bound", "grazing"}
+
+
+def test_points_are_orbits_by_an_independent_newton_solve(branch):
+    for i in range(0, len(branch), 10):
+        system = impactkit.System.paper(branch.values[i])
+        orbit = impactkit.find_orbit(system, p=1, q=1, seed=branch.eta[i])
+        np.testing.assert_allclose(orbit.eta, branch.eta[i], rtol=0, atol=1e-9)
+
+
+def test_special_points_are_objects_at_their_critical_multipliers(branch):
+    assert branch.special_points
+    for sp in branch.special_points:
+        assert sp.type in TYPES
+        assert sp.describe("omega").startswith(sp.type.replace("_", " "))
+        if sp.type == "period_doubling":
+            assert abs(sp.multiplier + 1) < 1e-6
+            assert np.min(np.abs(sp.multipliers + 1)) < 1e-6
+            assert sp.eigenvector.shape == (4,)
+        if sp.type == "fold":
+            assert abs(sp.multiplier - 1) < 1e-6
+
+
+def test_period_doubling_switches_to_a_genuinely_doubled_branch():
+    system = impactkit.System.paper(1.0)
+    single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       lower=0.5, upper=2.0, direction="both")
+    pd = next(sp for sp in single.special_points if sp.type == "period_doubling")
+    start = impactkit.doubled_branch_start(system, single, pd)
+    assert start is not None and (start.orbit.p, start.orbit.q) == (2, 2)
+    doubled = impactkit.continue_branch(start, lower=1.5, upper=1.8, max_points=40)
+    assert (doubled.p, doubled.q) == (2, 2) and len(doubled) > 5
+    # A point away from the doubling, re-solved by Newton on its own, has two
+    # distinct impact speeds (not P(1,1) traversed twice).
+    i = len(doubled) - 1
+    orbit = impactkit.find_orbit(impactkit.System.paper(doubled.values[i]), p=2, q=2,
+                                 seed=doubled.eta[i])
+    np.testing.assert_allclose(orbit.eta, doubled.eta[i], rtol=0, atol=1e-9)
+    assert abs(orbit.impact_velocities[0] - orbit.impact_velocities[1]) > 1e-3
+    with pytest.raises(ValueError, match="period_doubling"):
+        impactkit.doubled_branch_start(system, single, single.special_points[0])
+
+
+def test_grazing_seeds_refine_to_orbits_with_one_impact_more_or_fewer():
+    system = impactkit.System.paper(1.0)
+    single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       lower=0.5, upper=2.0, direction="both")
+    graze = next(sp for sp in single.special_points if sp.type == "grazing")
+    seeds = impactkit.seeds_at_grazing(system, single, graze)
+    assert seeds and all(s.p in (0, 2) and s.q == 1 for s in seeds)
+    refined = []
+    for seed in seeds:
+        try:
+            refined.append(impactkit.find_orbit(seed.system, p=seed.p, q=seed.q, seed=seed.eta))
+        except impactkit.NumericalError:
+            pass  # a side of the grazing where that orbit does not exist
+    assert refined and all(o.residual < 1e-10 and o.p == 2 for o in refined)

@@ -1,0 +1,42 @@
+"""impactkit.find_orbit against a long simulation that settles on the orbit,
+and the analytic multipliers against the finite-difference ones."""
+
+import numpy as np
+
+import impactkit
+
+
+def test_stable_orbit_is_where_the_simulation_settles(stable_orbit):
+    system, orbit = stable_orbit
+    assert (orbit.p, orbit.q, orbit.omega) == (1, 1, 1.0)
+    assert orbit.stable and orbit.residual < 1e-11
+    assert orbit.eta.shape == (4,) and orbit.jacobian.shape == (4, 4)
+    assert orbit.multipliers.dtype == np.complex128
+    assert np.all(np.abs(orbit.multipliers) < 1)
+    # Multipliers of modulus <= 0.54: 0.54^2000 -- after 2000 periods the
+    # simulation is on the orbit to machine precision.
+    r = impactkit.simulate(system, 2000 * system.forcing_period)
+    np.testing.assert_allclose(r["impacts"]["velocity"][-1], orbit.impact_velocities[0], rtol=1e-9)
+    np.testing.assert_allclose(r["impacts"]["phase"][-1], orbit.impact_phases[0], rtol=1e-9)
+
+
+def test_seeded_from_simulation_without_p_and_q():
+    system = impactkit.System.paper(0.6)
+    orbit = impactkit.find_orbit(system)
+    r = impactkit.simulate(system, 1000 * system.forcing_period)
+    # The paper's P(2,1) at omega = 0.6: two impact speeds per period.
+    assert (orbit.p, orbit.q) == (2, 1)
+    np.testing.assert_allclose(np.sort(r["impacts"]["velocity"][-2:]),
+                               np.sort(orbit.impact_velocities), rtol=1e-8)
+
+
+def test_unstable_orbit(paper_orbit):
+    system, orbit = paper_orbit
+    assert not orbit.stable and np.max(np.abs(orbit.multipliers)) > 1
+
+
+def test_analytic_and_finite_difference_multipliers_agree(paper_orbit):
+    system, orbit = paper_orbit
+    fd = impactkit.find_orbit(system, p=1, q=1, seed=orbit.eta, jacobian="finite_difference")
+    np.testing.assert_allclose(np.sort_complex(fd.multipliers),
+                               np.sort_complex(orbit.multipliers), rtol=0, atol=1e-6)
