@@ -54,8 +54,9 @@ std::vector<double> PlainOdeintImpactTimes(const System& s, double t_end, double
 
   auto stepper =
       odeint::make_dense_output(tolerance, tolerance, odeint::runge_kutta_dopri5<State>());
-  // A hundredth of the shortest natural period (2π for the paper's system)
-  // is a sensible first try; the controller adapts it within a few steps.
+  // A small fraction (1/65) of the paper system's shortest natural period,
+  // 2π/1.618 = 3.9, is a sensible first try; the controller adapts it within
+  // a few steps.
   stepper.initialize(State{0.0, 0.0, 0.0, 0.0}, 0.0, 0.06);
   std::vector<double> times;
   State y;
