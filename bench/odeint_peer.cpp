@@ -41,7 +41,7 @@ Matrix2 Times(const Eigen::Matrix2d& a, const Eigen::MatrixXd& b) {
 
 }  // namespace
 
-std::vector<double> PlainOdeintImpactTimes(const System& s, double t_end, double tolerance) {
+PlainOdeintRun PlainOdeintImpacts(const System& s, double t_end, double tolerance) {
   Require(s.Dof() == 2, "the plain Odeint peer is written for two masses");
   const Eigen::Matrix2d minv = Eigen::Matrix2d(s.mass).inverse();
   const Eigen::Vector2d minv_a = minv * s.forcing;
@@ -58,12 +58,17 @@ std::vector<double> PlainOdeintImpactTimes(const System& s, double t_end, double
   // 2π/1.618 = 3.9, is a sensible first try; the controller adapts it within
   // a few steps.
   stepper.initialize(State{0.0, 0.0, 0.0, 0.0}, 0.0, 0.06);
-  std::vector<double> times;
+  PlainOdeintRun run;
+  std::vector<double>& times = run.times;
   State y;
   // 50 bits: the root to ~1e-15 relative, far below the dense output's error.
   const boost::math::tools::eps_tolerance<double> root_tolerance(50);
   while (stepper.current_time() < t_end) {
     stepper.do_step(rhs);
+    if (gap(stepper.previous_state()) >= 0.0 && gap(stepper.current_state()) > 0.0) {
+      run.stopped = true;  // held at the stop: sticking
+      break;
+    }
     if (!(gap(stepper.previous_state()) < 0.0 && gap(stepper.current_state()) >= 0.0)) continue;
     auto gap_at = [&](double t) {
       stepper.calc_state(t, y);
@@ -74,7 +79,10 @@ std::vector<double> PlainOdeintImpactTimes(const System& s, double t_end, double
         gap_at, stepper.previous_time(), stepper.current_time(), root_tolerance, max_iterations);
     const double t_impact = 0.5 * (t_lo + t_hi);
     if (t_impact >= t_end) break;
-    if (!times.empty() && t_impact - times.back() < 1e-9) break;  // chatter
+    if (!times.empty() && t_impact - times.back() < 1e-9) {
+      run.stopped = true;  // chatter
+      break;
+    }
     times.push_back(t_impact);
     stepper.calc_state(t_impact, y);
     const double dv = -(1.0 + s.restitution) * y[2 + c];
@@ -85,7 +93,7 @@ std::vector<double> PlainOdeintImpactTimes(const System& s, double t_end, double
     // derivative, with the last step size.
     stepper.initialize(y, t_impact, stepper.current_time_step());
   }
-  return times;
+  return run;
 }
 
 }  // namespace impactkit::bench

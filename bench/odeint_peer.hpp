@@ -15,10 +15,16 @@
 
 namespace impactkit::bench {
 
-/// Impact times of the 2-DOF system s from rest, up to t_end, at
-/// rtol = atol = tolerance. Stops early (with the impacts so far) when two
-/// impacts come closer than 1e-9, where this method cannot follow chatter.
-/// Requires s.Dof() == 2.
-std::vector<double> PlainOdeintImpactTimes(const System& s, double t_end, double tolerance);
+struct PlainOdeintRun {
+  std::vector<double> times;  ///< impact times
+  /// Stopped before t_end: two impacts closer than 1e-9 (chatter, which this
+  /// method cannot follow) or the contact mass found beyond the stop at a
+  /// step's end without an upward crossing (held there: sticking).
+  bool stopped = false;
+};
+
+/// Impacts of the 2-DOF system s from rest up to t_end, at
+/// rtol = atol = tolerance. Requires s.Dof() == 2.
+PlainOdeintRun PlainOdeintImpacts(const System& s, double t_end, double tolerance);
 
 }  // namespace impactkit::bench

@@ -122,7 +122,7 @@ void CompareWithPeers(double omega, int periods) {
     return CvodeImpactTimes(s, {.rtol = tol, .atol = tol}, t);
   };
   const PeerAt odeint = [&](double tol, double t) {
-    return bench::PlainOdeintImpactTimes(s, t, tol);
+    return bench::PlainOdeintImpacts(s, t, tol).times;
   };
   for (double level : {1e-8, 1e-11}) {
     const auto [cvode_cell, cvode_us] = PeerCell(exact, level, t_check, t_end, cvode);
