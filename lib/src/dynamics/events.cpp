@@ -101,12 +101,17 @@ double TimeTolerance(double t, const EventOptions& options) {
                   4.0 * std::numeric_limits<double>::epsilon() * std::abs(t));
 }
 
-/// The root of w in [a, b], where w(a) < 0 <= w(b) and w' > 0: Newton on the
-/// exact derivative from the end nearer the root, kept inside the shrinking
-/// bracket (bisection when a Newton step would leave it). Hand-written
-/// because the certified bracket and the exact w' make it converge in a few
-/// steps, and the bracket invariant is what the caller relies on.
-double RefineRoot(const Signal& w, Point a, Point b, const EventOptions& options) {
+/// The root of w in [a, b], where w(a) < 0 <= w(b) and w' >= slope_bound > 0
+/// on [a, b]: Newton on the exact derivative from the end nearer the root,
+/// kept inside the shrinking bracket (bisection when a Newton step would
+/// leave it). Hand-written because the certified bracket and the exact w'
+/// make it converge in a few steps, and the bracket invariant is what the
+/// caller relies on. A Newton step from t, at distance e <= |w(t)|/slope_bound
+/// from the root, lands within curvature_bound e² / (2 w'(t)) of it (Taylor);
+/// once that is below the tolerance the step is returned without the
+/// evaluation that would only confirm it (one of about ten per flight).
+double RefineRoot(const Signal& w, Point a, Point b, double slope_bound, double curvature_bound,
+                  const EventOptions& options) {
   const Point& nearer = -a.w < b.w ? a : b;
   double t = nearer.t - nearer.w / nearer.dw;
   for (int iteration = 0; iteration < 100; ++iteration) {
@@ -116,7 +121,10 @@ double RefineRoot(const Signal& w, Point a, Point b, const EventOptions& options
     (p.w < 0 ? a : b) = p;
     const double tolerance = TimeTolerance(t, options);
     const double newton = t - p.w / p.dw;
-    if (std::abs(newton - t) <= tolerance) return std::clamp(newton, a.t, b.t);
+    const double distance = std::abs(p.w) / slope_bound;
+    const bool converged = std::abs(newton - t) <= tolerance ||
+                           0.5 * curvature_bound * distance * distance <= tolerance * p.dw;
+    if (converged) return std::clamp(newton, a.t, b.t);
     if (b.t - a.t <= tolerance) return b.t;
     t = newton;
   }
@@ -146,8 +154,10 @@ double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds) {
 /// The first crossing in (a, b], or none, by certified bisection.
 std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, double bound,
                               const EventOptions& options) {
-  if (b.w >= 0 && a.w < 0 && SlopeLowerBound(a, b, bound) > 0) {
-    return RefineRoot(w, a, b, options);
+  if (b.w >= 0 && a.w < 0) {
+    if (const double slope = SlopeLowerBound(a, b, bound); slope > 0) {
+      return RefineRoot(w, a, b, slope, bound, options);
+    }
   }
   if (b.w < 0 && TwoSidedUpperBound(a, b, bound) < 0) return std::nullopt;
   if (b.t - a.t <= TimeTolerance(b.t, options)) {

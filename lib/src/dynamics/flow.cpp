@@ -122,13 +122,6 @@ void ModeBasis::Evaluate(double tau, double* ec, double* es) const {
   }
 }
 
-void ModeBasis::Differentiate(double* alpha, double* gamma) const {
-  // C' = -β² S, S' = C.
-  const double a = *alpha, g = *gamma;
-  *alpha = g - decay * a;
-  *gamma = -decay * g - beta2 * a;
-}
-
 ModeBasis::Decay ModeBasis::DecayFrom(double tau_from) const {
   // |S| <= τ e^{bτ} in every regime (b = 0 unless over-damped).
   const double slow_decay = decay - (beta2 < 0 ? root : 0.0);

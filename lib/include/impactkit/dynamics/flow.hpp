@@ -40,7 +40,12 @@ struct ModeBasis {
   /// ec = e^{-aτ} C(τ), es = e^{-aτ} S(τ), computed without overflow.
   void Evaluate(double tau, double* ec, double* es) const;
   /// Coefficients of the derivative: d/dτ e^{-aτ}(α C + γ S) = e^{-aτ}(α' C + γ' S).
-  void Differentiate(double* alpha, double* gamma) const;
+  /// Defined here so that the evaluation loops inline it (C' = -β² S, S' = C).
+  void Differentiate(double* alpha, double* gamma) const {
+    const double a = *alpha, g = *gamma;
+    *alpha = g - decay * a;
+    *gamma = -decay * g - beta2 * a;
+  }
   /// An upper bound of |e^{-aτ}(α C(τ) + γ S(τ))| over all τ >= tau_from >= 0.
   double Envelope(double alpha, double gamma, double tau_from) const;
 
