@@ -6,29 +6,39 @@
 # each row from the previous value's final state; the basins at Ω = 1.7 over
 # (x1, v1) and at Ω = 2.0 over (x2, v2). Prints each run's class counts and
 # attractors.
-# With `impactkit curve` curves in DATA/curves-r.json or curves-xs.json (its
-# --json), the maps draw them over the cells.
+# The maps draw over their cells the curves examples/parameter_planes.sh
+# writes into the same data folder (`impactkit curve --json`: P(1,1)'s period
+# doubling and grazing, P(1,2)'s fold and period doubling, where the
+# non-impacting response touches the stop), when they are there; scripts/run.sh
+# runs that script first.
 #
 #   examples/parameter_maps.sh [impactkit binary] [figure folder] [data folder]
 #
-# Defaults: ./build/apps/impactkit, ./docs/figures, ./out/maps. Needs gnuplot.
+# Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps. Needs gnuplot.
 # About 4 minutes on 2 cores; under `mpirun`, see docs/maps.md.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
-figures=${2:-./docs/figures}
+figures=${2:-./out/figures}
 data=${3:-./out/maps}
 mkdir -p "$figures" "$data"
 
-curves() { [[ -f $data/$1 ]] && echo --curves "$data/$1" || true; }
+# curves SECOND: --curves and every curve file of the (omega, SECOND) plane present.
+curves() {
+  local files=() name
+  for name in pd11 graze11 fold12 pd12 response; do
+    [[ -f $data/$name-$1.json ]] && files+=("$data/$name-$1.json")
+  done
+  ((${#files[@]} == 0)) || echo --curves "${files[@]}"
+}
 
 # shellcheck disable=SC2046  # curves: no flag, or a flag and its file
 "$impactkit" map --param omega --from 0.1 --to 2.5 --steps 241 --param2 r --from2 0.3 --to2 0.95 \
   --steps2 66 --out "$data/map-omega-r.csv" --json "$data/map-omega-r.json" \
-  --plot "$figures/map_omega_r.png" $(curves curves-r.json) | sed 's/^/    /'
+  --plot "$figures/map_omega_r.png" $(curves r) | sed 's/^/    /'
 # shellcheck disable=SC2046
 "$impactkit" map --param omega --from 0.1 --to 2.5 --steps 241 --param2 xs --from2 0 --to2 0.3 \
   --steps2 61 --out "$data/map-omega-xs.csv" --json "$data/map-omega-xs.json" \
-  --plot "$figures/map_omega_xs.png" $(curves curves-xs.json) | sed 's/^/    /'
+  --plot "$figures/map_omega_xs.png" $(curves xs) | sed 's/^/    /'
 # Ω = 1.7: P(4,4) and P(12,8) over starts (x1, v1), x2 = v2 = 0.
 "$impactkit" basins --omega 1.7 --coord x1 --from -2 --to 2 --steps 100 --coord2 v1 --from2 -2 \
   --to2 2 --steps2 100 --out "$data/basins-1.7.csv" --json "$data/basins-1.7.json" \

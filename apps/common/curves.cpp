@@ -9,11 +9,13 @@
 
 namespace impactkit::cli {
 
-std::vector<Curve> ReadCurves(const std::string& path, const std::string& x_name,
-                              const std::string& y_name) {
+namespace {
+
+/// The curves of one file in the plane, appended to `curves`.
+void ReadCurveFile(const std::string& path, const std::string& x_name, const std::string& y_name,
+                   std::vector<Curve>& curves) {
   std::ifstream in(path);
   Require(static_cast<bool>(in), fmt::format("cannot read curves file {}", path));
-  std::vector<Curve> curves;
   try {
     const nlohmann::json json = nlohmann::json::parse(in);
     for (const nlohmann::json& curve : json.at("curves")) {
@@ -33,9 +35,19 @@ std::vector<Curve> ReadCurves(const std::string& path, const std::string& x_name
   } catch (const nlohmann::json::exception& error) {
     throw InvalidInput(fmt::format("curves file {}: {}", path, error.what()));
   }
-  // Black and dark grey stand out on the map's colours.
+}
+
+}  // namespace
+
+std::vector<Curve> ReadCurves(const std::vector<std::string>& paths, const std::string& x_name,
+                              const std::string& y_name) {
+  std::vector<Curve> curves;
+  for (const std::string& path : paths) ReadCurveFile(path, x_name, y_name, curves);
+  // Black and dark grey, solid and dashed, stand out on the map's colours
+  // and from each other (the legend names each curve).
   for (std::size_t i = 0; i < curves.size(); ++i) {
     curves[i].color = i % 2 == 0 ? "#000000" : "#555555";
+    curves[i].dashed = i % 4 >= 2;
   }
   return curves;
 }

@@ -12,10 +12,10 @@
 
 namespace impactkit::cli {
 
-/// The curves of `path` in the plane (x_name, y_name), as polylines titled
-/// "fold P(1,2)"; curves in other parameters are left out. Throws
-/// InvalidInput naming the file and what is wrong.
-std::vector<Curve> ReadCurves(const std::string& path, const std::string& x_name,
+/// The curves of the files `paths` in the plane (x_name, y_name), as
+/// polylines titled "fold P(1,2)"; curves in other parameters are left out.
+/// Throws InvalidInput naming the file and what is wrong.
+std::vector<Curve> ReadCurves(const std::vector<std::string>& paths, const std::string& x_name,
                               const std::string& y_name);
 
 }  // namespace impactkit::cli

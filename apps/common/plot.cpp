@@ -253,10 +253,13 @@ std::string ClassMapScript(const ClassMap& map, const fs::path& cells,
   }
   std::string plot = fmt::format("plot {} using 1:2:3 with image notitle", Quoted(cells.string()));
   for (const std::string& key : keys) plot += ", " + key;
+  // Each curve over a white halo: a dark line alone vanishes on dark cells.
   for (std::size_t i = 0; i < map.overlays.size(); ++i) {
-    plot += fmt::format(", {} using 1:2 with lines lw 2 lc rgb \"{}\" title {}",
-                        Quoted(overlays[i].string()), map.overlays[i].color,
-                        Quoted(map.overlays[i].title));
+    const Curve& curve = map.overlays[i];
+    plot += fmt::format(
+        ", {0} using 1:2 with lines lw 5 lc rgb \"#ffffff\" notitle"
+        ", {0} using 1:2 with lines lw 2 dashtype {1} lc rgb \"{2}\" title {3}",
+        Quoted(overlays[i].string()), curve.dashed ? 2 : 1, curve.color, Quoted(curve.title));
   }
   // gnuplot's palette needs two colours: one class is drawn as if of two.
   if (classes == 1) palette.push_back(fmt::format("1 \"{}\"", map.colors[0]));

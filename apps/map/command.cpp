@@ -34,7 +34,8 @@ struct MapRequest {
   RangeFlags range2{"r"};
   RunFlags run;
   std::optional<int> threads;
-  std::string checkpoint, out, json, plot, curves;
+  std::string checkpoint, out, json, plot;
+  std::vector<std::string> curves;
 };
 
 ParameterMapOptions OptionsOf(const MapRequest& request, const System& system) {
@@ -170,9 +171,10 @@ ClassMap ChartOf(const ParameterMapTask& task, const std::vector<GridCell>& cell
     const auto found = class_of.find(ClassOf(cell));
     chart.cell_class.push_back(found == class_of.end() ? other : found->second);
   }
-  chart.title = fmt::format("Motion over ({}, {})", o.row.parameter, o.parameter2);
-  chart.x_label = o.row.parameter;
-  chart.y_label = o.parameter2;
+  chart.title = fmt::format("Motion over ({}, {})", ParameterLabel(o.row.parameter),
+                            ParameterLabel(o.parameter2));
+  chart.x_label = ParameterLabel(o.row.parameter);
+  chart.y_label = ParameterLabel(o.parameter2);
   return chart;
 }
 
@@ -271,8 +273,10 @@ void AddMapCommand(CLI::App& app) {
       ->check(OutputPath())
       ->group(output);
   command
-      ->add_option("--curves", request->curves,
-                   "Curves to draw over --plot, as 'impactkit curve' writes them (docs/cli.md)")
+      ->add_option(
+          "--curves", request->curves,
+          "Curves to draw over --plot, as 'impactkit curve --json' writes them (one or more "
+          "files; docs/curves-json.md)")
       ->type_name("FILE.json")
       ->check(CLI::ExistingFile)
       ->group(output);
