@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "continuation/branch_problem.hpp"
+#include "continuation/step_controls.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
 
@@ -548,17 +549,9 @@ bool ContinuationOptions::IsValid(std::string* error) const {
     return fail(fmt::format("the parameter bounds must be finite with lower < upper, got [{}, {}]",
                             lower, upper));
   }
-  if (!(min_step > 0 && min_step <= initial_step && initial_step <= max_step &&
-        std::isfinite(max_step))) {
-    return fail(fmt::format("steps must satisfy 0 < min <= initial <= max, got {}, {}, {}",
-                            min_step, initial_step, max_step));
-  }
-  if (max_points < 2) return fail(fmt::format("max_points must be >= 2, got {}", max_points));
-  if (corrector_iterations < 1) {
-    return fail(fmt::format("corrector_iterations must be >= 1, got {}", corrector_iterations));
-  }
-  if (!(max_correction > 0 && max_correction <= 1)) {
-    return fail(fmt::format("max_correction must be in (0, 1], got {}", max_correction));
+  if (const auto problem = StepControlProblem(min_step, initial_step, max_step, max_points,
+                                              corrector_iterations, max_correction)) {
+    return fail(*problem);
   }
   return orbit.IsValid(error);
 }

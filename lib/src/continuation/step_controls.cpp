@@ -1,0 +1,27 @@
+#include "continuation/step_controls.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace impactkit {
+
+std::optional<std::string> StepControlProblem(double min_step, double initial_step, double max_step,
+                                              int max_points, int corrector_iterations,
+                                              double max_correction) {
+  if (!(min_step > 0 && min_step <= initial_step && initial_step <= max_step &&
+        std::isfinite(max_step))) {
+    return fmt::format("steps must satisfy 0 < min <= initial <= max, got {}, {}, {}", min_step,
+                       initial_step, max_step);
+  }
+  if (max_points < 2) return fmt::format("max_points must be >= 2, got {}", max_points);
+  if (corrector_iterations < 1) {
+    return fmt::format("corrector_iterations must be >= 1, got {}", corrector_iterations);
+  }
+  if (!(max_correction > 0 && max_correction <= 1)) {
+    return fmt::format("max_correction must be in (0, 1], got {}", max_correction);
+  }
+  return std::nullopt;
+}
+
+}  // namespace impactkit
