@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "continuation/arclength.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
 
@@ -144,19 +145,7 @@ std::optional<Eigen::VectorXd> BranchProblem::Tangent(const Eigen::VectorXd& x,
                                                       const Eigen::VectorXd& previous) const {
   Eigen::MatrixXd j;
   if (!Jacobian(x, &j)) return std::nullopt;
-  Eigen::VectorXd t;
-  if (previous.size() == size_) {
-    // The bordered system [J; previousᵀ] t = e_last: regular at folds, and
-    // its solution continues `previous` (previous · t = 1 > 0).
-    Eigen::MatrixXd bordered(size_, size_);
-    bordered << j, previous.transpose();
-    t = bordered.fullPivLu().solve(Eigen::VectorXd::Unit(size_, size_ - 1));
-  } else {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
-    t = svd.matrixV().col(size_ - 1);
-  }
-  if (!t.allFinite() || t.norm() == 0.0) return std::nullopt;
-  return t.normalized();
+  return ArclengthTangent(j, previous);
 }
 
 std::optional<BranchPoint> BranchProblem::Describe(const Eigen::VectorXd& x,

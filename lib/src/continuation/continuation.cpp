@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "continuation/arclength.hpp"
 #include "continuation/branch_problem.hpp"
-#include "continuation/step_controls.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
 

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
+#include "continuation/arclength.hpp"
 #include "continuation/curve_problem.hpp"
 #include "continuation/curve_tests.hpp"
-#include "continuation/step_controls.hpp"
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit {

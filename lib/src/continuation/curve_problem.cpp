@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "continuation/arclength.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
 
@@ -256,19 +257,7 @@ std::optional<Eigen::VectorXd> CurveProblem::Tangent(const Eigen::VectorXd& x,
                                                      const Eigen::VectorXd& previous) const {
   Eigen::MatrixXd j;
   if (!Jacobian(x, &j)) return std::nullopt;
-  Eigen::VectorXd t;
-  if (previous.size() == size_) {
-    // [J; previousᵀ] t = e_last: regular where the curve turns in any
-    // coordinate, and t continues `previous`.
-    Eigen::MatrixXd bordered(size_, size_);
-    bordered << j, previous.transpose();
-    t = bordered.fullPivLu().solve(Eigen::VectorXd::Unit(size_, size_ - 1));
-  } else {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
-    t = svd.matrixV().col(size_ - 1);
-  }
-  if (!t.allFinite() || t.norm() == 0.0) return std::nullopt;
-  return t.normalized();
+  return ArclengthTangent(j, previous);
 }
 
 std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,

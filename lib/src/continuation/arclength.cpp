@@ -1,4 +1,4 @@
-#include "continuation/step_controls.hpp"
+#include "continuation/arclength.hpp"
 
 #include <fmt/format.h>
 
@@ -22,6 +22,22 @@ std::optional<std::string> StepControlProblem(double min_step, double initial_st
     return fmt::format("max_correction must be in (0, 1], got {}", max_correction);
   }
   return std::nullopt;
+}
+
+std::optional<Eigen::VectorXd> ArclengthTangent(const Eigen::MatrixXd& j,
+                                                const Eigen::VectorXd& previous) {
+  const Eigen::Index size = j.cols();
+  Eigen::VectorXd t;
+  if (previous.size() == size) {
+    Eigen::MatrixXd bordered(size, size);
+    bordered << j, previous.transpose();
+    t = bordered.fullPivLu().solve(Eigen::VectorXd::Unit(size, size - 1));
+  } else {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
+    t = svd.matrixV().col(size - 1);
+  }
+  if (!t.allFinite() || t.norm() == 0.0) return std::nullopt;
+  return t.normalized();
 }
 
 }  // namespace impactkit
