@@ -254,9 +254,9 @@ void AddContinueCommand(CLI::App& app) {
   command
       ->add_option("--out", request->out,
                    "CSV, one row per point: parameter, arclength, phase1.., v1.., range_xN, "
-                   "mod1.. (multiplier moduli), stable, clearance, depth, special (0 none, "
-                   "1 fold, 2 period doubling, 3 Neimark-Sacker, 4 grazing, 5 sticking); "
-                   "other branches go to FILE.<label>.csv")
+                   "mod1.. (multiplier moduli), stable, clearance, depth, special (the "
+                   "special point's type by name, empty elsewhere); other branches go to "
+                   "FILE.<label>.csv")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group("Output");
