@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 
+#include "hybrid/chatter_rule.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/segment.hpp"
 
@@ -26,6 +27,8 @@ std::string ToString(SimulationStatus status) {
       return "stopped by observer";
     case SimulationStatus::kStalled:
       return "stalled: events repeat at one instant";
+    case SimulationStatus::kWorkLimit:
+      return "work bound reached: too many events in one forcing period";
   }
   return "unknown";
 }
@@ -46,14 +49,21 @@ bool SimulationOptions::IsValid(std::string* error) const {
         fmt::format("event_time_tolerance must be in (0, 1e-3), got {}", event_time_tolerance));
   }
   if (max_events < 1) return fail(fmt::format("max_events must be >= 1, got {}", max_events));
+  if (!(bounce_height_resolution >= 0 && bounce_height_resolution < 1e-3)) {
+    return fail(fmt::format("bounce_height_resolution must be in [0, 1e-3), got {}",
+                            bounce_height_resolution));
+  }
+  if (max_events_per_period < 1) {
+    return fail(fmt::format("max_events_per_period must be >= 1, got {}", max_events_per_period));
+  }
   return true;
 }
 
 std::string SimulationSummary::BriefReport() const {
   return fmt::format(
-      "{}: {} impacts, {} chatter sequences ended, {} releases, stuck {:.6g} time "
-      "units, {:.3g} s",
-      ToString(status), impacts, chatter_jumps, releases, stuck_time, elapsed_seconds);
+      "{}: {} impacts, {} landings, {} chatter sequences ended, {} releases, stuck {:.6g} "
+      "time units, {:.3g} s",
+      ToString(status), impacts, landings, chatter_jumps, releases, stuck_time, elapsed_seconds);
 }
 
 /// The hybrid system (both modes' flows, decomposed once) and the options.
@@ -84,6 +94,7 @@ class HybridRun {
         state_(state),
         t_end_(t_end),
         observer_(observer),
+        rule_(options, hybrid.GetStop().Restitution(), hybrid.TimeScale()),
         force_scratch_(hybrid_.GetSystem().Dof()),
         acceleration_scratch_(hybrid_.GetSystem().Dof()) {}
 
@@ -92,12 +103,13 @@ class HybridRun {
  private:
   void FreePhase();
   void StuckPhase();
+  void ArriveAtStop(double te, double speed);
   void ApplyImpact(double te, double speed);
-  std::optional<double> AccumulationTime(double te, double speed);
+  bool OverWorkBound();
   void JumpToAccumulation(double te, double t_star);
   void LandAtStop();
   std::int64_t Events() const {
-    return summary_.impacts + summary_.releases + summary_.chatter_jumps;
+    return summary_.impacts + summary_.landings + summary_.releases + summary_.chatter_jumps;
   }
 
   const HybridSystem& hybrid_;
@@ -106,6 +118,7 @@ class HybridRun {
   HybridState& state_;
   const double t_end_;
   Observer& observer_;
+  const ChatterRule rule_;
   SimulationSummary summary_;
   Signal witness_;
   Impact impact_;  ///< reused: no allocation per impact
@@ -114,14 +127,21 @@ class HybridRun {
   double stick_begin_ = 0.0;
   static constexpr int kMaxStalledPhases = 1000;
   int stalled_phases_ = 0;
+  double window_begin_ = 0.0;       ///< start of the work bound's current window
+  std::int64_t window_events_ = 0;  ///< Events() at window_begin_
 };
 
 SimulationSummary HybridRun::Execute() {
   const auto start = std::chrono::steady_clock::now();
   stick_begin_ = state_.t;
+  window_begin_ = state_.t;
   while (state_.t < t_end_) {
     if (Events() >= options_.max_events) {
       summary_.status = SimulationStatus::kEventLimit;
+      break;
+    }
+    if (OverWorkBound()) {
+      summary_.status = SimulationStatus::kWorkLimit;
       break;
     }
     const double before = state_.t;
@@ -158,7 +178,36 @@ void HybridRun::FreePhase() {
   state_.t = end;
   if (!te) return;
   state_.x(c) = s.stop;
-  ApplyImpact(end, std::max(state_.v(c), 0.0));
+  ArriveAtStop(end, std::max(state_.v(c), 0.0));
+}
+
+/// Counts events per window of one forcing period; true once a window holds
+/// more than the bound (the windows start at events, so a window is at most
+/// a period long plus the one phase that ended it).
+bool HybridRun::OverWorkBound() {
+  const System& s = hybrid_.GetSystem();
+  if (state_.t - window_begin_ >= s.ForcingPeriod()) {
+    window_begin_ = state_.t;
+    window_events_ = Events();
+  }
+  return Events() - window_events_ > options_.max_events_per_period;
+}
+
+/// The contact mass reached the stop with speed `speed` >= 0: a landing
+/// when the arrival's height is unresolved (chatter_rule.hpp), otherwise an
+/// impact. The gap's curvature there is the arrival's acceleration.
+void HybridRun::ArriveAtStop(double te, double speed) {
+  double gap, slope, acceleration;
+  witness_.ValueSlopeCurvature(te, &gap, &slope, &acceleration);
+  if (rule_.IsLanding(speed, acceleration, witness_.Scale())) {
+    // Resting on the stop and pushed into it, or touching it tangentially:
+    // sticking or a grazing touch, not an impact.
+    if (state_.v(hybrid_.GetSystem().contact_dof) > 0) hybrid_.GetStop().Absorb(state_.v);
+    ++summary_.landings;
+    LandAtStop();
+    return;
+  }
+  ApplyImpact(te, speed);
 }
 
 void HybridRun::ApplyImpact(double te, double speed) {
@@ -175,33 +224,14 @@ void HybridRun::ApplyImpact(double te, double speed) {
   hybrid_.GetStop().Reset(state_.v);
   const double previous = last_impact_;
   last_impact_ = te;
-  if (state_.v(c) == 0.0) {
-    LandAtStop();
-  } else if (options_.chatter == ChatterMethod::kThreshold) {
-    if (te - previous < options_.chatter_threshold) JumpToAccumulation(te, te);
-  } else if (const std::optional<double> t_star = AccumulationTime(te, speed)) {
-    JumpToAccumulation(te, std::min(t_end_, *t_star));
-  }
-}
-
-/// The accumulation time of the chatter that starts here, if it is to be
-/// jumped to. Budd & Dux: with rebound speed u and acceleration a > 0
-/// towards the stop, the impacts that follow come at intervals 2 r^k u / a and end after
-/// 2 u / (a (1 - r)). Jump there when that span is short on the system's
-/// time scale and the acceleration barely changes over it (the geometric
-/// model's premise); otherwise keep simulating impacts one by one.
-std::optional<double> HybridRun::AccumulationTime(double te, double speed) {
-  const double r = hybrid_.GetStop().Restitution();
-  if (r >= 1.0) return std::nullopt;
+  // The acceleration after the reset (the rebound's), which the chatter
+  // prediction models.
   double jerk;
-  const double a = hybrid_.ContactAcceleration(te, state_.x, state_.v, &jerk, &force_scratch_,
-                                               &acceleration_scratch_);
-  if (!(a > 0)) return std::nullopt;
-  const double span = 2.0 * r * speed / (a * (1.0 - r));
-  if (span > options_.chatter_span * hybrid_.TimeScale() || std::abs(jerk) * span > 0.01 * a) {
-    return std::nullopt;
-  }
-  return te + span;
+  const double acceleration = hybrid_.ContactAcceleration(te, state_.x, state_.v, &jerk,
+                                                          &force_scratch_, &acceleration_scratch_);
+  const std::optional<double> t_star =
+      rule_.EndsAt(te, previous, speed, -state_.v(c), acceleration, jerk, witness_.Scale());
+  if (t_star) JumpToAccumulation(te, std::min(t_end_, *t_star));
 }
 
 void HybridRun::JumpToAccumulation(double te, double t_star) {
@@ -229,8 +259,11 @@ void HybridRun::LandAtStop() {
   const System& s = hybrid_.GetSystem();
   state_.x(s.contact_dof) = s.stop;
   state_.v(s.contact_dof) = 0.0;
-  state_.stuck =
-      Stop::Holds(hybrid_.ContactForce(state_.t, hybrid_.Held(state_.x), hybrid_.Held(state_.v)));
+  const LinearFlow& held = hybrid_.StuckFlow();
+  const Eigen::VectorXd z0 =
+      held.Transient(state_.t, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
+  held.Output(hybrid_.Release(), state_.t, z0, &witness_);
+  state_.stuck = Stop::Holds(witness_, state_.t);
   if (state_.stuck) stick_begin_ = state_.t;
 }
 
@@ -241,7 +274,7 @@ void HybridRun::StuckPhase() {
   const double t0 = state_.t;
   const Eigen::VectorXd z0 = held.Transient(t0, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
   held.Output(hybrid_.Release(), t0, z0, &witness_);
-  const std::optional<double> tr = witness_.Value(t0) >= 0
+  const std::optional<double> tr = !Stop::Holds(witness_, t0)
                                        ? std::optional<double>(t0)
                                        : FirstUpcrossing(witness_, t0, t_end_, events_);
   const double end = tr.value_or(t_end_);

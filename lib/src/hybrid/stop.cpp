@@ -1,5 +1,8 @@
 #include "impactkit/hybrid/stop.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include "dynamics/subsystem.hpp"
 
 namespace impactkit {
@@ -12,15 +15,23 @@ Stop::Stop(const System& system)
   impulse_direction_(dof_) = 1.0;
 }
 
-void Stop::Reset(Eigen::VectorXd& v) const {
+void Stop::Reset(Eigen::VectorXd& v, double restitution) const {
   // v_c is set directly rather than as v_c + Δ: −r v_c, the paper's law to
   // the last bit; the others move with the impulse (not at all for a
   // diagonal M, whose impulse direction is exactly e_c).
-  const double change = -(1.0 + restitution_) * v(dof_);
+  const double change = -(1.0 + restitution) * v(dof_);
   for (Eigen::Index j = 0; j < v.size(); ++j) {
     if (j != dof_) v(j) += change * impulse_direction_(j);
   }
-  v(dof_) = -restitution_ * v(dof_);
+  v(dof_) = -restitution * v(dof_);
+}
+
+bool Stop::Holds(const Signal& release, double t) {
+  double w, slope, curvature;
+  release.ValueSlopeCurvature(t, &w, &slope, &curvature);
+  const double noise = 64 * std::numeric_limits<double>::epsilon() * release.Scale();
+  if (std::abs(w) > noise) return w < 0;
+  return slope != 0 ? slope < 0 : curvature < 0;
 }
 
 Witness Stop::Gap(int dofs) const {
@@ -58,16 +69,16 @@ Witness Stop::Release(const System& system) const {
   return {"the stop's force on the held mass falls through zero (a release)", minus};
 }
 
-Eigen::MatrixXd Stop::ResetJacobian(int dofs) const {
+Eigen::MatrixXd Stop::ResetJacobian(int dofs, double restitution) const {
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Identity(2 * dofs, 2 * dofs);
   for (int j = 0; j < dofs; ++j) {
     // Zero directions are left as they are (+0): a diagonal M's Jacobian
     // is the paper's to the last bit.
     if (j != dof_ && impulse_direction_(j) != 0.0) {
-      jacobian(dofs + j, dofs + dof_) = -(1.0 + restitution_) * impulse_direction_(j);
+      jacobian(dofs + j, dofs + dof_) = -(1.0 + restitution) * impulse_direction_(j);
     }
   }
-  jacobian(dofs + dof_, dofs + dof_) = -restitution_;
+  jacobian(dofs + dof_, dofs + dof_) = -restitution;
   return jacobian;
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "dynamics/subsystem.hpp"
+#include "hybrid/chatter_rule.hpp"
 #include "impactkit/dynamics/events.hpp"
 
 namespace impactkit {
@@ -57,7 +58,8 @@ class StickingMap::Cycle {
         with_contacts_(with_contacts),
         n_(hybrid.GetSystem().Dof()),
         c_(hybrid.GetSystem().contact_dof),
-        events_{options.simulation.event_time_tolerance, hybrid.TimeScale()} {
+        events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
+        rule_(options.simulation, hybrid.GetStop().Restitution(), hybrid.TimeScale()) {
     const Eigen::MatrixXd inverse_mass = hybrid.GetSystem().mass.inverse();
     constraint_direction_ = inverse_mass.col(c_) / inverse_mass(c_, c_);
     const LinearOutput release = hybrid.GetStop().Release(hybrid.GetSystem()).output;
@@ -81,7 +83,7 @@ class StickingMap::Cycle {
   /// The least interior minimum of Fs on (begin, end), from w = −Fs: its
   /// maxima are the zeros of w' where it falls; infinity if there is none.
   double HoldMargin(const Signal& release, double begin, double end) const;
-  bool ChatterEndsAt(double te, double speed, double previous, double* t_star);
+  bool ArrivalEndsChatter(double te, double previous, StickingCycle* cycle, double* t_star);
   StickingMapStatus StickAndRelease(double te, double t_star, StickingCycle* cycle);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
   /// at t1 with witness gradient l and slope ẇ(t1): G = Φ (dy0 − f0 dt0),
@@ -110,6 +112,9 @@ class StickingMap::Cycle {
   double t_ = 0.0;
   double deadline_ = 0.0;   ///< the cycle must stick before this time
   double clearance_ = 0.0;  ///< the cycle's so far (with contacts)
+  const ChatterRule rule_;
+  double arrival_acceleration_ = 0.0;  ///< the gap's curvature at the last arrival
+  double gap_scale_ = 1.0;             ///< and the gap signal's length scale
   Eigen::VectorXd x_, v_;
   Eigen::MatrixXd dy_;     ///< ∂y/∂s of the current state
   Eigen::RowVectorXd dt_;  ///< ∂t/∂s of the current time
@@ -141,13 +146,8 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   for (int k = 0; k < options_.max_impacts; ++k) {
     const std::optional<double> te = NextImpact(k == 0, &status);
     if (!te) return status;
-    const double speed = std::max(v_(c_), 0.0);
-    cycle->impacts.push_back({*te, speed});
-    v_(c_) = speed;
-    hybrid_.GetStop().Reset(v_);
-    if (with_jacobian_) dy_ = hybrid_.GetStop().ResetJacobian(n_) * dy_;
     double t_star;
-    if (ChatterEndsAt(*te, speed, previous, &t_star)) {
+    if (ArrivalEndsChatter(*te, previous, cycle, &t_star)) {
       cycle->clearance = clearance_;
       status = StickAndRelease(*te, t_star, cycle);
       if (status != StickingMapStatus::kOk) return status;
@@ -188,6 +188,9 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
     return std::nullopt;
   }
   if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, begin, *te));
+  double value, slope;
+  gap.ValueSlopeCurvature(*te, &value, &slope, &arrival_acceleration_);
+  gap_scale_ = gap.Scale();
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.State(t0, z0, *te, &x_, &v_);
@@ -223,28 +226,31 @@ double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, doubl
   return margin;
 }
 
-/// The simulator's rule (hybrid/simulator.cpp, HybridRun::ApplyImpact and
-/// AccumulationTime), applied after the reset: a rebound at zero speed
-/// lands at once; otherwise the threshold rule, or Budd & Dux's prediction
-/// t* = te + 2 r u / (a (1 − r)) when that span is short on the system's
-/// time scale and the acceleration a barely changes over it.
-bool StickingMap::Cycle::ChatterEndsAt(double te, double speed, double previous, double* t_star) {
-  const SimulationOptions& rule = options_.simulation;
+/// The simulator's rules at an arrival (hybrid/chatter_rule.hpp): a landing
+/// ends the chatter at once and is no impact; an impact is recorded and
+/// reset, and the chatter ends where the rule says. True if it ends, at
+/// *t_star.
+bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, StickingCycle* cycle,
+                                            double* t_star) {
+  const Stop& stop = hybrid_.GetStop();
+  const double speed = std::max(v_(c_), 0.0);
   *t_star = te;
-  if (v_(c_) == 0.0) return true;
-  if (rule.chatter == ChatterMethod::kThreshold) return te - previous < rule.chatter_threshold;
-  const double r = hybrid_.GetStop().Restitution();
-  if (r >= 1.0) return false;
+  if (rule_.IsLanding(speed, arrival_acceleration_, gap_scale_)) {
+    v_(c_) = speed;
+    stop.Absorb(v_);
+    if (with_jacobian_) dy_ = stop.AbsorbJacobian(n_) * dy_;
+    return true;
+  }
+  cycle->impacts.push_back({te, speed});
+  v_(c_) = speed;
+  stop.Reset(v_);
+  if (with_jacobian_) dy_ = stop.ResetJacobian(n_) * dy_;
   double jerk;
   Eigen::VectorXd force(n_), acceleration(n_);
   const double a = hybrid_.ContactAcceleration(te, x_, v_, &jerk, &force, &acceleration);
-  if (!(a > 0)) return false;
-  const double span = 2.0 * r * speed / (a * (1.0 - r));
-  if (span > rule.chatter_span * hybrid_.TimeScale() || std::abs(jerk) * span > 0.01 * a) {
-    return false;
-  }
-  *t_star = te + span;
-  return true;
+  const std::optional<double> end = rule_.EndsAt(te, previous, speed, -v_(c_), a, jerk, gap_scale_);
+  if (end) *t_star = *end;
+  return end.has_value();
 }
 
 StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,

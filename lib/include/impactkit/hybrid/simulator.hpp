@@ -1,5 +1,5 @@
 #pragma once
-/// \file simulate.hpp
+/// \file simulator.hpp
 /// The exact hybrid simulator.
 ///
 /// Between events the motion is linear and harmonically forced, so it is
@@ -13,12 +13,16 @@
 ///             crossings impossible; te refined to ~1e-13)
 ///       observer.OnSegment(F on [t, min(te, t_end)])
 ///       no te: t <- t_end, stop
-///       y- <- F(te);  v_c(te+) <- -r v_c(te-);  observer.OnImpact(...)
+///       y- <- F(te)
+///       an arrival whose bounce height is unresolved is a landing: v_c <- 0,
+///           no impact (docs/theory.md §4); then as after chatter, below
+///       otherwise v_c(te+) <- -r v_c(te-);  observer.OnImpact(...)
 ///       if chatter is predicted to accumulate (Budd & Dux: after impact speed
 ///           u = r v and acceleration a > 0 towards the stop, the remaining
 ///           impacts end at t* = te + 2u / (a (1 - r))) and t* - te is small
 ///           on the system's time scale, or (threshold method) the last
-///           inter-impact time is below the threshold:
+///           inter-impact time is below the threshold, or the rebound is a
+///           micro-bounce (unresolved; elastic chatter's end):
 ///         jump: the other masses follow the stuck subsystem to t* (a
 ///               chatter segment, not sticking),
 ///               x_c = xs, v_c = 0; observer.OnChatter(te, t*)
@@ -66,6 +70,17 @@ struct SimulationOptions {
   double chatter_threshold = 1e-4;
   /// Event times are refined until the bracket is below this (time units).
   double event_time_tolerance = 1e-13;
+  /// The micro-bounce rule (docs/theory.md §4): a bounce of the contact mass
+  /// whose height u² / (2a) (speed u off the stop, acceleration a > 0
+  /// towards it) is below this fraction of the flight's length scale is
+  /// contact, not flight: an arrival that low is a landing (no impact), a
+  /// rebound that low ends the chatter. Elastic chatter (r = 1), whose
+  /// bounces never accumulate, also ends at a bounce shorter than
+  /// chatter_span of the time scale.
+  double bounce_height_resolution = 1e-10;
+  /// The work bound: a run that needs more events than this within one
+  /// forcing period stops with status kWorkLimit instead of crawling.
+  std::int64_t max_events_per_period = 100'000;
   /// Guard against pathological inputs: the run stops (status kEventLimit)
   /// after this many events.
   std::int64_t max_events = 200'000'000;
@@ -79,6 +94,7 @@ enum class SimulationStatus {
   kEventLimit,  ///< max_events reached; the state is at the last event
   kStopped,     ///< an observer asked to stop; the state is where it asked
   kStalled,     ///< events kept repeating at one instant; the state is there
+  kWorkLimit,   ///< max_events_per_period reached; the state is at the last event
 };
 
 std::string ToString(SimulationStatus status);
@@ -88,6 +104,9 @@ struct SimulationSummary {
   std::int64_t impacts = 0;        ///< impacts with the stop
   std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
   std::int64_t releases = 0;       ///< ends of sticking
+  /// Arrivals at the stop at zero speed or from below the bounce height
+  /// resolution: landings (sticking or a touch), not impacts.
+  std::int64_t landings = 0;
   /// Total time stuck at the stop, each sticking phase from the
   /// accumulation point of the chatter that led to it (the chatter's tail
   /// before it is impacting, not sticking).
@@ -99,10 +118,13 @@ struct SimulationSummary {
 /// An impact of the contact mass with the stop.
 struct Impact {
   double t = 0.0;
-  double phase = 0.0;     ///< t mod 2π/Ω, in [0, T)
-  double velocity = 0.0;  ///< v_c(t-) > 0, the speed just before impact
-  Eigen::VectorXd x;      ///< positions at impact (x_c = xs)
-  Eigen::VectorXd v;      ///< velocities just before impact
+  double phase = 0.0;  ///< t mod 2π/Ω, in [0, T)
+  /// v_c(t−) > 0, the speed just before impact; a mass reaching the stop
+  /// at zero speed (or from below the bounce height resolution) lands and is
+  /// not an impact.
+  double velocity = 0.0;
+  Eigen::VectorXd x;  ///< positions at impact (x_c = xs)
+  Eigen::VectorXd v;  ///< velocities just before impact
 };
 
 /// Receives what the simulator finds; every method has an empty default.

@@ -52,13 +52,25 @@ class Stop {
   LinearOutput ContactForce(const System& system) const;
 
   /// The impact law on the velocities just before impact (v_c > 0).
-  void Reset(Eigen::VectorXd& v) const;
+  void Reset(Eigen::VectorXd& v) const { Reset(v, restitution_); }
+  /// A landing: the impact law with r = 0 (v_c becomes 0, the others move
+  /// with the impulse, so a full M loses energy rather than gaining it).
+  void Absorb(Eigen::VectorXd& v) const { Reset(v, 0.0); }
   /// ∂(x, v)(t+) / ∂(x, v)(t−), 2N x 2N: the identity except the column of
   /// v_c, which is −(1 + r) M⁻¹e_c / (M⁻¹)_cc + e_c (−r at v_c itself).
-  Eigen::MatrixXd ResetJacobian(int dofs) const;
+  Eigen::MatrixXd ResetJacobian(int dofs) const { return ResetJacobian(dofs, restitution_); }
+  /// The same for a landing (r = 0).
+  Eigen::MatrixXd AbsorbJacobian(int dofs) const { return ResetJacobian(dofs, 0.0); }
 
   /// The sticking rule: the mass stays held while the stop pushes on it.
   static bool Holds(double contact_force) { return contact_force > 0; }
+  /// The same rule on the release witness w = −Fs of a held phase from t,
+  /// where Fs may be zero to rounding (a mass landing at rest, the forcing
+  /// just turning): held if w < 0 beyond its rounding noise, or w is zero
+  /// to rounding and its first nonzero derivative (slope, then curvature)
+  /// sends it below 0. Holds(Fs) alone would let a mass pushed ever harder
+  /// into the stop leave and land again at every rounding error.
+  static bool Holds(const Signal& release, double t);
 
  private:
   int dof_;
@@ -67,6 +79,9 @@ class Stop {
   /// M⁻¹ e_c / (M⁻¹)_cc: how the impulse moves each velocity per unit
   /// change of v_c (exactly e_c for a diagonal M).
   Eigen::VectorXd impulse_direction_;
+
+  void Reset(Eigen::VectorXd& v, double restitution) const;
+  Eigen::MatrixXd ResetJacobian(int dofs, double restitution) const;
 };
 
 }  // namespace impactkit
