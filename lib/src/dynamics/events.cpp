@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace impactkit {
 namespace {
@@ -131,24 +132,52 @@ double RefineRoot(const Signal& w, Point a, Point b, double slope_bound, double 
   return b.t;
 }
 
-/// Leaving the surface: w = 0 up to rounding at p. If the first derivative
-/// that is not rounding noise, w^(k), is negative, Taylor's theorem with
-/// B >= sup|w^(k+1)| keeps w < 0 on (0, (k+1)|w^(k)|/B): after an impact
-/// k = 1, at a release from sticking k = 2 or 3. Returns that step, or 0
-/// when w is not at the surface or not certainly leaving it. Without this,
-/// an interval starting on the surface could never be certified empty.
-double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds) {
+/// How w leaves the surface at p: the sign of w if it is not rounding noise
+/// (order 0), else of its first derivative w^(k), k <= 3, that is not
+/// (order k); sign 0 if all are noise. Noise in w^(k) is relative to its
+/// bound, and never below the rounding the caller states for a start on
+/// the surface (EventOptions::start_noise, times rate^k for w^(k), rate =
+/// 2π / time_scale): a motion much smaller than the state it is computed
+/// from (a mass barely leaving the stop while the others swing) has bounds
+/// far below that rounding; without the floor its start would read as a
+/// crossing, and the mass would land and leave again one ulp later, over
+/// and over.
+struct Departure {
+  int sign = 0;
+  int order = 0;
+  double derivative = 0.0;
+};
+
+Departure Depart(const Signal& w, const Point& p, const double* bounds,
+                 const EventOptions& options) {
   constexpr double kNoise = 1e-11;
-  if (std::abs(p.w) > kNoise * bounds[0]) return 0.0;
+  const double rate = 2 * std::numbers::pi / options.time_scale;
+  double rounding = options.start_noise;
   constexpr int kHighestOrder = 3;
-  for (int k = 1; k <= kHighestOrder; ++k) {
-    const double derivative = k == 1 ? p.dw : k == 2 ? p.d2w : w.Derivative(k).Value(p.t);
-    if (std::abs(derivative) <= kNoise * bounds[k]) continue;
-    if (derivative > 0) return 0.0;
-    return bounds[k + 1] > 0 ? (k + 1) * -derivative / bounds[k + 1]
-                             : std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= kHighestOrder; ++k, rounding *= rate) {
+    const double derivative = k == 0   ? p.w
+                              : k == 1 ? p.dw
+                              : k == 2 ? p.d2w
+                                       : w.Derivative(k).Value(p.t);
+    if (std::abs(derivative) <= std::max(kNoise * bounds[k], rounding)) continue;
+    return {derivative > 0 ? 1 : -1, k, derivative};
   }
-  return 0.0;
+  return {};
+}
+
+/// Leaving the surface (w = 0 up to rounding at p) downwards: if w^(k) is
+/// the first derivative that is not noise and is negative, Taylor's theorem
+/// with B >= sup|w^(k+1)| keeps w < 0 on (0, (k+1)|w^(k)|/B): after an
+/// impact k = 1, at a release from sticking k = 2 or 3. Returns that step,
+/// or 0 when w is not at the surface or not certainly leaving it. Without
+/// this, an interval starting on the surface could never be certified empty.
+double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds,
+                       const EventOptions& options) {
+  const Departure departure = Depart(w, p, bounds, options);
+  if (departure.order == 0 || departure.sign >= 0) return 0.0;
+  const int k = departure.order;
+  return bounds[k + 1] > 0 ? (k + 1) * -departure.derivative / bounds[k + 1]
+                           : std::numeric_limits<double>::infinity();
 }
 
 /// The first crossing in (a, b], or none, by certified bisection.
@@ -159,7 +188,9 @@ std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, d
       return RefineRoot(w, a, b, slope, bound, options);
     }
   }
-  if (b.w < 0 && TwoSidedUpperBound(a, b, bound) < 0) return std::nullopt;
+  // Empty, or w could rise above 0 only by less than the resolution: a
+  // touch of the surface that is not resolved (EventOptions::resolution).
+  if (b.w < 0 && TwoSidedUpperBound(a, b, bound) < options.resolution) return std::nullopt;
   if (b.t - a.t <= TimeTolerance(b.t, options)) {
     // A tangency resolved to the tolerance: an event only if w got to 0.
     return b.w >= 0 ? std::optional<double>(b.t) : std::nullopt;
@@ -182,7 +213,7 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
   if (bounds[0] == 0) return std::nullopt;  // w = 0 throughout
   const double b2 = bounds[2], b3 = bounds[3];
   Point p = Evaluate(w, t_begin);
-  if (const double exit = SurfaceExitStep(w, p, bounds); exit > 0) {
+  if (const double exit = SurfaceExitStep(w, p, bounds, options); exit > 0) {
     if (exit >= t_end - t_begin) return std::nullopt;
     p = Evaluate(w, t_begin + exit);
   }
@@ -218,6 +249,19 @@ std::vector<double> SignChanges(const Signal& w, double t_begin, double t_end,
     rising = !rising;
   }
   return times;
+}
+
+int SurfaceSign(const Signal& w, double t, const EventOptions& options) {
+  double bounds[5];
+  w.DerivativeBounds(t, 4, bounds);
+  const Point p = Evaluate(w, t);
+  if (const int sign = Depart(w, p, bounds, options).sign; sign != 0) return sign;
+  // All rounding: the raw values decide, so that asking twice at one
+  // instant gets one answer.
+  for (const double value : {p.w, p.dw, p.d2w}) {
+    if (value != 0) return value > 0 ? 1 : -1;
+  }
+  return 0;
 }
 
 }  // namespace impactkit

@@ -106,6 +106,9 @@ class HybridRun {
   void ArriveAtStop(double te, double speed);
   void ApplyImpact(double te, double speed);
   bool OverWorkBound();
+  double LengthScale() const;
+  EventOptions Search() const;
+  EventOptions HeldSearch() const;
   void JumpToAccumulation(double te, double t_star);
   void LandAtStop();
   std::int64_t Events() const {
@@ -124,8 +127,10 @@ class HybridRun {
   Impact impact_;  ///< reused: no allocation per impact
   Eigen::VectorXd force_scratch_, acceleration_scratch_;
   double last_impact_ = -std::numeric_limits<double>::infinity();
+  double length_scale_ = 1.0;  ///< of the current flight (LengthScale())
   double stick_begin_ = 0.0;
   static constexpr int kMaxStalledPhases = 1000;
+  static constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
   int stalled_phases_ = 0;
   double window_begin_ = 0.0;       ///< start of the work bound's current window
   std::int64_t window_events_ = 0;  ///< Events() at window_begin_
@@ -169,9 +174,10 @@ void HybridRun::FreePhase() {
   const double t0 = state_.t;
   const Eigen::VectorXd z0 = flow.Transient(t0, state_.x, state_.v);
   flow.Output(hybrid_.Gap(), t0, z0, &witness_);
+  length_scale_ = LengthScale();
   const bool pressing_now = state_.x(c) == s.stop && state_.v(c) > 0;
   const std::optional<double> te =
-      pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, t_end_, events_);
+      pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, t_end_, Search());
   const double end = te.value_or(t_end_);
   if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, SegmentMode::kFree, c, s.stop));
   flow.State(t0, z0, end, &state_.x, &state_.v);
@@ -179,6 +185,42 @@ void HybridRun::FreePhase() {
   if (!te) return;
   state_.x(c) = s.stop;
   ArriveAtStop(end, std::max(state_.v(c), 0.0));
+}
+
+/// The length scale of the flight from the current state: the rounding of
+/// its gap comes from the state and the forced response (the gap signal's
+/// own coefficients can be far smaller, for a mass barely moving off the
+/// stop while the others swing).
+double HybridRun::LengthScale() const {
+  const double per_radian = hybrid_.TimeScale() / (2 * std::numbers::pi);
+  return std::abs(hybrid_.GetSystem().stop) + state_.x.lpNorm<Eigen::Infinity>() +
+         state_.v.lpNorm<Eigen::Infinity>() * per_radian + witness_.Scale();
+}
+
+/// The event search's options for the flight from the current state: gap
+/// heights below the bounce resolution are not resolved (chatter_rule.hpp),
+/// and one that leaves the stop from rest starts where the gap and its
+/// slope are 0 in truth, to the rounding of the length scale.
+EventOptions HybridRun::Search() const {
+  const int c = hybrid_.GetSystem().contact_dof;
+  EventOptions events = events_;
+  events.resolution = options_.bounce_height_resolution * length_scale_;
+  if (state_.x(c) == hybrid_.GetSystem().stop && state_.v(c) == 0.0) {
+    events.start_noise = kRounding * length_scale_;
+  }
+  return events;
+}
+
+/// The release search's options on the held phase's witness (in witness_):
+/// it starts where the contact force may be 0 to the rounding of its terms,
+/// and a dip of the force below 0 that returns within the bounce resolution
+/// of its scale is no release (a mass at rest on the stop with no force, at
+/// an antiresonance, would otherwise be certified piece by tiny piece).
+EventOptions HybridRun::HeldSearch() const {
+  EventOptions events = events_;
+  events.start_noise = kRounding * witness_.Scale();
+  events.resolution = options_.bounce_height_resolution * witness_.Scale();
+  return events;
 }
 
 /// Counts events per window of one forcing period; true once a window holds
@@ -199,7 +241,7 @@ bool HybridRun::OverWorkBound() {
 void HybridRun::ArriveAtStop(double te, double speed) {
   double gap, slope, acceleration;
   witness_.ValueSlopeCurvature(te, &gap, &slope, &acceleration);
-  if (rule_.IsLanding(speed, acceleration, witness_.Scale())) {
+  if (rule_.IsLanding(speed, acceleration, length_scale_)) {
     // Resting on the stop and pushed into it, or touching it tangentially:
     // sticking or a grazing touch, not an impact.
     if (state_.v(hybrid_.GetSystem().contact_dof) > 0) hybrid_.GetStop().Absorb(state_.v);
@@ -230,7 +272,7 @@ void HybridRun::ApplyImpact(double te, double speed) {
   const double acceleration = hybrid_.ContactAcceleration(te, state_.x, state_.v, &jerk,
                                                           &force_scratch_, &acceleration_scratch_);
   const std::optional<double> t_star =
-      rule_.EndsAt(te, previous, speed, -state_.v(c), acceleration, jerk, witness_.Scale());
+      rule_.EndsAt(te, previous, speed, -state_.v(c), acceleration, jerk, length_scale_);
   if (t_star) JumpToAccumulation(te, std::min(t_end_, *t_star));
 }
 
@@ -263,7 +305,7 @@ void HybridRun::LandAtStop() {
   const Eigen::VectorXd z0 =
       held.Transient(state_.t, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
   held.Output(hybrid_.Release(), state_.t, z0, &witness_);
-  state_.stuck = Stop::Holds(witness_, state_.t);
+  state_.stuck = Stop::Holds(witness_, state_.t, HeldSearch());
   if (state_.stuck) stick_begin_ = state_.t;
 }
 
@@ -274,9 +316,10 @@ void HybridRun::StuckPhase() {
   const double t0 = state_.t;
   const Eigen::VectorXd z0 = held.Transient(t0, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
   held.Output(hybrid_.Release(), t0, z0, &witness_);
-  const std::optional<double> tr = !Stop::Holds(witness_, t0)
+  const EventOptions search = HeldSearch();
+  const std::optional<double> tr = !Stop::Holds(witness_, t0, search)
                                        ? std::optional<double>(t0)
-                                       : FirstUpcrossing(witness_, t0, t_end_, events_);
+                                       : FirstUpcrossing(witness_, t0, t_end_, search);
   const double end = tr.value_or(t_end_);
   if (end > t0) observer_.OnSegment(Segment(held, t0, z0, t0, end, SegmentMode::kStuck, c, s.stop));
   Eigen::VectorXd xs, vs;

@@ -26,14 +26,6 @@ void Stop::Reset(Eigen::VectorXd& v, double restitution) const {
   v(dof_) = -restitution * v(dof_);
 }
 
-bool Stop::Holds(const Signal& release, double t) {
-  double w, slope, curvature;
-  release.ValueSlopeCurvature(t, &w, &slope, &curvature);
-  const double noise = 64 * std::numeric_limits<double>::epsilon() * release.Scale();
-  if (std::abs(w) > noise) return w < 0;
-  return slope != 0 ? slope < 0 : curvature < 0;
-}
-
 Witness Stop::Gap(int dofs) const {
   return {"the contact mass reaches the stop (an impact)",
           {Eigen::RowVectorXd::Unit(dofs, dof_), Eigen::RowVectorXd::Zero(dofs), 0.0, -position_}};

@@ -33,6 +33,14 @@ struct EventOptions {
   /// The system's shortest time scale; steps shorter than 1e-3 of it switch
   /// from stepping to examining intervals.
   double time_scale = 1.0;
+  /// The rounding of w at t_begin when the search starts where w = w' = 0
+  /// in truth (a mass leaving the stop from rest): w^(k) below this times
+  /// (2π / time_scale)^k counts as zero there. 0: judged by w's bounds alone.
+  double start_noise = 0.0;
+  /// Rises of w above 0 smaller than this are not events: where w hovers
+  /// within rounding of 0 (a mass moving along the stop) certifying every
+  /// piece of it empty would take ever shorter intervals. 0: every crossing.
+  double resolution = 0.0;
 };
 
 /// The first t in (t_begin, t_end] where w reaches 0 from below; w(t_begin)
@@ -47,5 +55,12 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
 /// (with w a velocity: the interior extrema of the position).
 std::vector<double> SignChanges(const Signal& w, double t_begin, double t_end,
                                 const EventOptions& options);
+
+/// The side of 0 that w is on or moves to at t: the sign of w, or where w
+/// is 0 to rounding (within EventOptions::start_noise or 1e-11 of its
+/// bound) of its first derivative up to the third that is not; if all are
+/// rounding, of the first nonzero of w, w', w'' as computed (0 if none).
+/// FirstUpcrossing leaves the surface by the same judgement.
+int SurfaceSign(const Signal& w, double t, const EventOptions& options);
 
 }  // namespace impactkit

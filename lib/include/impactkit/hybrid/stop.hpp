@@ -22,6 +22,7 @@
 #include <Eigen/Dense>
 #include <string_view>
 
+#include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/flow.hpp"
 #include "impactkit/model/system.hpp"
 
@@ -66,11 +67,15 @@ class Stop {
   static bool Holds(double contact_force) { return contact_force > 0; }
   /// The same rule on the release witness w = −Fs of a held phase from t,
   /// where Fs may be zero to rounding (a mass landing at rest, the forcing
-  /// just turning): held if w < 0 beyond its rounding noise, or w is zero
-  /// to rounding and its first nonzero derivative (slope, then curvature)
-  /// sends it below 0. Holds(Fs) alone would let a mass pushed ever harder
-  /// into the stop leave and land again at every rounding error.
-  static bool Holds(const Signal& release, double t);
+  /// just turning): held if w < 0 beyond its rounding, or w is zero to
+  /// rounding and its first derivative that is not sends it below 0 — the
+  /// judgement the release search starts with (SurfaceSign), so that a
+  /// mass held here is not released at once. Holds(Fs) alone would let a
+  /// mass pushed ever harder into the stop leave and land again at every
+  /// rounding error.
+  static bool Holds(const Signal& release, double t, const EventOptions& search) {
+    return SurfaceSign(release, t, search) < 0;
+  }
 
  private:
   int dof_;
