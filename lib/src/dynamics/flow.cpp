@@ -13,6 +13,10 @@
 namespace impactkit {
 namespace {
 
+/// The largest condition number of a modal basis the flow accepts (see the
+/// constructor).
+constexpr double kMaxBasisCondition = 1e6;
+
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// sup over τ >= τ0 of τ e^{-aτ} (a > 0).
@@ -267,10 +271,18 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
                                    : ComplexBlocks(system_matrix_);
   basis_ = d.basis;
   const Eigen::FullPivLU<Eigen::MatrixXd> basis_lu(basis_);
-  if (n > 0 && basis_lu.rcond() < 1e-11) {
-    throw InvalidInput(
-        "non-proportional damping with a repeated (defective) eigenvalue is not supported; "
-        "perturb C slightly or use proportional damping");
+  // Rounding in the modal coordinates grows with the basis's condition
+  // number: up to 1e6 the flow keeps ~1e-10. A defective state matrix (a
+  // repeated eigenvalue with one eigenvector, e.g. M = I, K the paper's
+  // chain, C = diag(2, 0)) has computed eigenvectors that nearly coincide,
+  // a condition number ~1/√ε, and a flow wrong in the second digit.
+  if (const double condition = 1.0 / basis_lu.rcond(); !(condition <= kMaxBasisCondition)) {
+    throw InvalidInput(fmt::format(
+        "the free modes are (nearly) defective: non-proportional damping with a repeated "
+        "eigenvalue (condition number of the modal basis {:.2g}, at most {:.0e}); the exact "
+        "flow needs distinct modes: change C slightly (e.g. no zero damping on one mass) or "
+        "use proportional damping",
+        condition, kMaxBasisCondition));
   }
   inverse_basis_ = n > 0 ? basis_lu.inverse() : Eigen::MatrixXd();
 
