@@ -105,6 +105,68 @@ TEST_CASE("validation names the bad parameter and the allowed range", "[model]")
   }
 }
 
+TEST_CASE("scales are validated before any computing, naming the parameter", "[model]") {
+  // The issue's inputs: each used to fail later with "the initial state has
+  // a NaN", "repeated (defective) eigenvalue", a hang, or inf in a series.
+  System s = PaperSystem();
+  SECTION("m = 1e308") {
+    SetParameter(s, "m", 1e308);
+    CheckRejected(s, "m (mass) must be within 1e-150 … 1e+150 in magnitude, got 1e+308");
+  }
+  SECTION("m = 1e-308") {
+    SetParameter(s, "m", 1e-308);
+    CheckRejected(s, "m (mass) must be within 1e-150 … 1e+150 in magnitude, got 1e-308");
+  }
+  SECTION("k = 1e-308") {
+    SetParameter(s, "k", 1e-308);
+    CheckRejected(s, "k (stiffness) must be within");
+  }
+  SECTION("A2 = 1e308") {
+    SetParameter(s, "A2", 1e308);
+    CheckRejected(s, "every entry of A (forcing) must be at most 1e+150 in magnitude, got 1e+308");
+  }
+  SECTION("omega = 1e-300 and 5e-324") {
+    SetParameter(s, "omega", 1e-300);
+    CheckRejected(s, "omega (forcing frequency) must be within 1e-150 … 1e+150");
+    SetParameter(s, "omega", 5e-324);
+    CheckRejected(s, "omega (forcing frequency) must be within 1e-150 … 1e+150");
+  }
+  SECTION("omega far below the fastest mode") {
+    // The paper's fastest mode: ω² = (3 + √5)/2, ω = 1.618...
+    SetParameter(s, "omega", 1e-8);
+    CheckRejected(s,
+                  "omega = 1e-08 is too slow for this system: one forcing period spans 1.62e+08 "
+                  "periods of its fastest mode");
+    SetParameter(s, "omega", 1.7e-6);  // just inside: 1.618 / 1e6 = 1.618e-6
+    CHECK_NOTHROW(Validate(s));
+  }
+  SECTION("natural frequencies spread beyond 1e5") {
+    s = GeneralSystem(Eigen::Vector2d(1.0, 1.0).asDiagonal(), Eigen::Matrix2d::Zero(),
+                      Eigen::Vector2d(1.0, 1e11).asDiagonal(), Eigen::Vector2d(0.5, 0.0), 1.0, 0.1,
+                      0.7);
+    CheckRejected(s,
+                  "give natural frequencies from 1 to 316228, a ratio of 3.16e+05; at most 1e+05");
+  }
+  SECTION("a forced response beyond 1e150") {
+    SetParameter(s, "A1", 1e149);
+    SetParameter(s, "c", 1e-3);
+    SetParameter(s, "omega", std::sqrt((3.0 - std::sqrt(5.0)) / 2.0));  // at resonance
+    CheckRejected(s, "A (forcing) gives a forced response of amplitude");
+  }
+  SECTION("more than 1000 masses in general matrices") {
+    const int n = kMaxDegreesOfFreedom + 1;
+    s = GeneralSystem(Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Zero(n, n),
+                      Eigen::MatrixXd::Identity(n, n), Eigen::VectorXd::Zero(n), 1.5, 0.1, 0.7);
+    CheckRejected(s, "the system has N = 1001 masses; at most 1000");
+  }
+  SECTION("tiny entries that only underflow are fine") {
+    SetParameter(s, "A2", 1e-300);
+    SetParameter(s, "c", 1e-200);
+    SetParameter(s, "xs", 1e-300);
+    CHECK_NOTHROW(Validate(s));
+  }
+}
+
 TEST_CASE("undamped but forced off resonance, or resonance of an unforced mode, is fine",
           "[model]") {
   System s = PaperSystem(0.9);

@@ -45,7 +45,7 @@ struct SystemFields {
 
 /// Largest N accepted in a file, as for `n` in SetParameter: a typo such as
 /// n = 1000000 must fail here, not in allocating an N x N matrix.
-constexpr int kMaxDof = 1000;
+constexpr int kMaxDof = kMaxDegreesOfFreedom;
 
 /// 'name', as fields are named in messages.
 std::string Field(std::string_view name) { return fmt::format("'{}'", name); }

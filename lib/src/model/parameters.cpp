@@ -34,11 +34,12 @@ void RebuildChain(System& s, Change change) {
 }
 
 void SetDof(System& s, double value) {
-  // The modal decomposition costs O(N³): n = 1000 takes seconds, more
-  // would look like a hang.
-  if (!(std::isfinite(value) && value >= 1 && value == std::floor(value) && value <= 1000)) {
-    throw InvalidInput(
-        fmt::format("n (number of masses) must be a whole number in [1, 1000], got {}", value));
+  // The modal decomposition costs O(N³) and every event O(N²): n = 1000
+  // takes half a minute per forcing period (docs/performance.md).
+  if (!(std::isfinite(value) && value >= 1 && value == std::floor(value) &&
+        value <= kMaxDegreesOfFreedom)) {
+    throw InvalidInput(fmt::format("n (number of masses) must be a whole number in [1, {}], got {}",
+                                   kMaxDegreesOfFreedom, value));
   }
   RebuildChain(s, [&](ChainParameters& c) { c.dof = static_cast<int>(value); });
 }

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 #include "dynamics/subsystem.hpp"
@@ -46,6 +47,8 @@ void ValidateChain(const ChainParameters& chain) {
 void ValidateMatrices(const System& s) {
   const int n = s.Dof();
   Require(n >= 1, "the system needs at least one mass (N >= 1)");
+  Require(n <= kMaxDegreesOfFreedom,
+          fmt::format("the system has N = {} masses; at most {}", n, kMaxDegreesOfFreedom));
   RequireSquare(s.mass, n, "M (mass matrix)");
   RequireSquare(s.damping, n, "C (damping matrix)");
   RequireSquare(s.stiffness, n, "K (stiffness matrix)");
@@ -58,6 +61,77 @@ void ValidateMatrices(const System& s) {
   const double c_scale = s.damping.cwiseAbs().maxCoeff();
   Require(c_scale == 0 || SmallestEigenvalue(s.damping) >= -1e-12 * c_scale,
           "C (damping matrix) must be positive semi-definite (no negative damping)");
+}
+
+/// Double arithmetic in the flow squares frequencies and multiplies
+/// amplitudes by them: magnitudes within 1e±150 leave it room both ways.
+constexpr double kLargest = 1e150;
+constexpr double kSmallest = 1e-150;
+/// Above this ratio of natural frequencies the slowest mode's ω² is lost in
+/// the rounding of the fastest's (relative error ε × ratio² ~ 2e-6).
+constexpr double kMaxFrequencyRatio = 1e5;
+/// The event search steps on the fastest mode's time scale: a forcing
+/// period of more than this many of its periods takes over ~0.1 s each.
+constexpr double kMaxPeriodRatio = 1e6;
+
+/// A magnitude of at most kLargest; a scale (a mass, a stiffness, a
+/// frequency) also at least kSmallest. Small entries elsewhere (a forcing
+/// of 1e-300, a damping of 1e-200) are harmless: they only underflow to 0.
+void RequireScale(double value, const std::string& name, bool is_scale = false) {
+  const double magnitude = std::abs(value);
+  if (is_scale) {
+    Require(magnitude >= kSmallest && magnitude <= kLargest,
+            fmt::format("{} must be within {:g} … {:g} in magnitude, got {:g}", name, kSmallest,
+                        kLargest, value));
+  }
+  Require(magnitude <= kLargest,
+          fmt::format("{} must be at most {:g} in magnitude, got {:g}", name, kLargest, value));
+}
+
+void RequireScales(const Eigen::MatrixXd& m, const std::string& name) {
+  for (Eigen::Index i = 0; i < m.size(); ++i) RequireScale(m.data()[i], name);
+}
+
+/// The names of the parameters a matrix comes from: the chain's m, k, c
+/// when the system is a chain, the matrix otherwise.
+std::string Named(const System& s, const char* chain_name, const char* matrix_name) {
+  return s.chain ? chain_name : matrix_name;
+}
+
+/// The scales derived from the entries: natural frequencies, the forcing
+/// period on the fastest mode's time scale, the forced response.
+void ValidateDerivedScales(const System& s) {
+  const std::string mk =
+      Named(s, "m (mass) and k (stiffness)", "M (mass matrix) and K (stiffness matrix)");
+  const Eigen::VectorXd squares = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(
+                                      s.stiffness, s.mass, Eigen::EigenvaluesOnly)
+                                      .eigenvalues();
+  const double slowest = std::sqrt(squares.minCoeff()), fastest = std::sqrt(squares.maxCoeff());
+  Require(slowest >= kSmallest && fastest <= kLargest,
+          fmt::format("{} give natural frequencies from {:g} to {:g}; they must lie within {:g} … "
+                      "{:g}",
+                      mk, slowest, fastest, kSmallest, kLargest));
+  Require(fastest <= kMaxFrequencyRatio * slowest,
+          fmt::format("{} give natural frequencies from {:g} to {:g}, a ratio of {:.3g}; at most "
+                      "{:.0e} (the slowest mode would be lost in the rounding of the fastest)",
+                      mk, slowest, fastest, fastest / slowest, kMaxFrequencyRatio));
+  Require(
+      fastest <= kMaxPeriodRatio * s.omega,
+      fmt::format("omega = {:g} is too slow for this system: one forcing period spans {:.3g} "
+                  "periods of its fastest mode (frequency {:g}); at most {:.0e}, omega >= {:.3g}",
+                  s.omega, fastest / s.omega, fastest, kMaxPeriodRatio, fastest / kMaxPeriodRatio));
+  const Eigen::MatrixXcd dynamic_stiffness =
+      (s.stiffness - s.omega * s.omega * s.mass).cast<std::complex<double>>() +
+      std::complex<double>(0.0, s.omega) * s.damping.cast<std::complex<double>>();
+  const double response = dynamic_stiffness.partialPivLu()
+                              .solve(s.forcing.cast<std::complex<double>>())
+                              .cwiseAbs()
+                              .maxCoeff();
+  // Resonance (an infinite or NaN response) is the flows' to report.
+  Require(!(std::isfinite(response) && response > kLargest),
+          fmt::format("A (forcing) gives a forced response of amplitude {:g} at omega = {:g}; at "
+                      "most {:g}",
+                      response, s.omega, kLargest));
 }
 
 void ValidateScalars(const System& s) {
@@ -140,6 +214,19 @@ void ValidateParameters(const System& s) {
   if (s.chain) ValidateChain(*s.chain);
   ValidateMatrices(s);
   ValidateScalars(s);
+  if (s.chain) {
+    RequireScale(s.chain->mass, "m (mass)", true);
+    RequireScale(s.chain->stiffness, "k (stiffness)", true);
+    RequireScale(s.chain->damping, "c (damping)");
+  } else {
+    RequireScales(s.mass, "every entry of M (mass matrix)");
+    RequireScales(s.stiffness, "every entry of K (stiffness matrix)");
+    RequireScales(s.damping, "every entry of C (damping matrix)");
+  }
+  RequireScales(s.forcing, "every entry of A (forcing)");
+  RequireScale(s.omega, "omega (forcing frequency)", true);
+  RequireScale(s.stop, "xs (stop position)");
+  ValidateDerivedScales(s);
 }
 
 void Validate(const System& s) {

@@ -31,6 +31,10 @@ struct ChainParameters {
   double damping = 0.1;    ///< c (>= 0)
 };
 
+/// The most masses a system may have: the modal decomposition costs O(N³)
+/// and each event O(N²) (docs/performance.md gives the costs).
+inline constexpr int kMaxDegreesOfFreedom = 1000;
+
 /// A complete impact oscillator. Matrices are N x N, symmetric; M and K
 /// positive definite, C positive semi-definite.
 struct System {
@@ -70,8 +74,11 @@ System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping
                      double stop, double restitution,
                      std::optional<int> contact_dof = std::nullopt);
 
-/// Checks every field; throws InvalidInput naming the first bad one and the
-/// allowed range. Also rejects an undamped system forced at one of its
+/// Checks every field and the scales derived from them (docs/bad-input.md:
+/// entries within 1e-150 … 1e150, natural frequencies within a ratio of
+/// 1e5, a forcing period at most 1e6 periods of the fastest mode, a forced
+/// response below 1e150); throws InvalidInput naming the first bad one and
+/// the allowed range. Also rejects an undamped system forced at one of its
 /// natural frequencies (no bounded steady response exists).
 void Validate(const System& system);
 
