@@ -153,6 +153,22 @@ TEST_CASE("scales are validated before any computing, naming the parameter", "[m
     SetParameter(s, "omega", std::sqrt((3.0 - std::sqrt(5.0)) / 2.0));  // at resonance
     CheckRejected(s, "A (forcing) gives a forced response of amplitude");
   }
+  SECTION("an undamped mode forced within 1e-16 … 1e-8 of its frequency") {
+    // The issue's hang (Ω = 0.6180339887505129, c = 0). Its amplification
+    // ω² / |ω² − Ω²| is closed form: refused above 1e6 (relative distance
+    // below ~5e-7), accepted below.
+    SetParameter(s, "c", 0.0);
+    const double omega1 = std::sqrt((3.0 - std::sqrt(5.0)) / 2.0);
+    for (const double offset : {1e-16, 1e-12, 1e-8, 1e-7}) {
+      INFO("offset " << offset);
+      SetParameter(s, "omega", omega1 * (1 + offset));
+      CHECK_THROWS_AS(Validate(s), InvalidInput);
+    }
+    SetParameter(s, "omega", omega1 * (1 + 1e-6));  // amplification 1 / (2e-6) = 5e5
+    CHECK_NOTHROW(Validate(s));
+    SetParameter(s, "omega", omega1 * (1 + 1e-7));
+    CheckRejected(s, "so near resonance that it amplifies the forcing 5e+06 times (at most 1e+06)");
+  }
   SECTION("more than 1000 masses in general matrices") {
     const int n = kMaxDegreesOfFreedom + 1;
     s = GeneralSystem(Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Zero(n, n),

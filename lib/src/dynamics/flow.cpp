@@ -16,6 +16,10 @@ namespace {
 /// The largest condition number of a modal basis the flow accepts (see the
 /// constructor).
 constexpr double kMaxBasisCondition = 1e6;
+/// The largest amplification of a forced mode (forced response over static
+/// response, 1 / (2ζ) at a damped resonance) the flow accepts: rounding
+/// grows with it, and above 1e6 the ~1e-10 accuracy is lost.
+constexpr double kMaxAmplification = 1e6;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -309,13 +313,27 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
         block.cast<std::complex<double>>();
     const std::complex<double> resolvent_det = resolvent.determinant();
     const Eigen::Vector2d bj = modal_b.segment<2>(2 * j);
-    if (std::abs(resolvent_det) <= 1e-12 * std::max(omega * omega, std::abs(det))) {
-      if (bj.norm() > 1e-14 * std::max(1.0, b.norm())) {
-        throw InvalidInput(fmt::format(
-            "undamped mode with natural frequency {:.6g} is forced at omega = {:.6g}: no bounded "
-            "steady response exists; add damping or change omega",
-            std::sqrt(std::abs(det)), omega));
-      }
+    // |det B_j| / |det(iΩ − B_j)| is the mode's amplification of a forcing
+    // over its static response; ε times it is the rounding left when a
+    // start from rest cancels the steady part.
+    const double amplification = std::max(omega * omega, std::abs(det)) / std::abs(resolvent_det);
+    const bool forced = bj.norm() > 1e-14 * std::max(1.0, b.norm());
+    if (forced && amplification > 1e12) {
+      throw InvalidInput(fmt::format(
+          "undamped mode with natural frequency {:.6g} is forced at omega = {:.6g}: no bounded "
+          "steady response exists; add damping or change omega",
+          std::sqrt(std::abs(det)), omega));
+    }
+    if (forced && amplification > kMaxAmplification) {
+      throw InvalidInput(fmt::format(
+          "the mode with natural frequency {:.9g} and damping rate {:.3g} is forced at omega = "
+          "{:.9g}, so near resonance that it amplifies the forcing {:.3g} times (at most {:.0e}): "
+          "a start from rest would cancel its steady response and lose {:.0f} of 16 digits; add "
+          "damping or move omega",
+          std::sqrt(std::abs(det)), std::abs(a), omega, amplification, kMaxAmplification,
+          std::log10(amplification)));
+    }
+    if (amplification > 1e12) {
       steady_forced_.segment<2>(2 * j).setZero();
     } else {
       steady_forced_.segment<2>(2 * j) = resolvent.inverse() * bj.cast<std::complex<double>>();
