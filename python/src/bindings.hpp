@@ -23,6 +23,7 @@ void BindSimulate(py::module_& module);
 void BindOrbit(py::module_& module);
 void BindContinuation(py::module_& module);
 void BindAnalysis(py::module_& module);
+void BindDiagram(py::module_& module);
 
 /// impactkit.NumericalError (a RuntimeError): a computation that did not
 /// converge or could not go on. Created by the module before any Bind.

@@ -47,4 +47,5 @@ PYBIND11_MODULE(impactkit, module) {
   BindOrbit(module);
   BindContinuation(module);
   BindAnalysis(module);
+  BindDiagram(module);
 }

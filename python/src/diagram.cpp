@@ -1,0 +1,167 @@
+// impactkit.trace_diagram, Diagram, DiagramNode, DiagramEdge, DiagramBranch:
+// continuation/diagram.hpp and diagram_graph.hpp.
+#include "impactkit/continuation/diagram.hpp"
+
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bindings.hpp"
+
+namespace impactkit::python {
+namespace {
+
+struct DiagramArguments {
+  std::string parameter;
+  double lower, upper, initial_step, max_step;
+  int max_points, max_depth, max_branches, threads;
+  bool switch_period_doubling, switch_grazing, switch_branch_points;
+};
+
+DiagramOptions MakeOptions(const DiagramArguments& a) {
+  DiagramOptions options;
+  options.continuation.parameter = a.parameter;
+  options.continuation.lower = a.lower;
+  options.continuation.upper = a.upper;
+  options.continuation.initial_step = a.initial_step;
+  options.continuation.max_step = a.max_step;
+  options.continuation.max_points = a.max_points;
+  options.max_depth = a.max_depth;
+  options.max_branches = a.max_branches;
+  options.threads = a.threads;
+  options.switch_period_doubling = a.switch_period_doubling;
+  options.switch_grazing = a.switch_grazing;
+  options.switch_branch_points = a.switch_branch_points;
+  return options;
+}
+
+Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
+              const std::string& parameter, double lower, double upper, double initial_step,
+              double max_step, int max_points, int max_depth, int max_branches, int threads,
+              bool switch_period_doubling, bool switch_grazing, bool switch_branch_points) {
+  std::vector<DiagramSeed> seeds;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    seeds.push_back({starts[i].first, starts[i].second, "seed " + std::to_string(i + 1),
+                     ContinuationDirection::kBoth});
+  }
+  const DiagramOptions options = MakeOptions(
+      {parameter, lower, upper, initial_step, max_step, max_points, max_depth, max_branches,
+       threads, switch_period_doubling, switch_grazing, switch_branch_points});
+  return WithoutGil([&] {
+    return TraceDiagram(seeds, options, [](int, const BranchPoint&) { CheckInterrupt(); });
+  });
+}
+
+/// One value per edge, as an array.
+template <class Get>
+py::array_t<long> PerEdge(const Diagram& d, Get get) {
+  std::vector<long> values;
+  values.reserve(d.edges.size());
+  for (const DiagramEdge& e : d.edges) values.push_back(static_cast<long>(get(e)));
+  return MoveToArray(std::move(values));
+}
+
+void BindNode(py::module_& module) {
+  py::class_<DiagramNode>(module, "DiagramNode",
+                          "A node of a diagram: a special point, or where a branch ends for "
+                          "another reason, or a seed followed one way.")
+      .def_property_readonly("type", &DiagramNode::Name,
+                             "'fold', 'period_doubling', 'neimark_sacker', 'grazing', "
+                             "'sticking', 'branch_point', or 'parameter_bound', 'max_points', "
+                             "'corrector_failed', 'start'.")
+      .def_readonly("parameter", &DiagramNode::parameter, "The parameter value there.")
+      .def_readonly("multiplier", &DiagramNode::multiplier,
+                    "The critical multiplier (fold, period doubling, Neimark-Sacker; else 0).")
+      .def_readonly("multipliers", &DiagramNode::multipliers,
+                    "Every multiplier of the orbit there.")
+      .def_readonly("monitor", &DiagramNode::monitor, "The test function or grazing monitor.")
+      .def_readonly("vanishing_impact", &DiagramNode::vanishing_impact,
+                    "Grazing/sticking: the impact that vanishes (-1 for a new contact).")
+      .def_readonly("p", &DiagramNode::p, "Impacts per orbit of the branch it was located on.")
+      .def_readonly("q", &DiagramNode::q, "Forcing periods per orbit of that branch.")
+      .def_readonly("branch", &DiagramNode::branch, "That branch, an index into branches.")
+      .def_property_readonly(
+          "eta", [](const DiagramNode& n) { return n.point.orbit.eta; },
+          "The orbit's fixed point at the node.")
+      .def("__repr__", [](const DiagramNode& n) {
+        return "impactkit.DiagramNode(" + n.Name() + ", P(" + std::to_string(n.p) + "," +
+               std::to_string(n.q) +
+               "), parameter=" + py::repr(py::float_(n.parameter)).cast<std::string>() + ")";
+      });
+}
+
+void BindBranch(py::module_& module) {
+  py::class_<DiagramBranch>(module, "DiagramBranch", "A traced branch and how it was reached.")
+      .def_readonly("branch", &DiagramBranch::branch, "The Branch itself.")
+      .def_readonly("origin", &DiagramBranch::origin,
+                    "'seed 1', 'period doubling at omega = 1.61', ...")
+      .def_readonly("depth", &DiagramBranch::depth, "Switches from a seed (0 for a seed's).")
+      .def_readonly("parent", &DiagramBranch::parent,
+                    "The node it was started from (-1 for a seed).");
+}
+
+void BindGraph(py::module_& module) {
+  py::class_<Diagram>(module, "Diagram",
+                      "A connected bifurcation diagram: nodes (special points and branch "
+                      "ends), edges (stretches of branches between consecutive nodes, as "
+                      "arrays) and the branches traced.")
+      .def_readonly("parameter", &Diagram::parameter, "The parameter's name.")
+      .def_readonly("nodes", &Diagram::nodes, "A list of DiagramNode.")
+      .def_readonly("branches", &Diagram::branches, "A list of DiagramBranch.")
+      .def_property_readonly(
+          "edge_from", [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.from; }); },
+          "Each edge's first node, shape (edges,).")
+      .def_property_readonly(
+          "edge_to", [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.to; }); },
+          "Each edge's last node, shape (edges,).")
+      .def_property_readonly(
+          "edge_branch",
+          [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.branch; }); },
+          "Each edge's branch (index into branches), shape (edges,).")
+      .def_property_readonly(
+          "edge_first",
+          [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.first; }); },
+          "The index of each edge's first point on its branch, shape (edges,).")
+      .def_property_readonly(
+          "edge_last", [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.last; }); },
+          "The index of each edge's last point on its branch (inclusive), shape (edges,).")
+      .def_readonly("duplicate_starts", &Diagram::duplicate_starts,
+                    "Starts not traced: their orbit lies on a branch traced already.")
+      .def_readonly("failed_starts", &Diagram::failed_starts, "Starts that did not converge.")
+      .def_readonly("complete", &Diagram::complete,
+                    "Every start was followed (no depth or branch bound cut the network short).")
+      .def_readonly("message", &Diagram::message, "Which bound cut it short, if one did.")
+      .def_readonly("seconds", &Diagram::seconds, "Wall time.")
+      .def("brief_report", &Diagram::BriefReport,
+           "'7 branches, 15 nodes, 16 edges in 3.2 s (...)'.")
+      .def("__repr__",
+           [](const Diagram& d) { return "impactkit.Diagram(" + d.BriefReport() + ")"; });
+}
+
+}  // namespace
+
+void BindDiagram(py::module_& module) {
+  BindNode(module);
+  BindBranch(module);
+  BindGraph(module);
+  module.def("trace_diagram", &Trace, py::arg("seeds"), py::kw_only(),
+             py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
+             py::arg("initial_step") = 0.01, py::arg("max_step") = 0.02,
+             py::arg("max_points") = 10000, py::arg("max_depth") = 8, py::arg("max_branches") = 200,
+             py::arg("threads") = 1, py::arg("switch_period_doubling") = true,
+             py::arg("switch_grazing") = true, py::arg("switch_branch_points") = true,
+             R"(Traces the connected bifurcation diagram through `seeds`, a list of
+(system, orbit) pairs: each seed's branch is followed both ways in the named
+parameter within [lower, upper], and at every period doubling, grazing and
+branch point the branch that starts there, each branch once (the library's
+TraceDiagram, as `impactkit diagram --start` does). Returns a Diagram.
+threads: branches of one generation traced at once; the result does not
+depend on it. Raises ValueError for bad input. Releases the GIL; Ctrl-C
+raises KeyboardInterrupt.)");
+}
+
+}  // namespace impactkit::python
