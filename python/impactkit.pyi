@@ -397,3 +397,37 @@ def trace_diagram(
     switch_grazing: bool = True,
     switch_branch_points: bool = True,
 ) -> Diagram: ...
+
+def parameter_map(
+    system: System,
+    *,
+    parameter: str = "omega",
+    first: float,
+    last: float,
+    steps: int,
+    parameter2: str = "r",
+    first2: float,
+    last2: float,
+    steps2: int,
+    transient_periods: int = 300,
+    recorded_periods: int = 100,
+    threads: int = 1,
+    each_from: Literal["previous", "rest"] = "previous",
+    chunk_values: int = 100,
+) -> dict[str, Any]: ...
+def basins(
+    system: System,
+    *,
+    coordinate: str = "x2",
+    first: float,
+    last: float,
+    steps: int,
+    coordinate2: str = "v2",
+    first2: float,
+    last2: float,
+    steps2: int,
+    transient_periods: int = 300,
+    recorded_periods: int = 100,
+    threads: int = 1,
+    orbit_tolerance: float = 1e-4,
+) -> dict[str, Any]: ...

@@ -24,6 +24,7 @@ void BindOrbit(py::module_& module);
 void BindContinuation(py::module_& module);
 void BindAnalysis(py::module_& module);
 void BindDiagram(py::module_& module);
+void BindGrid(py::module_& module);
 
 /// impactkit.NumericalError (a RuntimeError): a computation that did not
 /// converge or could not go on. Created by the module before any Bind.

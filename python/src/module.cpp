@@ -48,4 +48,5 @@ PYBIND11_MODULE(impactkit, module) {
   BindContinuation(module);
   BindAnalysis(module);
   BindDiagram(module);
+  BindGrid(module);
 }
