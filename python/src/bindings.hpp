@@ -25,6 +25,7 @@ void BindContinuation(py::module_& module);
 void BindAnalysis(py::module_& module);
 void BindDiagram(py::module_& module);
 void BindGrid(py::module_& module);
+void BindCurve(py::module_& module);
 
 /// impactkit.NumericalError (a RuntimeError): a computation that did not
 /// converge or could not go on. Created by the module before any Bind.

@@ -49,4 +49,5 @@ PYBIND11_MODULE(impactkit, module) {
   BindAnalysis(module);
   BindDiagram(module);
   BindGrid(module);
+  BindCurve(module);
 }

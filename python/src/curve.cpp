@@ -1,0 +1,135 @@
+// impactkit.continue_curve, Curve and Codim2Point: continuation/curve.hpp.
+#include "impactkit/continuation/curve.hpp"
+
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "impactkit/model/parameters.hpp"
+
+namespace impactkit::python {
+namespace {
+
+/// One value per curve point, as an array.
+template <class Get>
+py::array_t<double> PerPoint(const Curve& curve, Get get) {
+  std::vector<double> values;
+  values.reserve(curve.points.size());
+  for (const CurvePoint& point : curve.points) values.push_back(get(point));
+  return MoveToArray(std::move(values));
+}
+
+Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialPoint& special,
+                      const std::string& parameter2, double lower, double upper, double lower2,
+                      double upper2, double initial_step, double min_step, double max_step,
+                      int max_points, bool locate_codim2) {
+  CurveOptions options;
+  options.parameter = branch.parameter;
+  options.parameter2 = parameter2;
+  options.lower = lower;
+  options.upper = upper;
+  options.lower2 = lower2;
+  options.upper2 = upper2;
+  options.initial_step = initial_step;
+  options.min_step = min_step;
+  options.max_step = max_step;
+  options.max_points = max_points;
+  options.locate_codim2 = locate_codim2;
+  options.orbit.p = branch.p;
+  options.orbit.q = branch.q;
+  System at = system;
+  SetParameter(at, branch.parameter, special.parameter);
+  return WithoutGil([&] {
+    return ContinueCurve({at, special}, options, [](const CurvePoint&) { CheckInterrupt(); });
+  });
+}
+
+void BindCodim2(py::module_& module) {
+  py::class_<Codim2Point>(module, "Codim2Point",
+                          "A codimension-two point met along a curve: where it meets another "
+                          "curve, or a resonance of its multipliers.")
+      .def_property_readonly(
+          "type", [](const Codim2Point& c) { return ToString(c.type); },
+          "'fold_flip', 'cusp', 'resonance_1_1' … 'resonance_1_4', 'fold_grazing', "
+          "'period_doubling_grazing', 'neimark_sacker_grazing', 'double_grazing', "
+          "'sticking_onset'.")
+      .def_property_readonly(
+          "parameter", [](const Codim2Point& c) { return c.point.parameter; }, "mu1 there.")
+      .def_property_readonly(
+          "parameter2", [](const Codim2Point& c) { return c.point.parameter2; }, "mu2 there.")
+      .def_readonly("defining_residual", &Codim2Point::defining_residual,
+                    "|the curve's defining function| there.")
+      .def_readonly("second_residual", &Codim2Point::second_residual,
+                    "|the second test function| there.")
+      .def("describe", &Codim2Point::Describe, py::arg("name1"), py::arg("name2"),
+           "One line, as the command line prints it.");
+}
+
+void BindCurveClass(py::module_& module) {
+  py::class_<Curve>(module, "Curve",
+                    "A two-parameter curve of fold, period-doubling, Neimark-Sacker or grazing "
+                    "points: its points as arrays, from the mu2-decreasing end to the "
+                    "mu2-increasing end, and its codimension-two points.")
+      .def_property_readonly(
+          "type", [](const Curve& c) { return ToString(c.type); },
+          "'fold', 'period_doubling', 'neimark_sacker' or 'grazing'.")
+      .def_readonly("parameter", &Curve::parameter, "mu1's name.")
+      .def_readonly("parameter2", &Curve::parameter2, "mu2's name.")
+      .def_readonly("p", &Curve::p, "Impacts per orbit (0: a non-impacting response's grazing).")
+      .def_readonly("q", &Curve::q, "Forcing periods per orbit.")
+      .def_property_readonly(
+          "values", [](const Curve& c) { return PerPoint(c, [](auto& p) { return p.parameter; }); },
+          "mu1 at each point, shape (n,).")
+      .def_property_readonly(
+          "values2",
+          [](const Curve& c) { return PerPoint(c, [](auto& p) { return p.parameter2; }); },
+          "mu2 at each point, shape (n,).")
+      .def_property_readonly(
+          "orbits",
+          [](const Curve& c) {
+            py::list orbits;
+            for (const CurvePoint& p : c.points) orbits.append(py::cast(p.orbit));
+            return orbits;
+          },
+          "The orbit at each point (a list of Orbit; empty orbits when p = 0).")
+      .def_readonly("codim2_points", &Curve::codim2_points, "In order along the curve.")
+      .def_property_readonly(
+          "begin", [](const Curve& c) { return ToString(c.begin); },
+          "Why the first point is the first: 'parameter_bound', 'grazing', 'sticking', "
+          "'max_points' or 'corrector_failed'.")
+      .def_property_readonly(
+          "end", [](const Curve& c) { return ToString(c.end); }, "Why the last point is the last.")
+      .def_readonly("begin_message", &Curve::begin_message, "The beginning in words.")
+      .def_readonly("end_message", &Curve::end_message, "The end in words.")
+      .def_readonly("seconds", &Curve::seconds, "Wall time.")
+      .def("__len__", [](const Curve& c) { return c.points.size(); })
+      .def("__repr__", [](const Curve& c) {
+        return "impactkit.Curve(" + ToString(c.type) + " of P(" + std::to_string(c.p) + "," +
+               std::to_string(c.q) + ") in (" + c.parameter + ", " + c.parameter2 + "), " +
+               std::to_string(c.points.size()) + " points)";
+      });
+}
+
+}  // namespace
+
+void BindCurve(py::module_& module) {
+  BindCodim2(module);
+  BindCurveClass(module);
+  module.def("continue_curve", &ContinueCurvePy, py::arg("system"), py::arg("branch"),
+             py::arg("special_point"), py::kw_only(), py::arg("parameter2") = "r", py::arg("lower"),
+             py::arg("upper"), py::arg("lower2"), py::arg("upper2"), py::arg("initial_step") = 0.01,
+             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 2000,
+             py::arg("locate_codim2") = true,
+             R"(Follows a fold, period doubling, Neimark-Sacker or grazing point of
+`branch` (continued for `system`) as the branch's parameter (mu1, within
+[lower, upper]) and `parameter2` (mu2, within [lower2, upper2]) move, both
+ways, locating codimension-two points (`impactkit curve`). Returns a Curve.
+Raises ValueError for bad input or a point the curve cannot start from.
+Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
+}
+
+}  // namespace impactkit::python
