@@ -98,6 +98,7 @@ class Simulation(TypedDict):
     sticking: FloatArray
     status: str
     chatter_jumps: int
+    landings: int
     stuck_time: float
     seconds: float
     final_state: State
@@ -113,6 +114,8 @@ def simulate(
     chatter: Literal["accumulation", "threshold"] = "accumulation",
     chatter_span: float = 1e-4,
     chatter_threshold: float = 1e-4,
+    bounce_height_resolution: float = 1e-10,
+    max_events_per_period: int = 100_000,
     max_events: int = 200_000_000,
 ) -> Simulation: ...
 

@@ -4,6 +4,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -35,18 +36,21 @@ class FlatImpactRecorder : public Observer {
 };
 
 /// Asks the simulator to stop when Python has a pending signal. The
-/// simulator asks after every event; the GIL is taken every 4096 of them
-/// only, which keeps the check's cost out of the event loop.
+/// simulator asks after every event, and at least every 1000 forcing periods
+/// of a run without events; the GIL is taken at most every 0.1 s, which
+/// keeps the check's cost out of the event loop.
 class InterruptWatch : public Observer {
  public:
   bool ShouldStop() const override {
-    if (++calls_ % 4096 != 0) return false;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_check_ < std::chrono::milliseconds(100)) return false;
+    last_check_ = now;
     CheckInterrupt();
     return false;
   }
 
  private:
-  mutable std::uint64_t calls_ = 0;
+  mutable std::chrono::steady_clock::time_point last_check_ = std::chrono::steady_clock::now();
 };
 
 /// Samples (t, x, v, stuck) as arrays of shapes (n,), (n, N), (n, N), (n,).
@@ -70,7 +74,8 @@ py::dict SampleArrays(const std::vector<Sample>& samples, int dof) {
 }
 
 SimulationOptions MakeOptions(const std::string& chatter, double chatter_span,
-                              double chatter_threshold, std::int64_t max_events) {
+                              double chatter_threshold, double bounce_height_resolution,
+                              std::int64_t max_events_per_period, std::int64_t max_events) {
   SimulationOptions options;
   if (chatter == "accumulation") {
     options.chatter = ChatterMethod::kAccumulation;
@@ -81,6 +86,8 @@ SimulationOptions MakeOptions(const std::string& chatter, double chatter_span,
   }
   options.chatter_span = chatter_span;
   options.chatter_threshold = chatter_threshold;
+  options.bounce_height_resolution = bounce_height_resolution;
+  options.max_events_per_period = max_events_per_period;
   options.max_events = max_events;
   return options;
 }
@@ -88,9 +95,11 @@ SimulationOptions MakeOptions(const std::string& chatter, double chatter_span,
 py::dict Simulate(const System& system, double t_end, std::optional<Eigen::VectorXd> x0,
                   std::optional<Eigen::VectorXd> v0, double record_from, double dt,
                   const std::string& chatter, double chatter_span, double chatter_threshold,
+                  double bounce_height_resolution, std::int64_t max_events_per_period,
                   std::int64_t max_events) {
   const SimulationOptions options =
-      MakeOptions(chatter, chatter_span, chatter_threshold, max_events);
+      MakeOptions(chatter, chatter_span, chatter_threshold, bounce_height_resolution,
+                  max_events_per_period, max_events);
   const Simulator simulator(system, options);
   HybridState state = RestState(system);
   if (x0) state.x = *x0;
@@ -146,6 +155,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   result["sticking"] = MoveToArray<double, 2>(std::move(intervals), {k, 2});
   result["status"] = ToString(summary.status);
   result["chatter_jumps"] = summary.chatter_jumps;
+  result["landings"] = summary.landings;
   result["stuck_time"] = summary.stuck_time;
   result["seconds"] = summary.elapsed_seconds;
   result["final_state"] = py::dict(py::arg("t") = state.t, py::arg("x") = state.x,
@@ -160,7 +170,8 @@ void BindSimulate(py::module_& module) {
              py::arg("x0") = py::none(), py::arg("v0") = py::none(), py::arg("record_from") = 0.0,
              py::arg("dt") = 0.0, py::arg("chatter") = "accumulation",
              py::arg("chatter_span") = 1e-4, py::arg("chatter_threshold") = 1e-4,
-             py::arg("max_events") = 200'000'000,
+             py::arg("bounce_height_resolution") = 1e-10,
+             py::arg("max_events_per_period") = 100'000, py::arg("max_events") = 200'000'000,
              R"(Simulates from (x0, v0) at t = 0 (rest by default) to t_end, exactly.
 
 Nothing is recorded before record_from. Returns a dict of numpy arrays:
@@ -169,8 +180,10 @@ Nothing is recorded before record_from. Returns a dict of numpy arrays:
   impacts   {t, phase, velocity (m,), x (m, N), v (m, N) just before impact}
   strobe    the state at every t = k T (forcing phase 0), as samples
   sticking  (k, 2) [begin, end] of each interval held at the stop
-and status ('reached end', 'event limit reached', ...), chatter_jumps, stuck_time,
-seconds, final_state. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
+and status ('reached end', 'event limit reached', 'work bound reached: ...', ...),
+chatter_jumps, landings (arrivals at the stop too low to be impacts), stuck_time,
+seconds, final_state. bounce_height_resolution and max_events_per_period are the
+micro-bounce rule and the work bound of docs/theory.md §4. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
 }
 
 }  // namespace impactkit::python

@@ -56,6 +56,16 @@ def test_ctrl_c_stops_a_long_simulation():
         impactkit.simulate(impactkit.System.paper(0.6), 3e8)
 
 
+def test_ctrl_c_interrupts_a_run_without_impacts():
+    """No events at all: the simulator still asks its observers every 1000
+    forcing periods."""
+    far = impactkit.System.paper(1.0)
+    far["xs"] = 10.0
+    interrupt_after(0.5)
+    with pytest.raises(KeyboardInterrupt):
+        impactkit.simulate(far, 1e13, record_from=1e13 - 10)
+
+
 def test_ctrl_c_stops_a_long_continuation(paper_orbit):
     system, orbit = paper_orbit
     interrupt_after(0.2)

@@ -82,3 +82,17 @@ def test_sticking_intervals_match_the_stuck_time_and_the_samples():
     assert stuck.any() and np.all(inside[stuck])
     np.testing.assert_allclose(samples["x"][stuck, 1], 0.1, rtol=0, atol=1e-12)
     np.testing.assert_allclose(samples["v"][stuck, 1], 0.0, rtol=0, atol=1e-12)
+
+
+def test_work_bound_and_landings_are_reachable():
+    """The work bound of docs/theory.md §4 ends a run with its status; a mass
+    resting on the stop lands instead of impacting at zero speed."""
+    system = impactkit.System.paper(1.3)
+    system["xs"] = 0.0
+    system["c"] = 0.0
+    system["r"] = 1.0
+    run = impactkit.simulate(system, 20 * 2 * np.pi / 1.3)
+    assert run["status"] == "reached end" and run["landings"] >= 1
+    assert np.all(run["impacts"]["velocity"] > 1e-8)
+    bounded = impactkit.simulate(impactkit.System.paper(0.2), 100.0, max_events_per_period=5)
+    assert bounded["status"].startswith("work bound reached")

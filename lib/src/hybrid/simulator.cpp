@@ -107,6 +107,13 @@ class HybridRun {
   void ApplyImpact(double te, double speed);
   bool OverWorkBound();
   double LengthScale() const;
+  /// Where the current phase's search stops if no event comes first: t_end,
+  /// or kPhaseSlice forcing periods on, so that a run without events still
+  /// asks its observers (ShouldStop: Ctrl-C, progress) as it goes.
+  double SliceEnd() const {
+    return std::min(t_end_, state_.t + kPhaseSlice * hybrid_.GetSystem().ForcingPeriod());
+  }
+  static constexpr double kPhaseSlice = 1000;
   EventOptions Search() const;
   EventOptions HeldSearch() const;
   void JumpToAccumulation(double te, double t_star);
@@ -177,8 +184,8 @@ void HybridRun::FreePhase() {
   length_scale_ = LengthScale();
   const bool pressing_now = state_.x(c) == s.stop && state_.v(c) > 0;
   const std::optional<double> te =
-      pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, t_end_, Search());
-  const double end = te.value_or(t_end_);
+      pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, SliceEnd(), Search());
+  const double end = te.value_or(SliceEnd());
   if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, SegmentMode::kFree, c, s.stop));
   flow.State(t0, z0, end, &state_.x, &state_.v);
   state_.t = end;
@@ -319,8 +326,8 @@ void HybridRun::StuckPhase() {
   const EventOptions search = HeldSearch();
   const std::optional<double> tr = !Stop::Holds(witness_, t0, search)
                                        ? std::optional<double>(t0)
-                                       : FirstUpcrossing(witness_, t0, t_end_, search);
-  const double end = tr.value_or(t_end_);
+                                       : FirstUpcrossing(witness_, t0, SliceEnd(), search);
+  const double end = tr.value_or(SliceEnd());
   if (end > t0) observer_.OnSegment(Segment(held, t0, z0, t0, end, SegmentMode::kStuck, c, s.stop));
   Eigen::VectorXd xs, vs;
   held.State(t0, z0, end, &xs, &vs);
