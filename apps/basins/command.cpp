@@ -65,6 +65,8 @@ BasinsOptions OptionsOf(const BasinsRequest& request, const System& system) {
   options.from2 = request.axis2.from;
   options.to2 = request.axis2.to;
   options.steps2 = request.axis2.steps;
+  Require(request.tolerance > 0 && request.tolerance < 1,
+          fmt::format("--tolerance must be in (0, 1), got {}", request.tolerance));
   options.orbit_tolerance = request.tolerance;
   std::string error;
   Require(options.IsValid(&error), error);

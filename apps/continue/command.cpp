@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/arclength_flags.hpp"
 #include "common/branches.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
@@ -44,6 +45,7 @@ struct ContinueRequest {
 };
 
 ContinuationOptions MakeOptions(const ContinueRequest& request, const OrbitOptions& orbit) {
+  RequireArclengthFlags(request.step, request.min_step, request.max_step, request.max_points);
   ContinuationOptions options;
   options.parameter = request.parameter;
   options.lower = std::min(*request.from, *request.to);
@@ -117,6 +119,7 @@ void RunSticking(const ContinueRequest& request, const System& system, const Sti
         "--start, --switch-pd, --follow-grazing and --plot are for impacting branches, not "
         "sticking ones");
   }
+  RequireArclengthFlags(request.step, request.min_step, request.max_step, request.max_points);
   StickingBranchOptions options;
   options.parameter = request.parameter;
   options.lower = std::min(*request.from, *request.to);

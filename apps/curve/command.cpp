@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "common/arclength_flags.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
@@ -71,6 +72,7 @@ CurveOptions MakeOptions(const CurveRequest& request, const System& system) {
   options.upper = std::max(from, to);
   options.lower2 = std::min(request.from2, request.to2);
   options.upper2 = std::max(request.from2, request.to2);
+  RequireArclengthFlags(request.step, request.min_step, request.max_step, request.max_points);
   options.initial_step = request.step;
   options.min_step = request.min_step;
   options.max_step = request.max_step;

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "common/arclength_flags.hpp"
 #include "common/branches.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
@@ -83,6 +84,8 @@ SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   c.parameter = request.parameter;
   c.lower = std::min(request.from, request.to);
   c.upper = std::max(request.from, request.to);
+  RequireArclengthFlags(std::min(request.step, request.max_step), c.min_step, request.max_step,
+                        request.max_points, "the smallest step");
   c.initial_step = std::min(request.step, request.max_step);
   c.max_step = request.max_step;
   c.max_points = request.max_points;

@@ -36,6 +36,11 @@ void RunLyapunov(const LyapunovRequest& request) {
   Require(request.transient >= 0,
           fmt::format("--transient must be >= 0, got {}", request.transient));
   std::string error;
+  Require(request.options.impacts >= 1,
+          fmt::format("--impacts must be >= 1, got {}", request.options.impacts));
+  Require(
+      request.options.transient_impacts >= 0,
+      fmt::format("--transient-impacts must be >= 0, got {}", request.options.transient_impacts));
   Require(request.options.IsValid(&error), error);
   const System system = ResolveSystem(request.system);
   std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +35,11 @@ void RunResonance(const ResonanceRequest& request) {
   std::vector<std::string> columns{"omega"};
   for (int i = 1; i <= n; ++i) columns.push_back(fmt::format("range_x{}", i));
   for (int i = 1; i <= n; ++i) columns.push_back(fmt::format("phase_x{}", i));
+  Require(request.steps >= 1, fmt::format("--steps must be >= 1, got {}", request.steps));
+  Require(request.from > 0 && request.from <= request.to && std::isfinite(request.to),
+          fmt::format("--from and --to must satisfy 0 < --from <= --to (finite), got --from {}, "
+                      "--to {}",
+                      request.from, request.to));
   if (!request.plot.empty()) RequireGnuplot();
   OutputSet outputs;  // created first: a bad path fails before the work
   CsvWriter* csv = nullptr;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 #include <utility>
@@ -47,6 +48,10 @@ void CheckRequest(const SimulateRequest& request) {
           fmt::format("--samples-per-period must be >= 1, got {}", request.samples_per_period));
   Require(!request.chatter_threshold || request.chatter == ChatterMethod::kThreshold,
           "--chatter-threshold applies only with --chatter threshold");
+  Require(!request.chatter_threshold ||
+              (*request.chatter_threshold > 0 && std::isfinite(*request.chatter_threshold)),
+          fmt::format("--chatter-threshold must be finite and > 0, got {}",
+                      request.chatter_threshold.value_or(0.0)));
   const double rows = static_cast<double>(request.periods) * request.samples_per_period;
   Require((request.series.empty() && request.plot.empty()) || rows <= kMaxSeriesRows,
           fmt::format("the series would have {:.3g} rows (--periods x --samples-per-period); at "

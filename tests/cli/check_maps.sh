@@ -73,9 +73,9 @@ expect_bad() {
   grep -qF -- "$expected" "$work/stderr" || fail "$*: stderr lacks '$expected': $(cat "$work/stderr")"
   [[ -z $(ls -A "$work/bad") ]] || fail "$*: left $(ls -A "$work/bad")"
 }
-expect_bad "steps must be >= 1" resonance --steps 0
+expect_bad "--steps must be >= 1, got 0" resonance --steps 0
 expect_bad "from = to = 1 with steps = 5" resonance --from 1 --to 1 --steps 5
-expect_bad "need 0 < from <= to" resonance --from 2 --to 1
+expect_bad "--from and --to must satisfy 0 < --from <= --to" resonance --from 2 --to 1
 expect_bad "--transient must be >= 0" impactmap --transient -1
 expect_bad "--periods must be >= 1" impactmap --periods 0
 expect_bad "need --fit" returnmap --fit-to 0.2

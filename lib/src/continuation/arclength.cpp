@@ -11,8 +11,10 @@ std::optional<std::string> StepControlProblem(double min_step, double initial_st
                                               double max_correction) {
   if (!(min_step > 0 && min_step <= initial_step && initial_step <= max_step &&
         std::isfinite(max_step))) {
-    return fmt::format("steps must satisfy 0 < min <= initial <= max, got {}, {}, {}", min_step,
-                       initial_step, max_step);
+    return fmt::format(
+        "steps must satisfy 0 < min_step <= initial_step <= max_step (finite), got min_step = "
+        "{}, initial_step = {}, max_step = {}",
+        min_step, initial_step, max_step);
   }
   if (max_points < 2) return fmt::format("max_points must be >= 2, got {}", max_points);
   if (corrector_iterations < 1) {
