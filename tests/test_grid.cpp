@@ -175,7 +175,7 @@ TEST_CASE("basins of the N = 1 oscillator: its closed-form P(1,1) and the non-im
     if (a.kind != MotionKind::kPeriodic) continue;
     CHECK((a.p == 1 && a.q == 1));
     REQUIRE(!a.orbit.empty());
-    for (const OrbitImpact& i : a.orbit) {
+    for (const AttractorImpact& i : a.orbit) {
       CHECK(i.phase == Approx(std::fmod(stable[0].tau, reference.Period())).margin(1e-6));
       CHECK(i.velocity == Approx(stable[0].u).margin(1e-6));
     }

@@ -118,7 +118,7 @@ std::string SummaryJson(const std::string& provenance, const BasinsTask& task,
     entry["first_start"] = {{o.coordinate1, task.Values1()[attractor.first_cell % k]},
                             {o.coordinate2, task.Values2()[attractor.first_cell / k]}};
     entry["orbit"] = nlohmann::json::array();
-    for (const OrbitImpact& i : attractor.orbit) {
+    for (const AttractorImpact& i : attractor.orbit) {
       entry["orbit"].push_back({{"phase", i.phase}, {"velocity", i.velocity}});
     }
     json["attractors"].push_back(entry);

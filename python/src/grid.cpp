@@ -128,7 +128,7 @@ py::dict BasinsPy(const System& system, const std::string& coordinate1, double f
   py::list attractors;
   for (const Attractor& a : basins.attractors) {
     std::vector<double> phases, speeds;
-    for (const OrbitImpact& impact : a.orbit) {
+    for (const AttractorImpact& impact : a.orbit) {
       phases.push_back(impact.phase);
       speeds.push_back(impact.velocity);
     }

@@ -28,9 +28,9 @@ double& Coordinate(HybridState& state, int coordinate) {
 }
 
 /// The impacts of the last q recorded periods of a motion with an orbit.
-std::vector<OrbitImpact> OrbitOf(const SweepPoint& point, const GridCell& cell,
-                                 const SweepOptions& run, double period) {
-  std::vector<OrbitImpact> orbit;
+std::vector<AttractorImpact> OrbitOf(const SweepPoint& point, const GridCell& cell,
+                                     const SweepOptions& run, double period) {
+  std::vector<AttractorImpact> orbit;
   const bool has_orbit = cell.kind == MotionKind::kPeriodic || cell.kind == MotionKind::kSticking;
   if (!has_orbit || cell.q < 1) return orbit;
   const double t_from =
@@ -41,7 +41,7 @@ std::vector<OrbitImpact> OrbitOf(const SweepPoint& point, const GridCell& cell,
   return orbit;
 }
 
-bool Near(const OrbitImpact& a, const OrbitImpact& b, double period, double tolerance) {
+bool Near(const AttractorImpact& a, const AttractorImpact& b, double period, double tolerance) {
   const double d = std::abs(a.phase - b.phase);
   const double phase = std::min(d, period - d);  // phases wrap at T
   return phase <= tolerance * period &&
@@ -49,11 +49,11 @@ bool Near(const OrbitImpact& a, const OrbitImpact& b, double period, double tole
 }
 
 /// Every impact of `a` near one of `b`.
-bool Covers(const std::vector<OrbitImpact>& a, const std::vector<OrbitImpact>& b, double period,
-            double tolerance) {
-  return std::all_of(a.begin(), a.end(), [&](const OrbitImpact& i) {
+bool Covers(const std::vector<AttractorImpact>& a, const std::vector<AttractorImpact>& b,
+            double period, double tolerance) {
+  return std::all_of(a.begin(), a.end(), [&](const AttractorImpact& i) {
     return std::any_of(b.begin(), b.end(),
-                       [&](const OrbitImpact& j) { return Near(i, j, period, tolerance); });
+                       [&](const AttractorImpact& j) { return Near(i, j, period, tolerance); });
   });
 }
 

@@ -75,7 +75,7 @@ std::string CellToText(const GridCell& cell) {
   std::string text = fmt::format("{} {} {} {} {} {} {} {} {} {}", cell.index, ToString(cell.kind),
                                  cell.p, cell.q, cell.max_v, cell.range_xN, cell.lyapunov,
                                  cell.restarted ? 1 : 0, cell.events, cell.orbit.size());
-  for (const OrbitImpact& i : cell.orbit) text += fmt::format(" {} {}", i.phase, i.velocity);
+  for (const AttractorImpact& i : cell.orbit) text += fmt::format(" {} {}", i.phase, i.velocity);
   return text;
 }
 

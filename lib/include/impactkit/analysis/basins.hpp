@@ -74,7 +74,7 @@ struct Attractor {
   MotionKind kind = MotionKind::kUnresolved;
   int p = 0;
   int q = 0;
-  std::vector<OrbitImpact> orbit;  ///< that of its first cell
+  std::vector<AttractorImpact> orbit;  ///< that of its first cell
   std::int64_t first_cell = 0;
   std::int64_t cells = 0;  ///< the basin's size
 };

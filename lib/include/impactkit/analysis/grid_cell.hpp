@@ -16,7 +16,7 @@
 namespace impactkit {
 
 /// One impact of a periodic attractor's last q forcing periods.
-struct OrbitImpact {
+struct AttractorImpact {
   double phase = 0.0;     ///< t mod T, in [0, T)
   double velocity = 0.0;  ///< impact speed v_c(t-)
 };
@@ -35,7 +35,7 @@ struct GridCell {
   std::int64_t events = 0;  ///< as SweepPoint::events (the cell's cost)
   /// Basins only: the impacts of the last q recorded periods of a periodic or
   /// sticking motion (the attractor's orbit); empty otherwise.
-  std::vector<OrbitImpact> orbit;
+  std::vector<AttractorImpact> orbit;
 };
 
 /// The cell of a sweep point: the same period, speeds, ranges and exponent
