@@ -18,13 +18,18 @@ std::string Number(double value) { return std::isnan(value) ? "" : fmt::format("
 
 }  // namespace
 
-std::string CellFields(const GridCell& cell) {
-  std::string p, q;
+PeriodLabels LabelsOf(const GridCell& cell) {
+  PeriodLabels labels{ToString(cell.kind), "", ""};
   if (cell.q > 0) {
-    p = cell.kind == MotionKind::kSticking ? "inf" : std::to_string(cell.p);
-    q = std::to_string(cell.q);
+    labels.p = cell.kind == MotionKind::kSticking ? "inf" : std::to_string(cell.p);
+    labels.q = std::to_string(cell.q);
   }
-  return fmt::format("{},{},{},{},{},{}", ToString(cell.kind), p, q, Number(cell.max_v),
+  return labels;
+}
+
+std::string CellFields(const GridCell& cell) {
+  const PeriodLabels labels = LabelsOf(cell);
+  return fmt::format("{},{},{},{},{},{}", labels.kind, labels.p, labels.q, Number(cell.max_v),
                      Number(cell.range_xN), Number(cell.lyapunov));
 }
 

@@ -14,8 +14,17 @@
 
 namespace impactkit::cli {
 
+/// The one schema of a motion's kind and period in every output (sweep,
+/// map, basins, paper): the kind by name ("periodic", "sticking", ...), p
+/// the impacts per q forcing periods, "inf" when sticking, both empty where
+/// the motion does not repeat (docs/cli.md, "Motion kinds").
+struct PeriodLabels {
+  std::string kind, p, q;
+};
+PeriodLabels LabelsOf(const GridCell& cell);
+
 /// "kind,p,q,max_v,range_xN,lyapunov": the CSV columns of a cell after its
-/// coordinates (p = inf when sticking; empty where undefined).
+/// coordinates (kind, p and q as LabelsOf).
 inline constexpr const char* kCellColumns = "kind,p,q,max_v,range_xN,lyapunov";
 std::string CellFields(const GridCell& cell);
 

@@ -18,6 +18,7 @@
 
 #include "commands.hpp"
 #include "common/branches.hpp"
+#include "common/grid_output.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
@@ -275,18 +276,15 @@ nlohmann::json SweepStage(const System& paper, const SweepOptions& options,
   fmt::print("  {}\n", sweep.BriefReport());
   const nlohmann::json regimes = Regimes(sweep);
   PrintRegimes(regimes);
-  CsvWriter& csv = AddTable(folder, "fig3-sweep.csv",
-                            "paper sweep omega 0.1..2.5; kind 0 periodic, 1 sticking, 2 chaotic, "
-                            "3 non_impacting, 4 unresolved",
-                            {"omega", "kind", "p", "q", "range_xN_max", "impacts"});
+  CsvWriter& csv = AddTable(folder, "fig3-sweep.csv", "paper sweep omega 0.1..2.5",
+                            {"omega", "range_xN_max", "impacts", "kind", "p", "q"});
   for (const SweepPoint& p : sweep.points) {
-    const MotionPeriod& period = p.classification.period;
     const double range = p.range_contact.empty()
                              ? 0.0
                              : *std::max_element(p.range_contact.begin(), p.range_contact.end());
-    csv.WriteRow(std::vector<double>{p.value, static_cast<double>(p.classification.kind),
-                                     static_cast<double>(period.p), static_cast<double>(period.q),
-                                     range, static_cast<double>(p.impacts.size())});
+    const PeriodLabels period = LabelsOf(CellOf(0, p));
+    csv.WriteRow(std::vector<double>{p.value, range, static_cast<double>(p.impacts.size())},
+                 std::vector<std::string>{period.kind, period.p, period.q});
   }
   WriteFile(folder, "fig3-bifurcation.png",
             RenderStackedPng(SweepCharts(paper, options, sweep), 1000, 900));

@@ -67,7 +67,9 @@ Json MotionJson(const WindowAnalysis& analysis) {
                {"periodic", motion.periodic},
                {"searched_q", analysis.searched_q}};
   if (motion.periodic) {
-    json["p"] = motion.p;
+    // The schema of every output (common/grid_output.hpp): p = "inf" when
+    // the motion sticks (its impact count before accumulation is no period).
+    json["p"] = motion.sticking ? Json("inf") : Json(motion.p);
     json["q"] = motion.q;
     json["sticking"] = motion.sticking;
     json["mismatch"] = motion.mismatch;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/grid_output.hpp"
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
@@ -114,12 +115,7 @@ std::string Number(double value) { return std::isnan(value) ? "" : fmt::format("
 
 std::string SummaryRow(const SweepPoint& point) {
   const Classification& c = point.classification;
-  const MotionPeriod& m = c.period;
-  std::string p, q;  // empty: no period
-  if (m.periodic && c.kind != MotionKind::kUnresolved && c.kind != MotionKind::kChaotic) {
-    p = c.kind == MotionKind::kSticking ? "inf" : std::to_string(m.p);
-    q = std::to_string(m.q);
-  }
+  const PeriodLabels period = LabelsOf(CellOf(0, point));
   auto extreme = [](const std::vector<double>& values, bool largest) {
     if (values.empty()) return std::nan("");
     return largest ? *std::max_element(values.begin(), values.end())
@@ -132,8 +128,8 @@ std::string SummaryRow(const SweepPoint& point) {
   }
   const double lyapunov =
       c.lyapunov_computed && c.lyapunov.valid ? c.lyapunov.largest : std::nan("");
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", Number(point.value),
-                     ToString(c.kind), p, q, Number(extreme(point.range_contact, true)),
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", Number(point.value), period.kind,
+                     period.p, period.q, Number(extreme(point.range_contact, true)),
                      Number(extreme(point.range_first, true)),
                      Number(extreme(point.range_contact, false)),
                      Number(extreme(point.range_first, false)), point.impacts.size(), Number(v_min),

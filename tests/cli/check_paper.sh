@@ -19,6 +19,13 @@ for section in "modal data:" "resonance:" "orbits (" "branches (" "brute-force d
   grep -q "^$section" "$work/stdout" || fail "the summary lacks '$section'"
 done
 grep -q "omega = 0.6   P(2,1) stable" "$work/stdout" || fail "no stable P(2,1) at 0.6"
+# One schema for motion kinds (docs/cli.md, "Motion kinds"): names, and p =
+# inf for sticking, as `sweep --summary` writes them.
+sed -n 2p "$work/paper/fig3-sweep.csv" | grep -qx "omega,range_xN_max,impacts,kind,p,q" ||
+  fail "fig3-sweep.csv columns: $(sed -n 2p "$work/paper/fig3-sweep.csv")"
+awk -F, 'NR > 2 && $4 !~ /^(periodic|sticking|chaotic|non_impacting|unresolved)$/ {exit 1}'   "$work/paper/fig3-sweep.csv" || fail "fig3-sweep.csv has a kind that is not a name"
+awk -F, 'NR > 2 && $4 == "sticking" && $5 != "inf" {exit 1}' "$work/paper/fig3-sweep.csv" ||
+  fail "fig3-sweep.csv: a sticking row whose p is not inf"
 "$points" >"$work/expected" || fail "paper_points failed"
 (($(wc -l <"$work/expected") >= 8)) || fail "too few special points from the library"
 while read -r line; do
