@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "impactkit/analysis/grid_cell.hpp"
 #include "impactkit/analysis/lyapunov.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/sweep.hpp"
@@ -35,8 +36,11 @@ py::dict SweepArrays(const SweepResult& result) {
     offsets.push_back(static_cast<std::int64_t>(impact_t.size()));
     kind.append(ToString(point.classification.kind));
     description.append(point.classification.ToString());
-    p.push_back(point.classification.period.periodic ? point.classification.period.p : 0);
-    q.push_back(point.classification.period.periodic ? point.classification.period.q : 0);
+    // The schema of every output (docs/cli.md, "Motion kinds"); in an
+    // integer array p = 0 where it is inf (sticking) or undefined: kind says which.
+    const GridCell cell = CellOf(0, point);
+    p.push_back(cell.p);
+    q.push_back(cell.q);
   }
   py::dict out;
   out["values"] = MoveToArray(std::move(value));
@@ -129,7 +133,8 @@ void BindAnalysis(py::module_& module) {
              R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
 first to last, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,
-p, q (0 when not periodic); of all values concatenated, the max - min of x_c
+p, q (0 where undefined; a sticking motion has its q and p = 0, its kind
+says so); of all values concatenated, the max - min of x_c
 and of x_1 in every recorded forcing period (range_contact, range_first,
 delimited by range_offsets, K + 1) and every recorded impact (impact_t,
 impact_phase, impact_velocity, delimited by impact_offsets); and report. each_from: 'previous' (each value from the previous final
