@@ -183,8 +183,9 @@ void HybridRun::FreePhase() {
   flow.Output(hybrid_.Gap(), t0, z0, &witness_);
   length_scale_ = LengthScale();
   const bool pressing_now = state_.x(c) == s.stop && state_.v(c) > 0;
-  const std::optional<double> te =
-      pressing_now ? std::optional<double>(t0) : FirstUpcrossing(witness_, t0, SliceEnd(), Search());
+  const std::optional<double> te = pressing_now
+                                       ? std::optional<double>(t0)
+                                       : FirstUpcrossing(witness_, t0, SliceEnd(), Search());
   const double end = te.value_or(SliceEnd());
   if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, SegmentMode::kFree, c, s.stop));
   flow.State(t0, z0, end, &state_.x, &state_.v);
