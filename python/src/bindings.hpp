@@ -67,4 +67,14 @@ py::array_t<T> MoveToArray(std::vector<T>&& data) {
   return MoveToArray<T, 1>(std::move(data), {size});
 }
 
+/// One value per item of `items`, as an array of T: a column of a branch's
+/// points, a curve's points, a diagram's edges.
+template <class T, class Items, class Get>
+py::array_t<T> Column(const Items& items, Get get) {
+  std::vector<T> values;
+  values.reserve(items.size());
+  for (const auto& item : items) values.push_back(static_cast<T>(get(item)));
+  return MoveToArray(std::move(values));
+}
+
 }  // namespace impactkit::python

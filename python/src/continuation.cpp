@@ -20,15 +20,6 @@ ContinuationDirection DirectionFromName(const std::string& name) {
   throw InvalidInput("direction must be 'increasing', 'decreasing' or 'both', got '" + name + "'");
 }
 
-/// One value per branch point, as an array.
-template <class Get>
-py::array_t<double> PerPoint(const Branch& branch, Get get) {
-  std::vector<double> values;
-  values.reserve(branch.points.size());
-  for (const BranchPoint& point : branch.points) values.push_back(get(point));
-  return MoveToArray(std::move(values));
-}
-
 ContinuationOptions MakeOptions(const std::string& parameter, double lower, double upper,
                                 const std::string& direction, double initial_step, double min_step,
                                 double max_step, int max_points, bool locate_bifurcations) {
@@ -136,13 +127,13 @@ void BindContinuation(py::module_& module) {
       .def_property_readonly(
           "values",
           [](const Branch& b) {
-            return PerPoint(b, [](const BranchPoint& p) { return p.parameter; });
+            return Column<double>(b.points, [](const BranchPoint& p) { return p.parameter; });
           },
           "The parameter at each point, shape (n,).")
       .def_property_readonly(
           "arclength",
           [](const Branch& b) {
-            return PerPoint(b, [](const BranchPoint& p) { return p.arclength; });
+            return Column<double>(b.points, [](const BranchPoint& p) { return p.arclength; });
           },
           "Signed arclength from the start, shape (n,).")
       .def_property_readonly(

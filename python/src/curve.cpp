@@ -14,15 +14,6 @@
 namespace impactkit::python {
 namespace {
 
-/// One value per curve point, as an array.
-template <class Get>
-py::array_t<double> PerPoint(const Curve& curve, Get get) {
-  std::vector<double> values;
-  values.reserve(curve.points.size());
-  for (const CurvePoint& point : curve.points) values.push_back(get(point));
-  return MoveToArray(std::move(values));
-}
-
 Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialPoint& special,
                       const std::string& parameter2, double lower, double upper, double lower2,
                       double upper2, double initial_step, double min_step, double max_step,
@@ -82,11 +73,16 @@ void BindCurveClass(py::module_& module) {
       .def_readonly("p", &Curve::p, "Impacts per orbit (0: a non-impacting response's grazing).")
       .def_readonly("q", &Curve::q, "Forcing periods per orbit.")
       .def_property_readonly(
-          "values", [](const Curve& c) { return PerPoint(c, [](auto& p) { return p.parameter; }); },
+          "values",
+          [](const Curve& c) {
+            return Column<double>(c.points, [](auto& p) { return p.parameter; });
+          },
           "mu1 at each point, shape (n,).")
       .def_property_readonly(
           "values2",
-          [](const Curve& c) { return PerPoint(c, [](auto& p) { return p.parameter2; }); },
+          [](const Curve& c) {
+            return Column<double>(c.points, [](auto& p) { return p.parameter2; });
+          },
           "mu2 at each point, shape (n,).")
       .def_property_readonly(
           "orbits",

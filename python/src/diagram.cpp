@@ -56,15 +56,6 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
   });
 }
 
-/// One value per edge, as an array.
-template <class Get>
-py::array_t<long> PerEdge(const Diagram& d, Get get) {
-  std::vector<long> values;
-  values.reserve(d.edges.size());
-  for (const DiagramEdge& e : d.edges) values.push_back(static_cast<long>(get(e)));
-  return MoveToArray(std::move(values));
-}
-
 void BindNode(py::module_& module) {
   py::class_<DiagramNode>(module, "DiagramNode",
                           "A node of a diagram: a special point, or where a branch ends for "
@@ -113,21 +104,24 @@ void BindGraph(py::module_& module) {
       .def_readonly("nodes", &Diagram::nodes, "A list of DiagramNode.")
       .def_readonly("branches", &Diagram::branches, "A list of DiagramBranch.")
       .def_property_readonly(
-          "edge_from", [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.from; }); },
+          "edge_from",
+          [](const Diagram& d) { return Column<long>(d.edges, [](auto& e) { return e.from; }); },
           "Each edge's first node, shape (edges,).")
       .def_property_readonly(
-          "edge_to", [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.to; }); },
+          "edge_to",
+          [](const Diagram& d) { return Column<long>(d.edges, [](auto& e) { return e.to; }); },
           "Each edge's last node, shape (edges,).")
       .def_property_readonly(
           "edge_branch",
-          [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.branch; }); },
+          [](const Diagram& d) { return Column<long>(d.edges, [](auto& e) { return e.branch; }); },
           "Each edge's branch (index into branches), shape (edges,).")
       .def_property_readonly(
           "edge_first",
-          [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.first; }); },
+          [](const Diagram& d) { return Column<long>(d.edges, [](auto& e) { return e.first; }); },
           "The index of each edge's first point on its branch, shape (edges,).")
       .def_property_readonly(
-          "edge_last", [](const Diagram& d) { return PerEdge(d, [](auto& e) { return e.last; }); },
+          "edge_last",
+          [](const Diagram& d) { return Column<long>(d.edges, [](auto& e) { return e.last; }); },
           "The index of each edge's last point on its branch (inclusive), shape (edges,).")
       .def_readonly("duplicate_starts", &Diagram::duplicate_starts,
                     "Starts not traced: their orbit lies on a branch traced already.")
