@@ -327,6 +327,27 @@ TEST_CASE(
   CHECK_THAT(hi, Catch::Matchers::WithinAbs(0.859, 1e-3));
 }
 
+TEST_CASE("diagram: a branch traced again over part of another's range is covered by it",
+          "[diagram]") {
+  // Traced independently, the shorter branch's points are not the longer
+  // one's: they are on it through interpolation between its points.
+  const System system = PaperSystem(1.2);
+  const auto trace = [](const System& s, double lower, double upper) {
+    return TraceDiagram({{s, testing::SeededOrbit(s, 1, 1), "P(1,1)"}}, Options(lower, upper, 0))
+        .branches.at(0)
+        .branch;
+  };
+  const Branch whole = trace(system, 1.0, 1.4), part = trace(system, 1.1, 1.3);
+  CHECK(CoveredBy(part, whole));
+  CHECK_FALSE(CoveredBy(whole, part));  // reaches 1.0 and 1.4, beyond the part
+  // A nearby but different branch (r 0.7 -> 0.72: speeds change by ~1%).
+  const Branch other = trace(At(system, "r", 0.72), 1.1, 1.3);
+  CHECK_FALSE(CoveredBy(other, whole));
+  Branch later = part;
+  later.q = 2;
+  CHECK_FALSE(CoveredBy(later, whole));  // another period is another branch
+}
+
 TEST_CASE("diagram: a grazing located just past a bound seeds nothing outside the range",
           "[diagram]") {
   // P(1,1)'s new contact at 0.8564 is approached from the branch side and

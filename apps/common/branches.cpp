@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "impactkit/io/csv.hpp"
 
@@ -151,48 +152,102 @@ nlohmann::json BranchJson(const TracedBranch& traced) {
   return j;
 }
 
-/// The branch as impact velocity against the parameter: stable stretches
-/// solid, unstable dashed, special points marked.
+Curve SpecialPointMarks(SpecialPointType type) {
+  // Black, so that no branch colour hides them; the shape tells the type.
+  // gnuplot pointtypes: 5 square, 7 circle, 9 triangle, 11 down triangle,
+  // 13 diamond, 3 star.
+  static const std::map<SpecialPointType, std::pair<const char*, int>> kStyles = {
+      {SpecialPointType::kFold, {"fold", 5}},
+      {SpecialPointType::kPeriodDoubling, {"period doubling", 7}},
+      {SpecialPointType::kNeimarkSacker, {"Neimark-Sacker", 13}},
+      {SpecialPointType::kGrazing, {"grazing", 9}},
+      {SpecialPointType::kSticking, {"sticking onset", 11}},
+      {SpecialPointType::kBranchPoint, {"branch point", 3}}};
+  const auto& [title, point_type] = kStyles.at(type);
+  Curve marks;
+  marks.title = title;
+  marks.color = "#000000";
+  marks.points = true;
+  marks.point_type = point_type;
+  marks.point_size = 1.4;
+  return marks;
+}
+
+std::vector<Curve> StabilityKey(const std::string& color) {
+  Curve stable, unstable;
+  stable.title = "stable";
+  unstable.title = "unstable";
+  stable.color = unstable.color = color;
+  unstable.dashed = true;
+  return {stable, unstable};
+}
+
+namespace {
+
+/// The curves of one branch in `color`, without titles: one per impact
+/// and stretch of equal stability, so that the pieces join.
+void AddBranchLines(const Branch& b, const std::string& color, LineChart& chart) {
+  for (int i = 0; i < b.p; ++i) {
+    std::size_t from = 0;
+    while (from + 1 < b.points.size()) {
+      std::size_t to = from + 1;
+      while (to + 1 < b.points.size() && b.points[to].orbit.stable == b.points[from].orbit.stable)
+        ++to;
+      Curve curve;
+      curve.color = color;
+      curve.dashed = !b.points[from].orbit.stable;
+      for (std::size_t n = from; n <= to; ++n) {
+        curve.x.push_back(b.points[n].parameter);
+        curve.y.push_back(b.points[n].orbit.impacts[i].velocity);
+      }
+      chart.curves.push_back(std::move(curve));
+      from = to;
+    }
+  }
+}
+
+}  // namespace
+
 LineChart BranchChart(const std::vector<TracedBranch>& branches) {
-  static const char* kPalette[] = {"#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf"};
   LineChart chart;
   chart.title = "Continued branches: impact velocities";
   chart.x_label = ParameterLabel(branches.front().branch.parameter);
   chart.y_label = "impact velocity";
+  chart.curves = StabilityKey();
+  // Key entries first, in branch order: the key lists the branches whatever
+  // the order of the lines drawn after them.
+  std::vector<std::size_t> entry_of(branches.size());  // a branch's key entry in chart.curves
+  std::vector<std::size_t> drawn;                      // the branches drawn, by index
   for (std::size_t k = 0; k < branches.size(); ++k) {
     const Branch& b = branches[k].branch;
-    const std::string color = kPalette[k % 5];
-    for (int i = 0; i < b.p; ++i) {
-      // One curve per stretch of equal stability, so that the pieces join.
-      std::size_t from = 0;
-      while (from + 1 < b.points.size()) {
-        std::size_t to = from + 1;
-        while (to + 1 < b.points.size() && b.points[to].orbit.stable == b.points[from].orbit.stable)
-          ++to;
-        Curve curve;
-        curve.color = color;
-        curve.dashed = !b.points[from].orbit.stable;
-        for (std::size_t n = from; n <= to; ++n) {
-          curve.x.push_back(b.points[n].parameter);
-          curve.y.push_back(b.points[n].orbit.impacts[i].velocity);
-        }
-        if (from == 0 && i == 0)
-          curve.title = fmt::format("P({},{}) {}", b.p, b.q, branches[k].label);
-        chart.curves.push_back(std::move(curve));
-        from = to;
-      }
+    const auto covering = std::find_if(drawn.begin(), drawn.end(), [&](std::size_t j) {
+      return CoveredBy(b, branches[j].branch);
+    });
+    if (covering != drawn.end()) {
+      chart.curves[entry_of[*covering]].title += " = " + branches[k].label;
+      continue;
     }
-    for (const SpecialPoint& s : b.special_points) {
-      Curve mark;
-      mark.points = true;
-      mark.color = "#d62728";
+    Curve entry;
+    entry.title = fmt::format("P({},{}) {}", b.p, b.q, branches[k].label);
+    entry.color = DistinctColor(drawn.size());
+    entry_of[k] = chart.curves.size();
+    chart.curves.push_back(std::move(entry));
+    drawn.push_back(k);
+  }
+  for (std::size_t k : drawn) {
+    AddBranchLines(branches[k].branch, chart.curves[entry_of[k]].color, chart);
+  }
+  std::map<SpecialPointType, Curve> marks;
+  for (const TracedBranch& traced : branches) {
+    for (const SpecialPoint& s : traced.branch.special_points) {
+      auto [it, added] = marks.try_emplace(s.type, SpecialPointMarks(s.type));
       for (const OrbitImpact& i : s.point.orbit.impacts) {
-        mark.x.push_back(s.parameter);
-        mark.y.push_back(i.velocity);
+        it->second.x.push_back(s.parameter);
+        it->second.y.push_back(i.velocity);
       }
-      chart.curves.push_back(std::move(mark));
     }
   }
+  for (auto& [type, mark] : marks) chart.curves.push_back(std::move(mark));
   return chart;
 }
 

@@ -61,8 +61,18 @@ std::string BranchPath(const std::string& path, const std::string& label);
 /// label, origin, p, q, points, end_reason (begin_reason), param_range, special_points.
 nlohmann::json BranchJson(const TracedBranch& traced);
 
-/// Impact velocities against the parameter: stable solid, unstable dashed,
-/// special points marked.
+/// The key entry of a special-point type, with the marker (shape and
+/// colour) that type has in every chart; its data are left to the caller.
+Curve SpecialPointMarks(SpecialPointType type);
+
+/// Two key entries in `color`, "stable" solid and "unstable" dashed, that
+/// explain the line styles once for all branches.
+std::vector<Curve> StabilityKey(const std::string& color = "#555555");
+
+/// Impact velocities against the parameter, a colour per branch (one key
+/// entry each; a branch lying on another is drawn once, the entry naming
+/// both), stable stretches solid, unstable dashed, special points marked by
+/// type.
 LineChart BranchChart(const std::vector<TracedBranch>& branches);
 
 /// "P(1,1) stable 0.856 to 1.613, unstable 1.613 to 2.5": the branch's

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -44,6 +45,7 @@ class TemporaryDirectory {
   TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
 
   fs::path operator/(std::string_view name) const { return path_ / name; }
+  const fs::path& Path() const { return path_; }
 
  private:
   fs::path path_;
@@ -91,21 +93,27 @@ std::string CurveData(const Curve& curve) {
   return data;
 }
 
+/// Where a curve's points come from: its data file, or NaN for a curve
+/// drawn only in the key.
+std::string Source(const Curve& curve, const fs::path& file) {
+  return curve.x.empty() ? "NaN" : Quoted(file.filename().string()) + " using 1:2";
+}
+
 /// One `plot` clause per curve (data in `files`, same order) and per line.
 std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& files) {
   std::vector<std::string> clauses;
   for (std::size_t i = 0; i < chart.curves.size(); ++i) {
     const Curve& curve = chart.curves[i];
+    const std::string title = curve.title.empty() ? "notitle" : "title " + Quoted(curve.title);
     if (curve.points) {
-      clauses.push_back(fmt::format(
-          "{} using 1:2 with points pointtype 7 pointsize {} linecolor rgb {} title {}",
-          Quoted(files[i].string()), curve.point_size, Quoted(curve.color), Quoted(curve.title)));
+      clauses.push_back(fmt::format("{} with points pointtype {} pointsize {} linecolor rgb {} {}",
+                                    Source(curve, files[i]), curve.point_type, curve.point_size,
+                                    Quoted(curve.color), title));
       continue;
     }
-    clauses.push_back(
-        fmt::format("{} using 1:2 with lines dashtype {} linewidth {} linecolor rgb {} title {}",
-                    Quoted(files[i].string()), curve.dashed ? 2 : 1, curve.dashed ? 1.5 : 2.0,
-                    Quoted(curve.color), Quoted(curve.title)));
+    clauses.push_back(fmt::format("{} with lines dashtype {} linewidth {} linecolor rgb {} {}",
+                                  Source(curve, files[i]), curve.dashed ? 2 : 1,
+                                  curve.dashed ? 1.5 : 2.0, Quoted(curve.color), title));
   }
   for (const HorizontalLine& line : chart.lines) {
     clauses.push_back(
@@ -129,7 +137,7 @@ std::string Preamble(int width, int height, const fs::path& output, std::string_
       "set output {2}\n"
       "set grid\n"
       "set key {3}\n",
-      width, height, Quoted(output.string()), key);
+      width, height, Quoted(output.filename().string()), key);
 }
 
 /// gnuplot's first complaint, as the reason in our one-line error.
@@ -139,10 +147,12 @@ std::string FirstLine(const std::string& text) {
   return text.substr(start, text.find_first_of("\r\n", start) - start);
 }
 
-/// Runs gnuplot on `script`, its output going to `log`. Throws PlotError.
+/// Runs gnuplot on `script` in the script's directory (the script names
+/// its files relative to it), its output going to `log`. Throws PlotError.
 void RunGnuplot(const fs::path& script, const fs::path& log) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, script.parent_path().c_str());
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0600);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
@@ -251,7 +261,8 @@ std::string ClassMapScript(const ClassMap& map, const fs::path& cells,
     keys.push_back(fmt::format("NaN with boxes fillstyle solid 1.0 lc rgb \"{}\" title {}",
                                map.colors[c], Quoted(map.names[c])));
   }
-  std::string plot = fmt::format("plot {} using 1:2:3 with image notitle", Quoted(cells.string()));
+  std::string plot =
+      fmt::format("plot {} using 1:2:3 with image notitle", Quoted(cells.filename().string()));
   for (const std::string& key : keys) plot += ", " + key;
   // Each curve over a white halo: a dark line alone vanishes on dark cells.
   for (std::size_t i = 0; i < map.overlays.size(); ++i) {
@@ -259,7 +270,8 @@ std::string ClassMapScript(const ClassMap& map, const fs::path& cells,
     plot += fmt::format(
         ", {0} using 1:2 with lines lw 5 lc rgb \"#ffffff\" notitle"
         ", {0} using 1:2 with lines lw 2 dashtype {1} lc rgb \"{2}\" title {3}",
-        Quoted(overlays[i].string()), curve.dashed ? 2 : 1, curve.color, Quoted(curve.title));
+        Quoted(overlays[i].filename().string()), curve.dashed ? 2 : 1, curve.color,
+        Quoted(curve.title));
   }
   // gnuplot's palette needs two colours: one class is drawn as if of two.
   if (classes == 1) palette.push_back(fmt::format("1 \"{}\"", map.colors[0]));
@@ -273,7 +285,50 @@ std::string ClassMapScript(const ClassMap& map, const fs::path& cells,
       colors - 0.5, plot);
 }
 
+/// With IMPACTKIT_PLOT_SOURCE=DIR, the figure's script and data files go to
+/// the first unused DIR/<n>/ as well (plot.hpp). Throws PlotError.
+void KeepSource(const TemporaryDirectory& directory) {
+  const char* keep = std::getenv("IMPACTKIT_PLOT_SOURCE");
+  if (keep == nullptr || *keep == '\0') return;
+  std::error_code error;
+  fs::path target;
+  for (int n = 1; target.empty(); ++n) {
+    const fs::path candidate = fs::path(keep) / std::to_string(n);
+    if (!fs::exists(candidate, error)) target = candidate;
+  }
+  fs::create_directories(target, error);
+  for (const fs::directory_entry& entry : fs::directory_iterator(directory.Path(), error)) {
+    const fs::path name = entry.path().filename();
+    if (name.extension() == ".gp" || name.extension() == ".dat") {
+      fs::copy_file(entry.path(), target / name, error);
+    }
+    if (error) break;
+  }
+  if (error) {
+    throw PlotError(fmt::format("IMPACTKIT_PLOT_SOURCE: cannot copy the figure's source to {}: {}",
+                                target.string(), error.message()));
+  }
+}
+
+/// Runs the script and returns its PNG, keeping the source if asked.
+std::string Render(const TemporaryDirectory& directory, const fs::path& script,
+                   const fs::path& image) {
+  RunGnuplot(script, directory / "gnuplot.log");
+  std::string png = ReadFile(image);
+  if (png.empty()) throw PlotError("gnuplot produced no image");
+  KeepSource(directory);
+  return png;
+}
+
 }  // namespace
+
+std::string DistinctColor(std::size_t k) {
+  static constexpr std::array<const char*, 20> kColors = {
+      "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+      "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939", "#8c6d31", "#843c39",
+      "#7b4173", "#3182bd", "#e6550d", "#31a354", "#756bb1", "#636363"};
+  return kColors[k % kColors.size()];
+}
 
 std::string ParameterLabel(std::string_view parameter) {
   return parameter == "omega" ? "Ω" : std::string(parameter);
@@ -283,7 +338,7 @@ std::string RenderClassMapPng(const ClassMap& map) {
   RequireGnuplot();
   if (map.names.empty()) throw PlotError("a class map needs at least one class");
   const TemporaryDirectory directory;
-  const fs::path image = directory / "map.png", log = directory / "gnuplot.log";
+  const fs::path image = directory / "map.png";
   const fs::path cells = directory / "cells.dat";
   WriteFile(cells, CellData(map));
   std::vector<fs::path> overlays;
@@ -294,10 +349,7 @@ std::string RenderClassMapPng(const ClassMap& map) {
   const fs::path script_path = directory / "map.gp";
   WriteFile(script_path, Preamble(map.width, map.height, image, "outside right") +
                              ClassMapScript(map, cells, overlays));
-  RunGnuplot(script_path, log);
-  std::string png = ReadFile(image);
-  if (png.empty()) throw PlotError("gnuplot produced no image");
-  return png;
+  return Render(directory, script_path, image);
 }
 
 void RequireGnuplot() {
@@ -314,7 +366,7 @@ std::string RenderPng(const LineChart& chart) {
 std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height) {
   RequireGnuplot();
   const TemporaryDirectory directory;
-  const fs::path image = directory / "chart.png", log = directory / "gnuplot.log";
+  const fs::path image = directory / "chart.png";
   const bool single = charts.size() == 1;
   std::string script =
       Preamble(width, height, image, single ? "outside bottom center horizontal" : "top right");
@@ -330,10 +382,7 @@ std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, in
   if (!single) script += "unset multiplot\n";
   const fs::path script_path = directory / "chart.gp";
   WriteFile(script_path, script);
-  RunGnuplot(script_path, log);
-  std::string png = ReadFile(image);
-  if (png.empty()) throw PlotError("gnuplot produced no image");
-  return png;
+  return Render(directory, script_path, image);
 }
 
 }  // namespace impactkit::cli

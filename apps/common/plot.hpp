@@ -4,8 +4,14 @@
 /// temporary directory, gnuplot renders a PNG there, and the bytes come
 /// back to the caller, who writes them like any other output (whole or not
 /// at all). pngcairo is used when gnuplot has it, else the plain png terminal.
+///
+/// With IMPACTKIT_PLOT_SOURCE=DIR in the environment, each figure's script
+/// and data are also copied into DIR/<n>/ (n = 1, 2, ... per figure): a
+/// self-contained gnuplot source to edit a figure for publication
+/// (`cd DIR/1 && gnuplot chart.gp`).
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +26,9 @@ class PlotError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A data set of a chart. A curve without data is drawn only in the key:
+/// a legend entry that stands for several curves (a branch's stretches,
+/// "stable" for every solid line).
 struct Curve {
   std::string title;
   std::vector<double> x;
@@ -30,7 +39,12 @@ struct Curve {
   /// gnuplot point size (small for dense data, larger for marked points).
   bool points = false;
   double point_size = 0.2;
+  int point_type = 7;  ///< gnuplot pointtype: 7 filled circle, 5 square, 9 triangle, ...
 };
+
+/// The k-th of 20 colours that stay apart on white and from each other
+/// (matplotlib's tab10, then the darker tab20b/c hues), repeating after 20.
+std::string DistinctColor(std::size_t k);
 
 /// A constant y across the chart (a stop, a threshold).
 struct HorizontalLine {

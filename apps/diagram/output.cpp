@@ -69,15 +69,6 @@ std::vector<double> AxisValues(const PeriodicOrbit& orbit, DiagramAxis axis) {
   return v;
 }
 
-/// One colour per kind of node, so that the picture's key names them.
-const char* NodeColor(const std::string& name) {
-  static const std::map<std::string, const char*> kColors = {
-      {"fold", "#ff7f0e"},    {"period_doubling", "#d62728"}, {"neimark_sacker", "#e377c2"},
-      {"grazing", "#2ca02c"}, {"sticking", "#8c564b"},        {"branch_point", "#9467bd"}};
-  const auto it = kColors.find(name);
-  return it == kColors.end() ? "#7f7f7f" : it->second;
-}
-
 }  // namespace
 
 void PrintDiagram(const Diagram& diagram) {
@@ -131,7 +122,7 @@ LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis) {
   const Diagram& diagram = swept.diagram;
   LineChart chart;
   chart.title = "Connected bifurcation diagram";
-  chart.x_label = diagram.parameter;
+  chart.x_label = ParameterLabel(diagram.parameter);
   chart.y_label = axis == DiagramAxis::kRange ? "max - min of x_N" : "impact velocity";
   Curve brute;
   brute.points = true;
@@ -152,7 +143,8 @@ LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis) {
     }
   }
   if (!brute.x.empty()) chart.curves.push_back(std::move(brute));
-  bool stable_titled = false, unstable_titled = false;
+  const std::string kBranchColor = "#1f77b4";
+  for (Curve& key : StabilityKey(kBranchColor)) chart.curves.push_back(std::move(key));
   for (const DiagramEdge& edge : diagram.edges) {
     const Branch& b = diagram.branches[edge.branch].branch;
     const std::size_t lines = AxisValues(b.points[edge.first].orbit, axis).size();
@@ -163,11 +155,8 @@ LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis) {
         std::size_t to = from + 1;
         while (to < edge.last && b.points[to].orbit.stable == b.points[from].orbit.stable) ++to;
         Curve curve;
-        curve.color = "#1f77b4";
+        curve.color = kBranchColor;
         curve.dashed = !b.points[from].orbit.stable;
-        bool& titled = curve.dashed ? unstable_titled : stable_titled;
-        if (!titled) curve.title = curve.dashed ? "unstable" : "stable";
-        titled = true;
         for (std::size_t n = from; n <= to; ++n) {
           curve.x.push_back(b.points[n].parameter);
           curve.y.push_back(AxisValues(b.points[n].orbit, axis)[line]);
@@ -177,14 +166,10 @@ LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis) {
       }
     }
   }
-  std::map<std::string, Curve> marks;
+  std::map<SpecialPointType, Curve> marks;
   for (const DiagramNode& node : diagram.nodes) {
     if (node.kind != DiagramNodeKind::kSpecialPoint) continue;
-    Curve& mark = marks[node.Name()];
-    mark.points = true;
-    mark.point_size = 1.2;
-    mark.title = node.Name();
-    mark.color = NodeColor(node.Name());
+    Curve& mark = marks.try_emplace(node.special, SpecialPointMarks(node.special)).first->second;
     for (double y : AxisValues(node.point.orbit, axis)) {
       mark.x.push_back(node.parameter);
       mark.y.push_back(y);

@@ -73,6 +73,19 @@ bool OnBranch(const Branch& branch, OrbitPeriod period, double mu,
   return false;
 }
 
+}  // namespace
+
+bool CoveredBy(const Branch& branch, const Branch& other, double tolerance) {
+  if (branch.points.empty() || branch.p != other.p || branch.q != other.q) return false;
+  const OrbitPeriod period{branch.p, branch.q};
+  return std::all_of(branch.points.begin(), branch.points.end(), [&](const BranchPoint& point) {
+    return OnBranch(other, period, point.parameter, SortedSpeeds(point.orbit.impacts, branch.p),
+                    tolerance);
+  });
+}
+
+namespace {
+
 class NetworkTracer {
  public:
   NetworkTracer(System system, const DiagramOptions& options, const DiagramProgress& progress)

@@ -74,4 +74,11 @@ using DiagramProgress = std::function<void(int branches, const BranchPoint& poin
 Diagram TraceDiagram(const std::vector<DiagramSeed>& seeds, const DiagramOptions& options,
                      const DiagramProgress& progress = {});
 
+/// Whether every point of `branch` lies on `other`: the same P(p,q), and
+/// sorted impact speeds within `tolerance` (relative to 1 + the largest
+/// speed) of `other`'s, interpolated between two of its consecutive points
+/// that bracket the parameter (through a fold, either sheet). A picture
+/// draws such a branch once.
+bool CoveredBy(const Branch& branch, const Branch& other, double tolerance = 2e-3);
+
 }  // namespace impactkit
