@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/model/system.hpp"
 
@@ -94,6 +95,7 @@ int main(int argc, char** argv) {
   impactkit::cli::AddMapCommand(app);
   impactkit::cli::AddBasinsCommand(app);
 
+  impactkit::cli::RecordCommandLine(argc, argv);
   try {
     app.parse(argc, argv);
     return 0;

@@ -18,4 +18,4 @@ mkdir -p "$figures" "$data"
   --out "$data/fig3-impacts.csv" --summary "$data/fig3-summary.csv" \
   --plot "$figures/fig3_sweep.png" | sed 's/^/    /'
 echo "kinds (values):"
-tail -n +3 "$data/fig3-summary.csv" | cut -d, -f2 | sort | uniq -c | sed 's/^/    /'
+grep -v '^#' "$data/fig3-summary.csv" | tail -n +2 | cut -d, -f2 | sort | uniq -c | sed 's/^/    /'

@@ -30,7 +30,7 @@ done
   echo 'unset key'
   for w in $omegas; do
     echo "set title 'Ω = $w'; set xlabel 'phase'; set ylabel 'v2'"
-    echo "plot '$data/fig8_$w.csv' every ::2 using 2:3 with points pointtype 7 pointsize 0.15 linecolor rgb '#1f4e9a'"
+    echo "plot '$data/fig8_$w.csv' every ::1 using 2:3 with points pointtype 7 pointsize 0.15 linecolor rgb '#1f4e9a'"
   done
   echo 'unset multiplot'
 } | gnuplot

@@ -34,7 +34,7 @@ c 1.72 0.28 10"
     echo "set title '($panel) Ω = $w, $lo < v2 < $hi'; set xlabel 'phase'; set ylabel 'v2'"
     echo "call '$here/gnuplot/single_value_axis.gp' 'x' '$data/fig9$panel.csv' '((\$3 > $lo && \$3 < $hi) ? \$2 : 1/0)'"
     echo "call '$here/gnuplot/single_value_axis.gp' 'y' '$data/fig9$panel.csv' '$band'"
-    echo "plot '$data/fig9$panel.csv' every ::2 using 2:$band with points pointtype 7 pointsize 0.1 linecolor rgb '#1f4e9a'"
+    echo "plot '$data/fig9$panel.csv' every ::1 using 2:$band with points pointtype 7 pointsize 0.1 linecolor rgb '#1f4e9a'"
   done <<<"$panels"
   echo 'unset multiplot'
 } | gnuplot

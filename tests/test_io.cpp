@@ -442,22 +442,23 @@ TEST_CASE("CsvWriter: provenance, header, and values that read back exactly", "[
     rows.push_back({i * 0.01, std::sin(i) / i, std::exp(-i / 100.0), -i / 7.0});
   }
   {
-    CsvWriter csv(path, "test omega=1.4 xs=0.1", {"t", "x1", "x2", "v1"});
+    CsvWriter csv(path, "impactkit test\nparameters: omega=1.4 xs=0.1", {"t", "x1", "x2", "v1"});
     CHECK(csv.Columns() == 4);
     for (const auto& row : rows) csv.WriteRow(row);
     CHECK_FALSE(fs::exists(path));  // nothing before Commit()
     csv.Commit();
   }
   const std::vector<std::string> lines = Lines(ReadText(path));
-  REQUIRE(lines.size() == 2 + rows.size());
-  CHECK(lines[0] == "# impactkit test omega=1.4 xs=0.1");
-  CHECK(lines[1] == "t,x1,x2,v1");
+  REQUIRE(lines.size() == 3 + rows.size());
+  CHECK(lines[0] == "# impactkit test");
+  CHECK(lines[1] == "# parameters: omega=1.4 xs=0.1");
+  CHECK(lines[2] == "t,x1,x2,v1");
   // Exact: the writer prints the shortest decimal that reads back to the same
   // double and strtod rounds correctly, so every bit must survive.
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    INFO("row " << i + 1 << ": " << lines[i + 2]);
+    INFO("row " << i + 1 << ": " << lines[i + 3]);
     std::vector<double> values;
-    const char* cursor = lines[i + 2].c_str();
+    const char* cursor = lines[i + 3].c_str();
     for (;;) {
       char* end = nullptr;
       values.push_back(std::strtod(cursor, &end));
@@ -470,12 +471,12 @@ TEST_CASE("CsvWriter: provenance, header, and values that read back exactly", "[
     }
     CHECK(values == rows[i]);
   }
-  CHECK(std::signbit(std::strtod(lines[3].c_str(), nullptr)));  // -0.0 keeps its sign
+  CHECK(std::signbit(std::strtod(lines[4].c_str(), nullptr)));  // -0.0 keeps its sign
 }
 
 TEST_CASE("CsvWriter rejects misuse", "[io]") {
   ScratchDir dir;
-  CHECK_THROWS_AS(CsvWriter(dir / "a.csv", "two\nlines", {"t"}), std::invalid_argument);
+  CHECK_THROWS_AS(CsvWriter(dir / "a.csv", "carriage\rreturn", {"t"}), std::invalid_argument);
   CHECK_THROWS_AS(CsvWriter(dir / "b.csv", "no columns", {}), std::invalid_argument);
   {
     CsvWriter csv(dir / "c.csv", "short row", {"t", "x1"});
@@ -571,7 +572,7 @@ TEST_CASE("OutputSet: every file appears on Commit, or none does", "[io]") {
       CHECK(ReadText(dir / "keep.csv") == "old\n");  // nothing before Commit
       outputs.Commit();
     }
-    CHECK(ReadText(dir / "keep.csv") == "# impactkit test\nt,x\n0.5,1.5\n");
+    CHECK(ReadText(dir / "keep.csv") == "# test\nt,x\n0.5,1.5\n");
     CHECK(ReadText(dir / "result.json") == "{}\n");
     CHECK(dir.Entries() == std::vector<std::string>{"keep.csv", "result.json"});
   }

@@ -17,9 +17,11 @@
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/basins.hpp"
+#include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -73,17 +75,17 @@ BasinsOptions OptionsOf(const BasinsRequest& request, const System& system) {
   return options;
 }
 
-std::string Provenance(const BasinsRequest& request, const System& system, const BasinsOptions& o) {
-  std::string text = "basins";
-  if (!request.system.file.empty()) text += " system=" + request.system.file;
-  return text + fmt::format(
-                    " {} coord={} from={} to={} steps={} coord2={} from2={} to2={} steps2={} "
-                    "transient={} record={} max_q={} tolerance={}{} (each cell from its own "
-                    "start; the other coordinates from --x0/--v0, default rest)",
-                    ParameterList(system), o.coordinate1, o.from1, o.to1, o.steps1, o.coordinate2,
-                    o.from2, o.to2, o.steps2, o.run.transient_periods, o.run.recorded_periods,
-                    o.run.classify.period.max_q, o.orbit_tolerance,
-                    FixedStateProvenance(request.run));
+/// The head of every output: all that decides the result.
+Provenance ProvenanceOf(const BasinsRequest& request, const System& system,
+                        const BasinsOptions& o) {
+  return MakeProvenance(
+      request.system, system,
+      fmt::format("basins coord={} from={} to={} steps={} coord2={} from2={} to2={} steps2={} "
+                  "transient={} record={} max_q={} tolerance={}{} (each cell from its own "
+                  "start; the other coordinates from --x0/--v0, default rest)",
+                  o.coordinate1, o.from1, o.to1, o.steps1, o.coordinate2, o.from2, o.to2, o.steps2,
+                  o.run.transient_periods, o.run.recorded_periods, o.run.classify.period.max_q,
+                  o.orbit_tolerance, FixedStateProvenance(request.run)));
 }
 
 std::string AttractorLabel(const BasinsResult& result, int a) {
@@ -95,12 +97,12 @@ std::string AttractorLabel(const BasinsResult& result, int a) {
   return fmt::format("A{} {}", a + 1, MotionLabel(cell));
 }
 
-std::string SummaryJson(const std::string& provenance, const BasinsTask& task,
+std::string SummaryJson(const Provenance& provenance, const BasinsTask& task,
                         const BasinsResult& result, std::int64_t cells) {
   const BasinsOptions& o = task.Options();
   const std::size_t k = task.Values1().size();
   nlohmann::ordered_json json;
-  json["provenance"] = provenance;
+  json["provenance"] = provenance.Json();
   json["coord"] = {{"name", o.coordinate1}, {"from", o.from1}, {"to", o.to1}, {"steps", o.steps1}};
   json["coord2"] = {{"name", o.coordinate2}, {"from", o.from2}, {"to", o.to2}, {"steps", o.steps2}};
   json["cells"] = cells;
@@ -150,7 +152,7 @@ void RunBasinsCommand(const BasinsRequest& request) {
   GridProcesses processes;
   const System system = ResolveSystem(request.system);
   const BasinsTask task(system, OptionsOf(request, system));
-  const std::string provenance = Provenance(request, system, task.Options());
+  const Provenance provenance = ProvenanceOf(request, system, task.Options());
   const GridDriveOptions drive =
       DriveOptionsOf("basins", request.threads, request.checkpoint, processes);
   OutputSet outputs;
@@ -177,8 +179,8 @@ void RunBasinsCommand(const BasinsRequest& request) {
                    static_cast<double>(outcome->cells.size()));
   }
   if (out) {
-    out->Write(fmt::format("# impactkit {}\n{},{},attractor,{}\n", provenance, o.coordinate1,
-                           o.coordinate2, kCellColumns));
+    out->Write(CommentLines(provenance.Text()) +
+               fmt::format("{},{},attractor,{}\n", o.coordinate1, o.coordinate2, kCellColumns));
     const std::size_t k = task.Values1().size();
     for (const GridCell& cell : outcome->cells) {
       out->Write(fmt::format("{},{},{},{}\n", task.Values1()[cell.index % k],

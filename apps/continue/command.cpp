@@ -21,6 +21,7 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
 #include "continue/sticking.hpp"
@@ -64,9 +65,9 @@ ContinuationOptions MakeOptions(const ContinueRequest& request, const OrbitOptio
 }
 
 std::string ContinueJson(const System& system, const std::vector<TracedBranch>& branches,
-                         const std::string& provenance) {
-  nlohmann::json j = BranchJson(branches.front());
-  j["command"] = provenance;
+                         const Provenance& provenance) {
+  nlohmann::json j = {{"provenance", provenance.Json()}};
+  j.update(BranchJson(branches.front()));
   j["branches"] = nlohmann::json::array();
   for (const TracedBranch& b : branches) j["branches"].push_back(BranchJson(b));
   j["system"] = nlohmann::json::parse(SystemToJson(system));
@@ -102,10 +103,17 @@ System StartSystem(const ContinueRequest& request) {
   return system;
 }
 
-std::string Provenance(const ContinueRequest& request, const System& system) {
-  return fmt::format("continue --param {} --from {} --to {}{} {}", request.parameter, *request.from,
-                     *request.to, request.start ? fmt::format(" --start {}", *request.start) : "",
-                     ParameterList(system));
+/// What produced the outputs: the system and every setting resolved.
+Provenance ProvenanceOf(const ContinueRequest& request, const System& system) {
+  return MakeProvenance(
+      request.system, system,
+      fmt::format("continue --param {} --from {} --to {}{} --step {} --min-step {} --max-step {} "
+                  "--max-points {}{}{}",
+                  request.parameter, *request.from, *request.to,
+                  request.start ? fmt::format(" --start {}", *request.start) : "", request.step,
+                  request.min_step, request.max_step, request.max_points,
+                  request.switch_period_doubling ? " --switch-pd" : "",
+                  request.follow_grazing ? " --follow-grazing" : ""));
 }
 
 /// A sticking start: its family through the library's sticking branch
@@ -130,7 +138,7 @@ void RunSticking(const ContinueRequest& request, const System& system, const Sti
   options.max_step = request.max_step;
   options.max_points = request.max_points;
   fmt::print("system:     {}\n", DescribeSystem(system));
-  RunStickingContinue(system, start, options, outputs, out, json, Provenance(request, system));
+  RunStickingContinue(system, start, options, outputs, out, json, ProvenanceOf(request, system));
   outputs.Commit();
   for (const std::string& path : {request.out, request.json}) {
     if (!path.empty()) fmt::print("wrote:      {}\n", path);
@@ -177,7 +185,7 @@ void RunContinue(const ContinueRequest& request) {
         fmt::format("the P({},{}) branch could not be continued beyond its start: {} ({})",
                     traced.p, traced.q, ToString(traced.end), traced.end_message));
   }
-  const std::string provenance = Provenance(request, system);
+  const std::string provenance = ProvenanceOf(request, system).Text();
   std::vector<std::string> written;
   if (out) {
     for (const TracedBranch& b : branches) {
@@ -190,7 +198,7 @@ void RunContinue(const ContinueRequest& request) {
     }
   }
   if (json) {
-    json->Write(ContinueJson(system, branches, "impactkit " + provenance));
+    json->Write(ContinueJson(system, branches, ProvenanceOf(request, system)));
     written.push_back(request.json);
   }
   if (plot) {

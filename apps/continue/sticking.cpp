@@ -62,7 +62,7 @@ nlohmann::json PointJson(const StickingBranchPoint& p) {
 void RunStickingContinue(const System& system, const StickingOrbit& start,
                          const StickingBranchOptions& options, OutputSet& outputs,
                          AtomicOutputFile* out, AtomicOutputFile* json,
-                         const std::string& provenance) {
+                         const Provenance& provenance) {
   fmt::print("start:      sticking P(inf,{}) at {} = {}, {}\n", start.q, options.parameter,
              GetParameter(system, options.parameter), start.stable ? "stable" : "unstable");
   const StickingBranch branch = ContinueStickingBranch(system, start, options);
@@ -79,13 +79,12 @@ void RunStickingContinue(const System& system, const StickingOrbit& start,
                     ToString(branch.end), branch.end_message));
   }
   if (out) {
-    CsvWriter& csv = outputs.AddCsv(*out, provenance, Columns(options.parameter));
+    CsvWriter& csv = outputs.AddCsv(*out, provenance.Text(), Columns(options.parameter));
     for (const StickingBranchPoint& p : branch.points) csv.WriteRow(Row(p));
   }
   if (json) {
-    nlohmann::json j;
+    nlohmann::json j = {{"provenance", provenance.Json()}};
     j["kind"] = "sticking";
-    j["command"] = "impactkit " + provenance;
     j["parameter"] = options.parameter;
     j["releases"] = branch.releases;
     j["q"] = branch.q;

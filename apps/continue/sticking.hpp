@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "common/provenance.hpp"
 #include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/io/output_set.hpp"
 
@@ -19,6 +20,6 @@ namespace impactkit::cli {
 void RunStickingContinue(const System& system, const StickingOrbit& start,
                          const StickingBranchOptions& options, OutputSet& outputs,
                          AtomicOutputFile* out, AtomicOutputFile* json,
-                         const std::string& provenance);
+                         const Provenance& provenance);
 
 }  // namespace impactkit::cli

@@ -20,6 +20,7 @@
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/progress.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "curve/output.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -202,14 +203,19 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
   }
 }
 
-std::string Provenance(const CurveRequest& request, const System& system,
-                       const CurveOptions& options, const CurveStart& start) {
-  return fmt::format(
-      "curve --type {} --param {} --param2 {} --from {} --to {} --from2 {} --to2 {} "
-      "--p {} --q {} {}",
-      ToString(start.special.type), request.parameter, request.parameter2, options.lower,
-      options.upper, request.from2, request.to2, start.special.point.orbit.p,
-      start.special.point.orbit.q, ParameterList(system));
+/// What produced the outputs: the system and every setting resolved.
+Provenance ProvenanceOf(const CurveRequest& request, const System& system,
+                        const CurveOptions& options, const CurveStart& start) {
+  // With --start-json the system is the one that file holds.
+  SystemOptions source = request.system;
+  if (!request.start_json.empty()) source.file = request.start_json;
+  return MakeProvenance(
+      source, system,
+      fmt::format("curve --type {} --param {} --param2 {} --from {} --to {} --from2 {} --to2 {} "
+                  "--p {} --q {}",
+                  ToString(start.special.type), request.parameter, request.parameter2,
+                  options.lower, options.upper, request.from2, request.to2,
+                  start.special.point.orbit.p, start.special.point.orbit.q));
 }
 
 void RunCurve(const CurveRequest& request) {
@@ -254,11 +260,12 @@ void RunCurve(const CurveRequest& request) {
     throw std::runtime_error(
         fmt::format("the curve could not be continued beyond its start: {}", curve.end_message));
   }
-  const std::string provenance = Provenance(request, system, options, start);
+  const Provenance provenance = ProvenanceOf(request, system, options, start);
   const std::vector<impactkit::Curve> curves = {curve};
-  if (out) WriteCurveRows(outputs.AddCsv(*out, provenance, CurveColumns(curve)), curve);
-  if (json)
-    json->Write(CurvesJson(curves, "impactkit " + provenance, SystemToJson(system)).dump(2) + "\n");
+  if (out) WriteCurveRows(outputs.AddCsv(*out, provenance.Text(), CurveColumns(curve)), curve);
+  if (json) {
+    json->Write(CurvesJson(curves, provenance.Json(), SystemToJson(system)).dump(2) + "\n");
+  }
   if (plot) WriteChartPng(*plot, CurveChart(curves));
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.json, &request.plot}) {

@@ -37,10 +37,10 @@ nlohmann::json PointJson(const impactkit::Curve& curve, const CurvePoint& point)
 
 }  // namespace
 
-nlohmann::json CurvesJson(const std::vector<impactkit::Curve>& curves, const std::string& command,
-                          const std::string& system_json) {
+nlohmann::json CurvesJson(const std::vector<impactkit::Curve>& curves,
+                          const nlohmann::json& provenance, const std::string& system_json) {
   nlohmann::json j;
-  j["command"] = command;
+  j["provenance"] = provenance;
   j["params"] = {curves.front().parameter, curves.front().parameter2};
   j["curves"] = nlohmann::json::array();
   j["codim2_points"] = nlohmann::json::array();

@@ -19,9 +19,9 @@ namespace impactkit::cli {
 /// corrector's tolerance) does not.
 inline constexpr double kOutsideUnitCircle = 1e-6;
 
-/// {"command", "params", "curves": [...], "codim2_points": [...], "system"}.
-nlohmann::json CurvesJson(const std::vector<impactkit::Curve>& curves, const std::string& command,
-                          const std::string& system_json);
+/// {"provenance", "params", "curves": [...], "codim2_points": [...], "system"}.
+nlohmann::json CurvesJson(const std::vector<impactkit::Curve>& curves,
+                          const nlohmann::json& provenance, const std::string& system_json);
 
 /// name1, name2, arclength, mod1.., outside, codim2.
 std::vector<std::string> CurveColumns(const impactkit::Curve& curve);

@@ -20,6 +20,7 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -145,8 +146,13 @@ void RunDiagram(const DiagramRequest& request) {
   std::vector<std::string> written;
   if (json) {
     nlohmann::json j = DiagramJson(swept.diagram);
-    j["command"] = fmt::format("impactkit diagram --param {} --from {} --to {} {}",
-                               request.parameter, request.from, request.to, ParameterList(system));
+    j["provenance"] =
+        MakeProvenance(request.system, system,
+                       fmt::format("diagram --param {} --from {} --to {} --max-depth {} "
+                                   "--sweep-values {} --max-q {}",
+                                   request.parameter, request.from, request.to, request.max_depth,
+                                   request.sweep_values, request.max_q))
+            .Json();
     j["system"] = nlohmann::json::parse(SystemToJson(system));
     json->Write(j.dump(2) + "\n");
     written.push_back(request.json);

@@ -21,9 +21,11 @@
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/parameter_map.hpp"
+#include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -56,19 +58,16 @@ ParameterMapOptions OptionsOf(const MapRequest& request, const System& system) {
   return options;
 }
 
-/// The first line of every output: all that decides the result.
-std::string Provenance(const MapRequest& request, const System& system,
-                       const ParameterMapOptions& options) {
+/// The head of every output: all that decides the result.
+Provenance ProvenanceOf(const MapRequest& request, const System& system,
+                        const ParameterMapOptions& options) {
   const SweepOptions& row = options.row;
-  std::string text = "map";
-  if (!request.system.file.empty()) text += " system=" + request.system.file;
-  text += fmt::format(
-      " {} param={} from={} to={} steps={} param2={} from2={} to2={} steps2={} transient={} "
+  std::string text = fmt::format(
+      "map param={} from={} to={} steps={} param2={} from2={} to2={} steps2={} transient={} "
       "record={} start={} direction={} max_q={}{}",
-      ParameterList(system), row.parameter, row.from, row.to, row.steps, options.parameter2,
-      options.from2, options.to2, options.steps2, row.transient_periods, row.recorded_periods,
-      ToString(row.start), ToString(row.direction), row.classify.period.max_q,
-      FixedStateProvenance(request.run));
+      row.parameter, row.from, row.to, row.steps, options.parameter2, options.from2, options.to2,
+      options.steps2, row.transient_periods, row.recorded_periods, ToString(row.start),
+      ToString(row.direction), row.classify.period.max_q, FixedStateProvenance(request.run));
   if (row.start == SweepStart::kPrevious) {
     text += fmt::format(
         " chunk={} warmup={} (along each row, each value from the previous one's final state; "
@@ -78,7 +77,7 @@ std::string Provenance(const MapRequest& request, const System& system,
   } else {
     text += " (each cell from the fixed state)";
   }
-  return text;
+  return MakeProvenance(request.system, system, std::move(text));
 }
 
 /// Counts per motion label, the JSON summary's heart.
@@ -88,11 +87,11 @@ std::map<std::string, std::int64_t> LabelCounts(const std::vector<GridCell>& cel
   return counts;
 }
 
-std::string SummaryJson(const std::string& provenance, const ParameterMapTask& task,
+std::string SummaryJson(const Provenance& provenance, const ParameterMapTask& task,
                         const std::vector<GridCell>& cells) {
   const ParameterMapOptions& o = task.Options();
   nlohmann::ordered_json json;
-  json["provenance"] = provenance;
+  json["provenance"] = provenance.Json();
   json["param"] = {
       {"name", o.row.parameter}, {"from", o.row.from}, {"to", o.row.to}, {"steps", o.row.steps}};
   json["param2"] = {{"name", o.parameter2}, {"from", o.from2}, {"to", o.to2}, {"steps", o.steps2}};
@@ -182,7 +181,7 @@ void RunMapCommand(const MapRequest& request) {
   GridProcesses processes;
   const System system = ResolveSystem(request.system);
   const ParameterMapTask task(system, OptionsOf(request, system));
-  const std::string provenance = Provenance(request, system, task.Options());
+  const Provenance provenance = ProvenanceOf(request, system, task.Options());
   const GridDriveOptions drive =
       DriveOptionsOf("map", request.threads, request.checkpoint, processes);
   std::vector<Curve> overlays;
@@ -213,8 +212,8 @@ void RunMapCommand(const MapRequest& request) {
   }
   fmt::print("result:  {}\n", classes);
   if (out) {
-    out->Write(fmt::format("# impactkit {}\n{},{},{}\n", provenance, o.row.parameter, o.parameter2,
-                           kCellColumns));
+    out->Write(CommentLines(provenance.Text()) +
+               fmt::format("{},{},{}\n", o.row.parameter, o.parameter2, kCellColumns));
     const std::size_t k = task.Values1().size();
     for (const GridCell& cell : outcome->cells) {
       out->Write(fmt::format("{},{},{}\n", task.Values1()[cell.index % k],

@@ -31,7 +31,8 @@ struct ImpactMapRequest {
 void RunImpactMap(const ImpactMapRequest& request) {
   ValidateRun(request.run);
   const System system = ResolveSystem(request.system);
-  const std::string provenance = RunProvenance("impactmap", request.run, system);
+  const std::string provenance =
+      RunProvenance("impactmap", request.run, request.system, system).Text();
   if (!request.plot.empty()) RequireGnuplot();
   OutputSet outputs;  // created first: a bad path fails before the work
   CsvWriter* csv = nullptr;

@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "common/limits.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/recorders.hpp"
@@ -79,6 +80,12 @@ void RunLyapunov(const LyapunovRequest& request) {
   }
   if (json) {
     nlohmann::json j;
+    j["provenance"] =
+        MakeProvenance(request.system, system,
+                       fmt::format("lyapunov --transient {} --impacts {} --transient-impacts {}",
+                                   request.transient, request.options.impacts,
+                                   request.options.transient_impacts))
+            .Json();
     j["valid"] = result.valid;
     j["message"] = result.message;
     j["exponents"] = result.exponents;

@@ -64,13 +64,14 @@ void RunReturnMap(const ReturnMapRequest& request) {
   Require(request.fit || !(request.fit_from || request.fit_to || !request.json.empty()),
           "--fit-from, --fit-to and --json need --fit");
   const System system = ResolveSystem(request.system);
-  const std::string provenance = fmt::format("returnmap --bound {} {}", request.bound,
-                                             RunProvenance("", request.run, system).substr(1));
+  const Provenance provenance = RunProvenance(fmt::format("returnmap --bound {}", request.bound),
+                                              request.run, request.system, system);
   if (!request.plot.empty()) RequireGnuplot();
   OutputSet outputs;  // created first: a bad path fails before the work
   CsvWriter* csv = nullptr;
   if (!request.out.empty()) {
-    csv = &outputs.AddCsv(request.out, provenance, std::vector<std::string>{"v_j", "v_next"});
+    csv =
+        &outputs.AddCsv(request.out, provenance.Text(), std::vector<std::string>{"v_j", "v_next"});
   }
   AtomicOutputFile* json = AddIfAsked(outputs, request.json);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
@@ -107,7 +108,7 @@ void RunReturnMap(const ReturnMapRequest& request) {
     fmt::print("             {}\n", fit->BriefReport());
     if (json) {
       nlohmann::json j = FitJson(*fit);
-      j["command"] = "impactkit " + provenance;
+      j["provenance"] = provenance.Json();
       j["fit_range"] = {x.empty() ? 0.0 : *std::min_element(x.begin(), x.end()),
                         x.empty() ? 0.0 : *std::max_element(x.begin(), x.end())};
       j["system"] = nlohmann::json::parse(SystemToJson(system));

@@ -56,9 +56,11 @@ RecordedRun RecordImpacts(const System& system, const RunOptions& run) {
   return result;
 }
 
-std::string RunProvenance(const std::string& command, const RunOptions& run, const System& system) {
-  return fmt::format("{} --transient {} --periods {} {}", command, run.transient, run.periods,
-                     ParameterList(system));
+Provenance RunProvenance(const std::string& settings, const RunOptions& run,
+                         const SystemOptions& source, const System& system) {
+  return MakeProvenance(
+      source, system,
+      fmt::format("{} --transient {} --periods {}", settings, run.transient, run.periods));
 }
 
 void PrintRun(const System& system, const RunOptions& run, const RecordedRun& recorded) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "common/provenance.hpp"
+#include "common/system_options.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 
@@ -35,8 +37,10 @@ struct RecordedRun {
 /// simulation cannot reach the end of the window.
 RecordedRun RecordImpacts(const System& system, const RunOptions& run);
 
-/// "COMMAND --transient N --periods M omega=... xs=...": what produced a file.
-std::string RunProvenance(const std::string& command, const RunOptions& run, const System& system);
+/// What produced a file: the system `source` names and the settings
+/// "SETTINGS --transient N --periods M".
+Provenance RunProvenance(const std::string& settings, const RunOptions& run,
+                         const SystemOptions& source, const System& system);
 
 /// The "system:" and "run:" lines of the printed summary.
 void PrintRun(const System& system, const RunOptions& run, const RecordedRun& recorded);

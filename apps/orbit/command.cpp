@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
@@ -76,7 +77,8 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
 void RunOrbit(const OrbitRequest& request) {
   const System system = ResolveSystem(request.system);
   if (const auto seed = ChooseStickingSeed(system, request.seed, request.sticking)) {
-    RunStickingOrbit(system, *seed, request.min_speed, request.check_jacobian, request.json);
+    RunStickingOrbit(system, *seed, request.min_speed, request.check_jacobian, request.json,
+                     request.system);
     return;
   }
   std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
@@ -95,6 +97,10 @@ void RunOrbit(const OrbitRequest& request) {
   }
   if (json) {
     nlohmann::json j = OrbitJson(system, orbit, summary);
+    j["provenance"] = MakeProvenance(request.system, system,
+                                     fmt::format("orbit --p {} --q {} --jacobian {}", orbit.p,
+                                                 orbit.q, ToString(options.jacobian)))
+                          .Json();
     j["jacobian"] = ToString(options.jacobian);
     if (check) {
       j["jacobian_check"] = {{"max_difference", check->max_difference},

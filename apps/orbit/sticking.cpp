@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/system_file.hpp"
@@ -97,13 +98,15 @@ nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
 }  // namespace
 
 void RunStickingOrbit(const System& system, const StickingSeed& seed, double min_speed,
-                      bool check_jacobian, const std::string& json) {
+                      bool check_jacobian, const std::string& json, const SystemOptions& source) {
   std::optional<AtomicOutputFile> file;  // created first: a bad path fails before the work
   if (!json.empty()) file.emplace(json);
   StickingOrbitSummary summary;
   const StickingOrbit orbit = RefineStickingOrbit(system, seed, &summary);
   Print(system, orbit, summary, min_speed);
   nlohmann::json j = OrbitJson(system, orbit, summary, min_speed);
+  j["provenance"] =
+      MakeProvenance(source, system, fmt::format("orbit --sticking --q {}", orbit.q)).Json();
   if (check_jacobian) {
     const Eigen::MatrixXd fd =
         StickingMap(system).FiniteDifferenceJacobian(orbit.state, orbit.releases);

@@ -23,6 +23,7 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
 #include "impactkit/analysis/resonance.hpp"
@@ -66,6 +67,7 @@ void Stage(int k, const std::string& what) {
 /// at the end, so that a failure at any stage leaves no partial study.
 struct Folder {
   std::filesystem::path path;
+  Provenance provenance;  ///< of the run; each table adds what it holds
   OutputSet outputs;
   std::vector<std::string> written;  ///< names, in the order staged
 };
@@ -76,11 +78,14 @@ void WriteFile(Folder& folder, const std::string& name, const std::string& text)
   folder.written.push_back(name);
 }
 
-/// A table staged as folder/name.
-CsvWriter& AddTable(Folder& folder, const std::string& name, const std::string& provenance,
+/// A table staged as folder/name, its header saying which part of the run
+/// (`what`) it holds.
+CsvWriter& AddTable(Folder& folder, const std::string& name, const std::string& what,
                     const std::vector<std::string>& columns) {
   folder.written.push_back(name);
-  return folder.outputs.AddCsv(folder.path / name, provenance, columns);
+  Provenance provenance = folder.provenance;
+  provenance.run += "; " + what;
+  return folder.outputs.AddCsv(folder.path / name, provenance.Text(), columns);
 }
 
 nlohmann::json ModalStage(const System& system) {
@@ -198,8 +203,7 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
   for (const TracedBranch& b : LabelBranches(swept.diagram)) {
     PrintBranch(b);
     const std::string csv = "branch-" + b.label + ".csv";
-    WriteBranchRows(AddTable(folder, csv, "paper branch " + b.label, BranchColumns(b.branch)),
-                    b.branch);
+    WriteBranchRows(AddTable(folder, csv, "branch " + b.label, BranchColumns(b.branch)), b.branch);
     j.push_back(BranchJson(b));
   }
   WriteFile(folder, "diagram.json", DiagramJson(swept.diagram).dump(2) + "\n");
@@ -276,7 +280,7 @@ nlohmann::json SweepStage(const System& paper, const SweepOptions& options,
   fmt::print("  {}\n", sweep.BriefReport());
   const nlohmann::json regimes = Regimes(sweep);
   PrintRegimes(regimes);
-  CsvWriter& csv = AddTable(folder, "fig3-sweep.csv", "paper sweep omega 0.1..2.5",
+  CsvWriter& csv = AddTable(folder, "fig3-sweep.csv", "the Fig. 3 sweep, omega 0.1 to 2.5",
                             {"omega", "range_xN_max", "impacts", "kind", "p", "q"});
   for (const SweepPoint& p : sweep.points) {
     const double range = p.range_contact.empty()
@@ -307,7 +311,11 @@ void RunPaper(const PaperRequest& request) {
   AtomicOutputFile& summary_file = folder.outputs.AddFile(folder.path / "summary.json");
   const Resolution resolution = ResolutionFor(request.quick);
   const System paper = PaperSystem(1.0);
+  folder.provenance =
+      MakeProvenance(SystemOptions{}, paper,
+                     fmt::format("paper --out {}{}", request.out, request.quick ? " --quick" : ""));
   nlohmann::json summary;
+  summary["provenance"] = folder.provenance.Json();
   summary["system"] = nlohmann::json::parse(SystemToJson(paper));
   summary["quick"] = request.quick;
 

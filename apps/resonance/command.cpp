@@ -13,6 +13,7 @@
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -44,10 +45,11 @@ void RunResonance(const ResonanceRequest& request) {
   OutputSet outputs;  // created first: a bad path fails before the work
   CsvWriter* csv = nullptr;
   if (!request.out.empty()) {
-    csv = &outputs.AddCsv(request.out,
-                          fmt::format("resonance --from {} --to {} --steps {} {}", request.from,
-                                      request.to, request.steps, ParameterList(system)),
-                          columns);
+    const Provenance provenance =
+        MakeProvenance(request.system, system,
+                       fmt::format("resonance --from {} --to {} --steps {}", request.from,
+                                   request.to, request.steps));
+    csv = &outputs.AddCsv(request.out, provenance.Text(), columns);
   }
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   const std::vector<ResonancePoint> curve =

@@ -62,15 +62,15 @@ LineChart TimeSeriesChart(const SimulateResult& result) {
 }  // namespace
 
 SimulateOutputs::SimulateOutputs(const SimulateRequest& request, const System& system,
-                                 std::string provenance)
+                                 Provenance provenance)
     : provenance_(std::move(provenance)) {
   const int dof = system.Dof();
   if (!request.series.empty()) {
-    series_ = &set_.AddCsv(request.series, provenance_, StateColumns({"t"}, dof, {"stuck"}));
+    series_ = &set_.AddCsv(request.series, provenance_.Text(), StateColumns({"t"}, dof, {"stuck"}));
   }
   if (!request.impacts.empty()) {
-    impacts_ =
-        &set_.AddCsv(request.impacts, provenance_, StateColumns({"t", "phase", "v"}, dof, {}));
+    impacts_ = &set_.AddCsv(request.impacts, provenance_.Text(),
+                            StateColumns({"t", "phase", "v"}, dof, {}));
   }
   plot_ = AddIfAsked(set_, request.plot);
   json_ = AddIfAsked(set_, request.json);

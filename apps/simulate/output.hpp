@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "common/provenance.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "simulate/run.hpp"
 
@@ -23,7 +24,7 @@ namespace impactkit::cli {
 class SimulateOutputs {
  public:
   /// Throws OutputError if a file cannot be created.
-  SimulateOutputs(const SimulateRequest& request, const System& system, std::string provenance);
+  SimulateOutputs(const SimulateRequest& request, const System& system, Provenance provenance);
 
   /// Whether the window's time series must be recorded (--series or --plot).
   bool NeedsSeries() const { return series_ != nullptr || plot_ != nullptr; }
@@ -35,7 +36,7 @@ class SimulateOutputs {
   void WriteSeries(const SimulateResult& result);
   void WriteImpacts(const SimulateResult& result);
 
-  std::string provenance_;
+  Provenance provenance_;
   OutputSet set_;
   CsvWriter* series_ = nullptr;  ///< each in set_; nullptr when not asked for
   CsvWriter* impacts_ = nullptr;

@@ -10,6 +10,7 @@
 
 #include "common/plot.hpp"
 #include "common/progress.hpp"
+#include "common/provenance.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "simulate/output.hpp"
@@ -83,20 +84,18 @@ Window WindowOf(const SimulateRequest& request, const System& system) {
   return window;
 }
 
-/// What produced the outputs, every value resolved: the first line of each
-/// CSV file and the "command" of the JSON summary.
-std::string Provenance(const SimulateRequest& request, const System& system) {
-  std::string text = "simulate";
-  if (!request.system.file.empty()) text += " system=" + request.system.file;
-  text += fmt::format(" {} transient={} periods={} samples_per_period={} chatter={}",
-                      ParameterList(system), request.transient, request.periods,
-                      request.samples_per_period, ToString(request.chatter));
+/// What produced the outputs, every value resolved: the header of each CSV
+/// file and the "provenance" of the JSON summary.
+Provenance ProvenanceOf(const SimulateRequest& request, const System& system) {
+  std::string text = fmt::format(
+      "simulate transient={} periods={} samples_per_period={} chatter={}", request.transient,
+      request.periods, request.samples_per_period, ToString(request.chatter));
   if (request.chatter == ChatterMethod::kThreshold) {
     text += fmt::format(" chatter_threshold={}", SimulationOptionsOf(request).chatter_threshold);
   }
   if (!request.x0.empty()) text += fmt::format(" x0={}", fmt::join(request.x0, ","));
   if (!request.v0.empty()) text += fmt::format(" v0={}", fmt::join(request.v0, ","));
-  return text;
+  return MakeProvenance(request.system, system, std::move(text));
 }
 
 /// Runs to t_end with a progress line; a run that cannot reach t_end is a
@@ -148,7 +147,7 @@ void RunSimulate(const SimulateRequest& request) {
   const HybridState initial_state = InitialState(system, request);
   const Simulator simulator(system, SimulationOptionsOf(request));
   if (!request.plot.empty()) RequireGnuplot();
-  SimulateOutputs outputs(request, system, Provenance(request, system));
+  SimulateOutputs outputs(request, system, ProvenanceOf(request, system));
 
   const Window window = WindowOf(request, system);
   HybridState state = initial_state;

@@ -126,10 +126,10 @@ std::string SummaryText(const SimulateResult& result) {
   return text;
 }
 
-std::string SummaryJson(const SimulateResult& result, const std::string& provenance) {
+std::string SummaryJson(const SimulateResult& result, const Provenance& provenance) {
   const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
   const Window& window = result.window;
-  Json json = {{"command", provenance}, {"impactkit_version", IMPACTKIT_VERSION}};
+  Json json = {{"provenance", provenance.Json()}};
   json["system"] = Json::parse(SystemToJson(result.system));
   json["run"] = RunJson(result);
   json["window"] = {{"t_begin", window.begin},

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "common/provenance.hpp"
 #include "simulate/run.hpp"
 
 namespace impactkit::cli {
@@ -21,7 +22,7 @@ std::string DescribeMotion(const WindowAnalysis& analysis);
 std::string SummaryText(const SimulateResult& result);
 
 /// The summary as a JSON document; the system in system-file form
-/// (docs/system-files.md), `provenance` as its "command".
-std::string SummaryJson(const SimulateResult& result, const std::string& provenance);
+/// (docs/system-files.md), with `provenance`.
+std::string SummaryJson(const SimulateResult& result, const Provenance& provenance);
 
 }  // namespace impactkit::cli

@@ -19,9 +19,11 @@
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/provenance.hpp"
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/sweep.hpp"
+#include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "sweep/chart.hpp"
 
@@ -84,18 +86,16 @@ SweepOptions OptionsOf(const SweepRequest& request, const System& system) {
   return options;
 }
 
-/// The first line of every output: all that decides the result (the thread
+/// The head of every output: all that decides the result (the thread
 /// count does not).
-std::string Provenance(const SweepRequest& request, const System& system,
-                       const SweepOptions& options) {
-  std::string text = "sweep";
-  if (!request.system.file.empty()) text += " system=" + request.system.file;
-  text += fmt::format(
-      " {} param={} from={} to={} steps={} transient={} record={} start={} direction={} "
+std::string ProvenanceText(const SweepRequest& request, const System& system,
+                           const SweepOptions& options) {
+  std::string text = fmt::format(
+      "sweep param={} from={} to={} steps={} transient={} record={} start={} direction={} "
       "max_q={}",
-      ParameterList(system), options.parameter, options.from, options.to, options.steps,
-      options.transient_periods, options.recorded_periods, ToString(options.start),
-      ToString(options.direction), options.classify.period.max_q);
+      options.parameter, options.from, options.to, options.steps, options.transient_periods,
+      options.recorded_periods, ToString(options.start), ToString(options.direction),
+      options.classify.period.max_q);
   text += FixedStateProvenance(request.run);
   if (options.start == SweepStart::kPrevious) {
     text += fmt::format(
@@ -105,7 +105,7 @@ std::string Provenance(const SweepRequest& request, const System& system,
   } else {
     text += " (each value from the fixed state)";
   }
-  return text;
+  return MakeProvenance(request.system, system, std::move(text)).Text();
 }
 
 /// A number as the CSV files write it: shortest round-trip form; an
@@ -139,7 +139,7 @@ std::string SummaryRow(const SweepPoint& point) {
 void RunSweepCommand(const SweepRequest& request) {
   const System system = ResolveSystem(request.system);
   const SweepOptions options = OptionsOf(request, system);
-  const std::string provenance = Provenance(request, system, options);
+  const std::string provenance = ProvenanceText(request, system, options);
   // Outputs are opened before the work, so that a bad path or a missing
   // gnuplot fails at once, not after a long sweep.
   if (!request.plot.empty()) RequireGnuplot();
@@ -176,7 +176,7 @@ void RunSweepCommand(const SweepRequest& request) {
     }
   }
   if (summary) {
-    summary->Write(fmt::format("# impactkit {}\n", provenance));
+    summary->Write(CommentLines(provenance));
     summary->Write(
         "param,kind,p,q,range_xN,range_x1,range_xN_min,range_x1_min,impacts,v_min,v_max,"
         "lyapunov,restarted\n");

@@ -6,13 +6,13 @@
 #
 #   call 'examples/gnuplot/single_value_axis.gp' 'x|y' 'file.csv' 'using-expression'
 #
-# The file's first two lines (header) are skipped; values the expression maps
+# Comment lines are not data and the header row is skipped (every ::1); values the expression maps
 # to 1/0 are left out, as in `plot`; with no values at all the axis autoscales.
 tag = (ARG1 eq 'x') ? 11 : 12
 eval sprintf("unset label %d", tag)
 # Explicit [*:*] ranges: stats would filter by the previous panel's ranges.
 undefine STATS_*
-stats [*:*] [*:*] ARG2 every ::2 using @ARG3 nooutput
+stats [*:*] [*:*] ARG2 every ::1 using @ARG3 nooutput
 if (!exists("STATS_max")) {
   eval sprintf("set autoscale %s", ARG1)
 } else {

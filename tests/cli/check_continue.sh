@@ -19,12 +19,12 @@ for field in '"special_points":[{' '"type":"grazing"' '"type":"period_doubling"'
              '"begin_reason":"grazing"' '"label":"pd1"'; do
   [[ $json == *"$field"* ]] || fail "JSON lacks $field"
 done
-head -1 "$work/b.csv" | grep -q '^# impactkit continue --param omega' || fail "CSV provenance missing"
-sed -n 2p "$work/b.csv" | grep -q '^omega,arclength,phase1,v1,range_xN,mod1,mod2,mod3,mod4,stable' ||
-  fail "unexpected CSV header: $(sed -n 2p "$work/b.csv")"
+run_line_of "$work/b.csv" | grep -q '^continue --param omega' || fail "CSV provenance missing"
+columns_of "$work/b.csv" | grep -q '^omega,arclength,phase1,v1,range_xN,mod1,mod2,mod3,mod4,stable' ||
+  fail "unexpected CSV header: $(columns_of "$work/b.csv")"
 (($(wc -l <"$work/b.csv") > 50)) || fail "too few CSV rows"
 [[ -s "$work/b.pd1.csv" ]] || fail "the period-doubled branch's CSV is missing"
-sed -n 2p "$work/b.pd1.csv" | grep -q '^omega,arclength,phase1,phase2,v1,v2,' || fail "P(2,2) CSV header"
+columns_of "$work/b.pd1.csv" | grep -q '^omega,arclength,phase1,phase2,v1,v2,' || fail "P(2,2) CSV header"
 
 if "$impactkit" continue --from 1 --to 2 --p 3 --q 1 --guess 0.3,1,0.5,0.01 2>"$work/stderr"; then
   fail "a start that does not converge was accepted"

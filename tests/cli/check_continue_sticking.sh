@@ -18,8 +18,8 @@ json=$(tr -d ' \n' <"$work/b.json")
 for field in '"kind":"sticking"' '"end":"no_sticking"' '"type":"no_sticking"' '"points":[{'; do
   [[ $json == *"$field"* ]] || fail "JSON lacks $field"
 done
-sed -n 2p "$work/b.csv" | grep -q '^omega,stick_phase,release_phase,stuck_duration,contact_margin' ||
-  fail "unexpected CSV header: $(sed -n 2p "$work/b.csv")"
+columns_of "$work/b.csv" | grep -q '^omega,stick_phase,release_phase,stuck_duration,contact_margin' ||
+  fail "unexpected CSV header: $(columns_of "$work/b.csv")"
 end=$(sed -n 's/^special: *no_sticking at omega = \([0-9.]*\).*/\1/p' "$work/stdout")
 awk -v e="$end" 'BEGIN { exit !(e > 0.305 && e < 0.308) }' || fail "end at omega = $end"
 below=$(awk -v e="$end" 'BEGIN { printf "%.6f", e - 1e-3 }')

@@ -23,10 +23,10 @@ for field in '"curves":[{' '"type":"period_doubling"' '"params":["omega","r"]' '
              '"points":[{"multipliers":[[' '"omega":1.6156' '"outside":0' '"codim2_points":[]' '"system":{'; do
   [[ $json == *"$field"* ]] || fail "JSON lacks $field"
 done
-head -1 "$work/pd.csv" | grep -q '^# impactkit curve --type period_doubling --param omega --param2 r' ||
-  fail "CSV provenance missing: $(head -1 "$work/pd.csv")"
-sed -n 2p "$work/pd.csv" | grep -q '^omega,r,arclength,mod1,mod2,mod3,mod4,outside,codim2$' ||
-  fail "unexpected CSV header: $(sed -n 2p "$work/pd.csv")"
+run_line_of "$work/pd.csv" | grep -q '^curve --type period_doubling --param omega --param2 r' ||
+  fail "CSV provenance missing: $(run_line_of "$work/pd.csv")"
+columns_of "$work/pd.csv" | grep -q '^omega,r,arclength,mod1,mod2,mod3,mod4,outside,codim2$' ||
+  fail "unexpected CSV header: $(columns_of "$work/pd.csv")"
 (($(wc -l <"$work/pd.csv") > 20)) || fail "too few CSV rows"
 
 "$impactkit" curve --type grazing --param2 A1 --from 0.5 --to 3 --from2 0.1 --to2 0.6 \

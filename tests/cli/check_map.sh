@@ -41,9 +41,9 @@ case $mode in
       --chunk 5 --summary "$work/sweep.csv" >/dev/null || fail "sweep failed"
     # map: omega,r,kind,p,q,max_v,range_xN,lyapunov; sweep summary:
     # param,kind,p,q,range_xN,...,v_max (11),lyapunov (12).
-    awk -F, 'NR > 2 && $2 == "0.7" { print $1","$3","$4","$5","$6","$7","$8 }' "$work/map.csv" \
+    awk -F, '!/^#/ && ++row > 1 && $2 == "0.7" { print $1","$3","$4","$5","$6","$7","$8 }' "$work/map.csv" \
       >"$work/map-row"
-    awk -F, 'NR > 2 { print $1","$2","$3","$4","$11","$5","$12 }' "$work/sweep.csv" \
+    awk -F, '!/^#/ && ++row > 1 { print $1","$2","$3","$4","$11","$5","$12 }' "$work/sweep.csv" \
       >"$work/sweep-row"
     [[ $(wc -l <"$work/map-row") -eq 13 ]] || fail "map has no row of 13 cells at r = 0.7"
     diff "$work/map-row" "$work/sweep-row" || fail "the map's r = 0.7 row differs from the sweep"
@@ -54,10 +54,10 @@ case $mode in
       "$impactkit" "${grid[@]}" --threads $threads --out "$work/map$threads.csv" \
         --json "$work/map$threads.json" >"$work/stdout" || fail "map failed"
     done
-    cmp "$work/map1.csv" "$work/map2.csv" || fail "CSV differs between 1 and 2 threads"
-    cmp "$work/map1.json" "$work/map2.json" || fail "JSON differs between 1 and 2 threads"
-    [[ $(sed -n 2p "$work/map1.csv") == omega,r,kind,p,q,max_v,range_xN,lyapunov ]] ||
-      fail "columns: $(sed -n 2p "$work/map1.csv")"
+    same_but_command "$work/map1.csv" "$work/map2.csv" || fail "CSV differs between 1 and 2 threads"
+    same_but_command "$work/map1.json" "$work/map2.json" || fail "JSON differs between 1 and 2 threads"
+    [[ $(columns_of "$work/map1.csv") == omega,r,kind,p,q,max_v,range_xN,lyapunov ]] ||
+      fail "columns: $(columns_of "$work/map1.csv")"
     grep -q '"cells": 65' "$work/map1.json" || fail "JSON lacks the cell count"
     echo ok
     ;;
@@ -68,7 +68,7 @@ case $mode in
       --out "$work/mpi.csv" >"$work/stdout" 2>"$work/stderr" ||
       fail "mpirun failed: $(cat "$work/stderr")"
     grep -q "x 2 ranks" "$work/stdout" || fail "not run on 2 ranks: $(cat "$work/stdout")"
-    cmp "$work/one.csv" "$work/mpi.csv" || fail "CSV differs between 1 process and 2 ranks"
+    same_but_command "$work/one.csv" "$work/mpi.csv" || fail "CSV differs between 1 process and 2 ranks"
     echo ok
     ;;
   resume)
@@ -91,7 +91,7 @@ case $mode in
       >"$work/stdout" || fail "the resumed run failed"
     expected="($((600 - 10 * finished)) computed, $((10 * finished)) resumed from the checkpoint)"
     grep -qF "$expected" "$work/stdout" || fail "expected '$expected': $(cat "$work/stdout")"
-    cmp "$work/whole.csv" "$work/resumed.csv" || fail "the resumed CSV differs"
+    same_but_command "$work/whole.csv" "$work/resumed.csv" || fail "the resumed CSV differs"
     # The same directory for another grid is refused, and left as it was.
     status=0
     "$impactkit" "${grid[@]}" --checkpoint "$work/cp" >"$work/stdout" 2>"$work/stderr" ||
@@ -130,7 +130,7 @@ JSON
     "$impactkit" orbit --omega 2 --p 1 --q 2 --json "$work/orbit.json" >/dev/null ||
       fail "orbit failed"
     # Every start reaches attractor 1, periodic P(1,2).
-    [[ $(awk -F, 'NR > 2 && $3 == 1 && $4 == "periodic" && $5 == 1 && $6 == 2' \
+    [[ $(awk -F, '!/^#/ && ++row > 1 && $3 == 1 && $4 == "periodic" && $5 == 1 && $6 == 2' \
       "$work/basins.csv" | wc -l) -eq 36 ]] || fail "not all 36 starts reach P(1,2)"
     grep -q '"share": 1.0' "$work/basins.json" || fail "the share of P(1,2) is not 1"
     [[ $(grep -c '"id":' "$work/basins.json") -eq 1 ]] || fail "more than one attractor"

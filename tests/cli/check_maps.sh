@@ -16,11 +16,11 @@ impactkit=$1
 
 "$impactkit" resonance --set n=1 --from 0.5 --to 1.5 --steps 11 --out "$work/res.csv" >"$work/out" ||
   fail "resonance failed: $(cat "$work/out")"
-head -1 "$work/res.csv" | grep -q '^# impactkit resonance --from 0.5 --to 1.5 --steps 11 ' ||
-  fail "no provenance line: $(head -1 "$work/res.csv")"
-[[ $(sed -n 2p "$work/res.csv") == "omega,range_x1,phase_x1" ]] || fail "header: $(sed -n 2p "$work/res.csv")"
-[[ $(tail -n +3 "$work/res.csv" | wc -l) -eq 11 ]] || fail "expected 11 rows"
-awk -F, 'NR > 2 { w = $1; want = 2 * 0.5 / sqrt((1 - w * w)^2 + (0.1 * w)^2);
+run_line_of "$work/res.csv" | grep -q '^resonance --from 0.5 --to 1.5 --steps 11$' ||
+  fail "no provenance line: $(run_line_of "$work/res.csv")"
+[[ $(columns_of "$work/res.csv") == "omega,range_x1,phase_x1" ]] || fail "header: $(columns_of "$work/res.csv")"
+[[ $(grep -v '^#' "$work/res.csv" | tail -n +2 | wc -l) -eq 11 ]] || fail "expected 11 rows"
+awk -F, '!/^#/ && ++row > 1 { w = $1; want = 2 * 0.5 / sqrt((1 - w * w)^2 + (0.1 * w)^2);
   if (($2 - want)^2 > (1e-12 * want)^2) { print "row " NR ": " $2 " vs " want; bad = 1 } }
   END { exit bad }' "$work/res.csv" || fail "resonance range differs from the closed form"
 grep -q 'x1     1.0' "$work/out" || grep -q 'x1     0.99' "$work/out" || fail "peak near 1 not reported: $(cat "$work/out")"
@@ -43,19 +43,20 @@ grep -q 'not computed: .*chatter' "$work/out" || fail "no reason printed: $(cat 
 
 "$impactkit" impactmap --omega 1.72 --periods 200 --out "$work/im.csv" >"$work/out" ||
   fail "impactmap failed: $(cat "$work/out")"
-head -1 "$work/im.csv" | grep -q '^# impactkit impactmap --transient 500 --periods 200 omega=1.72 ' ||
-  fail "no provenance line: $(head -1 "$work/im.csv")"
+run_line_of "$work/im.csv" | grep -q '^impactmap --transient 500 --periods 200$' ||
+  fail "no provenance line: $(run_line_of "$work/im.csv")"
+grep -qx '# parameters: omega=1.72 .*' "$work/im.csv" || fail "no parameters line in im.csv"
 reported=$(sed -n 's/^impacts: *\([0-9]*\) with speed.*/\1/p' "$work/out")
-[[ -n $reported && $(tail -n +3 "$work/im.csv" | wc -l) -eq $reported ]] ||
+[[ -n $reported && $(grep -v '^#' "$work/im.csv" | tail -n +2 | wc -l) -eq $reported ]] ||
   fail "rows differ from the $reported impacts reported"
 awk -F, -v T=$(awk 'BEGIN { print 2 * 3.141592653589793 / 1.72 }') \
-  'NR > 2 && ($2 < 0 || $2 >= T || $3 <= 0) { bad = 1 } END { exit bad }' "$work/im.csv" ||
+  '!/^#/ && ++row > 1 && ($2 < 0 || $2 >= T || $3 <= 0) { bad = 1 } END { exit bad }' "$work/im.csv" ||
   fail "a phase outside [0, T) or a non-positive speed"
 
 "$impactkit" returnmap --omega 1.72 --periods 1000 --bound 0.3 --fit --out "$work/rm.csv" \
   --json "$work/fit.json" >"$work/out" || fail "returnmap failed: $(cat "$work/out")"
-[[ $(sed -n 2p "$work/rm.csv") == "v_j,v_next" ]] || fail "header: $(sed -n 2p "$work/rm.csv")"
-awk -F, 'NR > 2 && ($1 >= 0.3 || $2 >= 0.3) { bad = 1 } END { exit bad }' "$work/rm.csv" ||
+[[ $(columns_of "$work/rm.csv") == "v_j,v_next" ]] || fail "header: $(columns_of "$work/rm.csv")"
+awk -F, '!/^#/ && ++row > 1 && ($1 >= 0.3 || $2 >= 0.3) { bad = 1 } END { exit bad }' "$work/rm.csv" ||
   fail "a pair at or above the bound"
 json=$(tr -d ' \n' <"$work/fit.json")
 for field in '"termination":"converged"' '"parameters":{"d":' '"standard_error":' '"rms_residual":'; do

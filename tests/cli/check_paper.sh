@@ -21,11 +21,21 @@ done
 grep -q "omega = 0.6   P(2,1) stable" "$work/stdout" || fail "no stable P(2,1) at 0.6"
 # One schema for motion kinds (docs/cli.md, "Motion kinds"): names, and p =
 # inf for sticking, as `sweep --summary` writes them.
-sed -n 2p "$work/paper/fig3-sweep.csv" | grep -qx "omega,range_xN_max,impacts,kind,p,q" ||
-  fail "fig3-sweep.csv columns: $(sed -n 2p "$work/paper/fig3-sweep.csv")"
-awk -F, 'NR > 2 && $4 !~ /^(periodic|sticking|chaotic|non_impacting|unresolved)$/ {exit 1}'   "$work/paper/fig3-sweep.csv" || fail "fig3-sweep.csv has a kind that is not a name"
-awk -F, 'NR > 2 && $4 == "sticking" && $5 != "inf" {exit 1}' "$work/paper/fig3-sweep.csv" ||
+columns_of "$work/paper/fig3-sweep.csv" | grep -qx "omega,range_xN_max,impacts,kind,p,q" ||
+  fail "fig3-sweep.csv columns: $(columns_of "$work/paper/fig3-sweep.csv")"
+awk -F, '!/^#/ && ++row > 1 && $4 !~ /^(periodic|sticking|chaotic|non_impacting|unresolved)$/ {exit 1}'   "$work/paper/fig3-sweep.csv" || fail "fig3-sweep.csv has a kind that is not a name"
+awk -F, '!/^#/ && ++row > 1 && $4 == "sticking" && $5 != "inf" {exit 1}' "$work/paper/fig3-sweep.csv" ||
   fail "fig3-sweep.csv: a sticking row whose p is not inf"
+# Provenance (docs/cli.md, "Output files"): every table names the run and
+# what it holds; summary.json has the same object as every JSON output.
+for table in fig3-sweep.csv branch-main.csv; do
+  grep -qx "# command: impactkit paper --quick --out $work/paper" "$work/paper/$table" ||
+    fail "$table: no command line"
+  run_line_of "$work/paper/$table" | grep -q "^paper --out $work/paper --quick; " ||
+    fail "$table: run line '$(run_line_of "$work/paper/$table")'"
+done
+python3 -c 'import json, sys; p = json.load(open(sys.argv[1]))["provenance"]; sys.exit(p["run"] != sys.argv[2])' \
+  "$work/paper/summary.json" "paper --out $work/paper --quick" || fail "summary.json: no provenance"
 "$points" >"$work/expected" || fail "paper_points failed"
 (($(wc -l <"$work/expected") >= 8)) || fail "too few special points from the library"
 while read -r line; do

@@ -39,15 +39,15 @@ case $mode in
         fail "sweep failed: $(cat "$work/stdout")"
     done
     grep -q "2 values in 1 chunks" "$work/stdout" || fail "unexpected report: $(cat "$work/stdout")"
-    cmp -s "$work/impacts1.csv" "$work/impacts2.csv" || fail "--out differs between 1 and 2 threads"
-    cmp -s "$work/summary1.csv" "$work/summary2.csv" || fail "--summary differs between 1 and 2 threads"
+    same_but_command "$work/impacts1.csv" "$work/impacts2.csv" || fail "--out differs between 1 and 2 threads"
+    same_but_command "$work/summary1.csv" "$work/summary2.csv" || fail "--summary differs between 1 and 2 threads"
     for file in impacts1 summary1; do
-      head -1 "$work/$file.csv" | grep -q "^# impactkit sweep .*param=omega from=0.6 to=0.9 steps=2 transient=300 record=20 start=previous" ||
-        fail "$file.csv: bad provenance line: $(head -1 "$work/$file.csv")"
+      run_line_of "$work/$file.csv" | grep -q "^sweep param=omega from=0.6 to=0.9 steps=2 transient=300 record=20 start=previous" ||
+        fail "$file.csv: bad provenance line: $(run_line_of "$work/$file.csv")"
     done
-    [[ $(sed -n 2p "$work/impacts1.csv") == "param,t,phase,v" ]] || fail "impact columns: $(sed -n 2p "$work/impacts1.csv")"
-    [[ $(sed -n 2p "$work/summary1.csv") == param,kind,p,q,range_xN,range_x1,* ]] ||
-      fail "summary columns: $(sed -n 2p "$work/summary1.csv")"
+    [[ $(columns_of "$work/impacts1.csv") == "param,t,phase,v" ]] || fail "impact columns: $(columns_of "$work/impacts1.csv")"
+    [[ $(columns_of "$work/summary1.csv") == param,kind,p,q,range_xN,range_x1,* ]] ||
+      fail "summary columns: $(columns_of "$work/summary1.csv")"
     # 20 periods: 40 impacts of P(2,1) at 0.6, 20 of P(1,1) at 0.9.
     [[ $(grep -c '^0\.6,' "$work/impacts1.csv") -eq 40 ]] || fail "expected 40 impacts at 0.6"
     [[ $(grep -c '^0\.9,' "$work/impacts1.csv") -eq 20 ]] || fail "expected 20 impacts at 0.9"

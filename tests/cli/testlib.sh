@@ -8,3 +8,20 @@ fail() {
   echo "FAIL: $*" >&2
   exit 1
 }
+
+# A CSV's header row: its first line that is not a comment.
+columns_of() {
+  grep -m1 -v '^#' "$1"
+}
+
+# What follows "# run: " in a CSV's provenance (docs/cli.md, "Output files").
+run_line_of() {
+  sed -n 's/^# run: //p' "$1" | head -1
+}
+
+# Whether two outputs agree but for the command line in their provenance
+# (runs that differ only in threads, ranks or output paths).
+same_but_command() {
+  cmp -s <(grep -v -e '^# command: ' -e '^ *"command": ' "$1") \
+    <(grep -v -e '^# command: ' -e '^ *"command": ' "$2")
+}

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iterator>
 #include <stdexcept>
 
@@ -11,6 +12,19 @@ namespace {
 constexpr std::size_t kFlushBytes = 1 << 16;
 
 }  // namespace
+
+std::string CommentLines(std::string_view text) {
+  if (text.find('\r') != std::string_view::npos) {
+    throw std::invalid_argument("a CSV comment must not contain a carriage return");
+  }
+  std::string lines;
+  for (std::size_t begin = 0; begin < text.size();) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    fmt::format_to(std::back_inserter(lines), "# {}\n", text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return lines;
+}
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::string_view provenance,
                      const std::vector<std::string>& columns)
@@ -26,11 +40,8 @@ CsvWriter::CsvWriter(AtomicOutputFile& file, std::string_view provenance,
 
 void CsvWriter::Start(std::string_view provenance, const std::vector<std::string>& columns) {
   if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");
-  if (provenance.find_first_of("\r\n") != std::string_view::npos) {
-    throw std::invalid_argument("the provenance of a CSV table must be one line");
-  }
-  fmt::format_to(std::back_inserter(buffer_), "# impactkit {}\n{}\n", provenance,
-                 fmt::join(columns, ","));
+  buffer_ = CommentLines(provenance);
+  fmt::format_to(std::back_inserter(buffer_), "{}\n", fmt::join(columns, ","));
 }
 
 void CsvWriter::WriteRow(std::span<const double> values) {

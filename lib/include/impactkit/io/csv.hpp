@@ -2,7 +2,9 @@
 /// \file csv.hpp
 /// Numeric tables for plotting tools and scripts:
 ///
-///     # impactkit simulate omega=1.4 xs=0.1 ...      (provenance, one line)
+///     # impactkit 0.6.0                              (provenance: comment
+///     # command: impactkit simulate --omega 1.4 ...   lines, as the caller
+///     # ...                                           gives them)
 ///     t,x1,x2,v1,v2,stuck                            (header)
 ///     897.59992760, ...                              (rows)
 ///
@@ -22,12 +24,17 @@
 
 namespace impactkit {
 
+/// `text` as comment lines: each of its lines after "# ", each ended by a
+/// line break (a final line break in `text` adds no empty comment).
+/// Throws std::invalid_argument for a carriage return.
+std::string CommentLines(std::string_view text);
+
 class CsvWriter {
  public:
-  /// `provenance` is what produced the table, written after "# impactkit ";
-  /// `columns` are the header names. Throws OutputError if the file cannot
-  /// be created, std::invalid_argument for a provenance with a line break
-  /// or no columns.
+  /// `provenance` is what produced the table, written as comment lines
+  /// (CommentLines); `columns` are the header names. Throws OutputError if
+  /// the file cannot be created, std::invalid_argument for a carriage
+  /// return in the provenance or no columns.
   CsvWriter(const std::filesystem::path& path, std::string_view provenance,
             const std::vector<std::string>& columns);
   /// A table written into `file`, which outlives the writer and is
