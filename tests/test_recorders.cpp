@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -99,4 +100,94 @@ TEST_CASE("sticking intervals end at releases and hold the mass at the stop", "[
     if (s.stuck) CHECK(s.x(1) == 0.1);
   }
   CHECK(sticking.TotalTime() > 0.0);
+}
+
+TEST_CASE("a series with events has each impact before and after, and every stick and release",
+          "[recorders]") {
+  for (double omega : {1.4, 0.2}) {
+    INFO("omega = " << omega);
+    const System s = PaperSystem(omega);
+    const double period = s.ForcingPeriod();
+    const int c = s.contact_dof;
+    TimeSeriesRecorder plain(100 * period, period / 50),
+        with_events(100 * period, period / 50, true);
+    ImpactRecorder impacts;
+    ChatterRecorder chatter;
+    struct Releases : Observer {
+      std::vector<double> times;
+      void OnRelease(double, double t) override { times.push_back(t); }
+    } releases;
+    ObserverList all;
+    for (Observer* o :
+         std::initializer_list<Observer*>{&plain, &with_events, &impacts, &chatter, &releases}) {
+      all.Add(*o);
+    }
+    RecordSteady(omega, 3, all);
+    std::vector<Sample> grid, before, after, sticks, release_samples;
+    for (const Sample& sample : with_events.Samples()) {
+      switch (sample.kind) {
+        case SampleKind::kGrid:
+          grid.push_back(sample);
+          break;
+        case SampleKind::kBeforeImpact:
+          before.push_back(sample);
+          break;
+        case SampleKind::kAfterImpact:
+          after.push_back(sample);
+          break;
+        case SampleKind::kStick:
+          sticks.push_back(sample);
+          break;
+        case SampleKind::kRelease:
+          release_samples.push_back(sample);
+          break;
+      }
+    }
+    // The grid is the plain recorder's, sample for sample.
+    REQUIRE(grid.size() == plain.Samples().size());
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      CHECK(grid[i].t == plain.Samples()[i].t);
+      CHECK(grid[i].v == plain.Samples()[i].v);
+    }
+    // Time order throughout.
+    for (std::size_t i = 1; i < with_events.Samples().size(); ++i) {
+      CHECK(with_events.Samples()[i].t >= with_events.Samples()[i - 1].t);
+    }
+    // Each impact twice; after it, v_c = -r v_c (the impact law), the rest unchanged.
+    REQUIRE(before.size() == impacts.Impacts().size());
+    REQUIRE(after.size() == before.size());
+    REQUIRE_FALSE(before.empty());
+    for (std::size_t k = 0; k < before.size(); ++k) {
+      const Impact& impact = impacts.Impacts()[k];
+      CHECK(before[k].t == impact.t);
+      CHECK(after[k].t == impact.t);
+      CHECK(before[k].x(c) == s.stop);
+      CHECK(before[k].v(c) == impact.velocity);
+      CHECK_THAT(after[k].v(c), WithinAbs(-s.restitution * impact.velocity, 1e-15));
+      CHECK(after[k].v(0) == before[k].v(0));
+    }
+    // Sticking at chatter ends where the mass is held, released at the releases.
+    if (omega == 0.2) {
+      REQUIRE(sticks.size() >= 3);
+      REQUIRE(release_samples.size() == releases.times.size());
+      for (const Sample& stick : sticks) {
+        CHECK(stick.stuck);
+        CHECK(stick.x(c) == s.stop);
+        CHECK(stick.v(c) == 0.0);
+        CHECK(std::count(chatter.EndTimes().begin(), chatter.EndTimes().end(), stick.t) == 1);
+        // The state there, by a separate run to that instant.
+        HybridState state = RestState(s);
+        Simulator simulator(s);
+        simulator.Run(state, stick.t);
+        CHECK((state.x - stick.x).cwiseAbs().maxCoeff() < 1e-12);
+      }
+      for (std::size_t k = 0; k < releases.times.size(); ++k) {
+        CHECK(release_samples[k].t == releases.times[k]);
+        CHECK_FALSE(release_samples[k].stuck);
+      }
+    } else {
+      CHECK(sticks.empty());
+      CHECK(release_samples.empty());
+    }
+  }
 }

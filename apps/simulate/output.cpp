@@ -66,7 +66,8 @@ SimulateOutputs::SimulateOutputs(const SimulateRequest& request, const System& s
     : provenance_(std::move(provenance)) {
   const int dof = system.Dof();
   if (!request.series.empty()) {
-    series_ = &set_.AddCsv(request.series, provenance_.Text(), StateColumns({"t"}, dof, {"stuck"}));
+    series_ = &set_.AddCsv(request.series, provenance_.Text(),
+                           StateColumns({"t"}, dof, {"stuck", "event"}));
   }
   if (!request.impacts.empty()) {
     impacts_ = &set_.AddCsv(request.impacts, provenance_.Text(),
@@ -88,11 +89,14 @@ void SimulateOutputs::Write(const SimulateResult& result) {
 
 void SimulateOutputs::WriteSeries(const SimulateResult& result) {
   std::vector<double> row;
+  std::vector<std::string> event(1);
   for (const Sample& sample : result.recorders.series->Samples()) {
     row.assign({sample.t});
     AppendState(row, sample.x, sample.v);
     row.push_back(sample.stuck ? 1.0 : 0.0);
-    series_->WriteRow(row);
+    // Grid rows leave the event empty: a reader filters on it.
+    event[0] = sample.kind == SampleKind::kGrid ? "" : ToString(sample.kind);
+    series_->WriteRow(row, event);
   }
 }
 

@@ -138,7 +138,7 @@ WindowRecorders::WindowRecorders(const Window& window, std::optional<double> sam
     : steady(window.period) {
   all.Add(steady);
   all.Add(sticking);
-  if (sample_interval) all.Add(series.emplace(window.begin, *sample_interval));
+  if (sample_interval) all.Add(series.emplace(window.begin, *sample_interval, /*events=*/true));
 }
 
 void RunSimulate(const SimulateRequest& request) {

@@ -29,19 +29,27 @@ check_provenance_and_header() {
     fail "$file: header '$(columns_of "$file")', expected '$header'"
 }
 
-# t strictly increasing, the contact mass x_N never beyond the stop (and at
-# it whenever stuck), stuck 0 or 1, every row complete.
+# Grid rows at strictly increasing t, event rows (docs/cli.md, simulate) in
+# time order between them; the contact mass x_N never beyond the stop (and at
+# it whenever stuck and at each impact); each impact twice, v_N before it > 0
+# and after it -r times that (r = 0.7); stuck 0 or 1; every row complete.
 check_series() {
   local file=$1
-  check_provenance_and_header "$file" "$(state_header t, ,stuck)"
+  check_provenance_and_header "$file" "$(state_header t, ,stuck,event)"
   awk -F, -v n="$dof" -v xs="$xs" '
     /^#/ || ++row == 1 { next }
-    NF != 2 * n + 2 { print "row " NR ": " NF " fields"; bad = 1; exit }
-    row > 2 && $1 <= t { print "row " NR ": t = " $1 " does not increase (" t ")"; bad = 1; exit }
-    $(1 + n) > xs + 1e-12 { print "row " NR ": x" n " = " $(1 + n) " > xs"; bad = 1; exit }
-    $NF != 0 && $NF != 1 { print "row " NR ": stuck = " $NF; bad = 1; exit }
-    $NF == 1 && $(1 + n) != xs { print "row " NR ": stuck with x" n " = " $(1 + n); bad = 1; exit }
-    { t = $1; rows++ }
+    NF != 2 * n + 3 { print "row " NR ": " NF " fields"; bad = 1; exit }
+    { event = $NF; stuck = $(NF - 1); x = $(1 + n); v = $(1 + 2 * n) }
+    event !~ /^(|impact_before|impact_after|stick|release)$/ { print "row " NR ": event " event; bad = 1; exit }
+    row > 2 && ($1 < t || ($1 == t && event == "")) { print "row " NR ": t = " $1 " after " t; bad = 1; exit }
+    x > xs + 1e-12 { print "row " NR ": x" n " = " x " > xs"; bad = 1; exit }
+    stuck != 0 && stuck != 1 { print "row " NR ": stuck = " stuck; bad = 1; exit }
+    stuck == 1 && x != xs { print "row " NR ": stuck with x" n " = " x; bad = 1; exit }
+    event == "impact_before" && (x != xs || v <= 0) { print "row " NR ": before impact " x ", " v; bad = 1; exit }
+    event == "impact_after" && (previous != "impact_before" || $1 != t ||
+      (v + 0.7 * before)^2 > (1e-12 * before)^2) { print "row " NR ": after impact " v " (" before ")"; bad = 1; exit }
+    event == "impact_before" { before = v; impacts++ }
+    { t = $1; previous = event; rows++ }
     END { if (!bad && rows == 0) { print "no rows"; bad = 1 }; exit bad }
   ' "$file" || fail "$file: bad series"
 }
@@ -55,9 +63,12 @@ run_outputs() {
   grep -q '"label": "P(1,1)"' "$work/summary.json" || fail "summary.json has no P(1,1)"
 
   check_series "$work/series.csv"
-  local rows
-  rows=$(($(wc -l <"$work/series.csv") - 2))
-  ((rows >= 20 * 200)) || fail "series: $rows rows, expected at least 4000"
+  local rows impact_rows
+  rows=$(grep -v '^#' "$work/series.csv" | grep -c ',$' || true)
+  ((rows >= 20 * 200)) || fail "series: $rows grid rows, expected at least 4000"
+  # P(1,1) over 20 periods: 20 impacts, each before and after.
+  impact_rows=$(grep -c ',impact_' "$work/series.csv" || true)
+  ((impact_rows == 40)) || fail "series: $impact_rows impact rows, expected 40"
 
   check_provenance_and_header "$work/impacts.csv" "$(state_header t,phase,v, '')"
   awk -F, -v n="$dof" -v xs="$xs" '!/^#/ && ++row > 1 && $(3 + n) != xs { print "row " NR ": x" n " = " $(3 + n); bad = 1 }
@@ -75,7 +86,9 @@ run_sticking() {
     >"$work/stdout"
   grep -q '^motion: *P(inf,1) sticking' "$work/stdout" || fail "summary: $(cat "$work/stdout")"
   check_series "$work/series.csv"
-  grep -q ',1$' "$work/series.csv" || fail "no stuck sample in a sticking motion"
+  grep -q ',1,[a-z_]*$' "$work/series.csv" || fail "no stuck sample in a sticking motion"
+  grep -q ',1,stick$' "$work/series.csv" || fail "no stick row in a sticking motion"
+  grep -q ',0,release$' "$work/series.csv" || fail "no release row in a sticking motion"
 }
 
 run_plot() {

@@ -26,11 +26,51 @@ bool ObserverList::ShouldStop() const {
   return false;
 }
 
-TimeSeriesRecorder::TimeSeriesRecorder(double t_first, double dt) : t_first_(t_first), dt_(dt) {
+const char* ToString(SampleKind kind) {
+  switch (kind) {
+    case SampleKind::kGrid:
+      return "grid";
+    case SampleKind::kBeforeImpact:
+      return "impact_before";
+    case SampleKind::kAfterImpact:
+      return "impact_after";
+    case SampleKind::kStick:
+      return "stick";
+    case SampleKind::kRelease:
+      return "release";
+  }
+  return "grid";
+}
+
+TimeSeriesRecorder::TimeSeriesRecorder(double t_first, double dt, bool events)
+    : t_first_(t_first), dt_(dt), events_(events) {
   if (!(dt > 0 && std::isfinite(dt))) throw InvalidInput("the sampling interval must be > 0");
 }
 
+void TimeSeriesRecorder::OnImpact(const Impact& impact) {
+  if (!events_ || impact.t < t_first_) return;
+  samples_.push_back({impact.t, impact.x, impact.v, false, SampleKind::kBeforeImpact});
+  samples_.push_back({impact.t, impact.x, impact.v_after, false, SampleKind::kAfterImpact});
+}
+
+void TimeSeriesRecorder::AddEventAtBegin(const Segment& segment) {
+  const SegmentMode mode = segment.Mode();
+  // The first segment seen begins no event: it is where recording starts.
+  const bool stick =
+      mode == SegmentMode::kStuck && last_mode_ && *last_mode_ != SegmentMode::kStuck;
+  const bool release = mode != SegmentMode::kStuck && last_mode_ == SegmentMode::kStuck;
+  last_mode_ = mode;
+  if (!(stick || release) || segment.Begin() < t_first_) return;
+  Sample s;
+  s.t = segment.Begin();
+  s.stuck = segment.Stuck();
+  s.kind = stick ? SampleKind::kStick : SampleKind::kRelease;
+  segment.StateAt(s.t, &s.x, &s.v);
+  samples_.push_back(std::move(s));
+}
+
 void TimeSeriesRecorder::OnSegment(const Segment& segment) {
+  if (events_) AddEventAtBegin(segment);
   // A grid time that equals Begin() up to rounding belongs to this segment
   // (evaluating the closed form a few ulps outside it is harmless).
   const long first_inside = static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_ - 1e-9));

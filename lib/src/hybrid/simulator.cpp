@@ -268,10 +268,11 @@ void HybridRun::ApplyImpact(double te, double speed) {
   impact_.velocity = speed;
   impact_.x = state_.x;
   impact_.v = state_.v;
-  observer_.OnImpact(impact_);
-  ++summary_.impacts;
   state_.v(c) = speed;
   hybrid_.GetStop().Reset(state_.v);
+  impact_.v_after = state_.v;
+  observer_.OnImpact(impact_);
+  ++summary_.impacts;
   const double previous = last_impact_;
   last_impact_ = te;
   // The acceleration after the reset (the rebound's), which the chatter

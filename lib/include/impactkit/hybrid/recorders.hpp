@@ -4,6 +4,7 @@
 /// everything it is shown: run the transient without them.
 
 #include <Eigen/Dense>
+#include <optional>
 #include <vector>
 
 #include "impactkit/hybrid/simulator.hpp"
@@ -24,25 +25,49 @@ class ObserverList : public Observer {
   std::vector<Observer*> observers_;
 };
 
+/// What a sample is: a point of the time grid, or an event's state.
+enum class SampleKind {
+  kGrid,          ///< at t_first + k dt
+  kBeforeImpact,  ///< at an impact, the speed before it (x_c = xs, v_c > 0)
+  kAfterImpact,   ///< at the same instant, the speed after it (v_c = -r v before)
+  kStick,         ///< sticking begins (x_c = xs, v_c = 0)
+  kRelease,       ///< the contact mass leaves the stop
+};
+
+/// "grid", "impact_before", "impact_after", "stick", "release".
+const char* ToString(SampleKind kind);
+
 /// One sample of the motion.
 struct Sample {
   double t = 0.0;
   Eigen::VectorXd x;
   Eigen::VectorXd v;
   bool stuck = false;
+  SampleKind kind = SampleKind::kGrid;
 };
 
-/// Samples at t = t_first + k dt (k = 0, 1, ...) that fall inside segments.
+/// Samples at t = t_first + k dt (k = 0, 1, ...) that fall inside segments
+/// and, with `events`, every event from t_first on as samples of its own,
+/// in time order: each impact twice (the state before and after it, at one
+/// instant), the start of sticking and the release. A curve through the
+/// samples then reaches the stop at every impact and jumps in velocity there
+/// instead of drawing a slope between two grid points.
 class TimeSeriesRecorder : public Observer {
  public:
-  TimeSeriesRecorder(double t_first, double dt);
+  TimeSeriesRecorder(double t_first, double dt, bool events = false);
   void OnSegment(const Segment& segment) override;
+  void OnImpact(const Impact& impact) override;
   const std::vector<Sample>& Samples() const { return samples_; }
 
  private:
+  /// The sticking or release, if any, that the segment's first instant is.
+  void AddEventAtBegin(const Segment& segment);
+
   double t_first_;
   double dt_;
+  bool events_;
   long next_ = 0;
+  std::optional<SegmentMode> last_mode_;
   std::vector<Sample> samples_;
 };
 

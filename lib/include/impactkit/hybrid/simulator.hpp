@@ -125,6 +125,10 @@ struct Impact {
   double velocity = 0.0;
   Eigen::VectorXd x;  ///< positions at impact (x_c = xs)
   Eigen::VectorXd v;  ///< velocities just before impact
+  /// Velocities just after it, by the stop's law (v_c -> -r v_c). At the
+  /// last simulated impact of a chatter sequence the motion that follows is
+  /// modelled held at the stop; this is still the rebound.
+  Eigen::VectorXd v_after;
 };
 
 /// Receives what the simulator finds; every method has an empty default.
