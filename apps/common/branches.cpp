@@ -235,7 +235,9 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
     drawn.push_back(k);
   }
   for (std::size_t k : drawn) {
-    AddBranchLines(branches[k].branch, chart.curves[entry_of[k]].color, chart);
+    // A copy: AddBranchLines appends to chart.curves, which may reallocate.
+    const std::string color = chart.curves[entry_of[k]].color;
+    AddBranchLines(branches[k].branch, color, chart);
   }
   std::map<SpecialPointType, Curve> marks;
   for (const TracedBranch& traced : branches) {

@@ -12,7 +12,7 @@ def test_resonance_is_the_closed_form_linear_response():
     for omega, rng in zip(r["omega"], r["range"]):
         x = np.linalg.solve(s.stiffness - omega**2 * s.mass + 1j * omega * s.damping, s.forcing)
         np.testing.assert_allclose(rng, 2 * np.abs(x), rtol=1e-12)
-    # Peaks near the undamped natural frequencies 0.618 and 1.618 (DESIGN.md).
+    # Peaks near the undamped natural frequencies 0.618 and 1.618 (the eigenvalues of E for N = 2: 2 sin(π/10) and 2 sin(3π/10)).
     assert abs(r["peaks"][0]["omega"] - 0.618) < 0.01
 
 

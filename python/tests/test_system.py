@@ -9,7 +9,7 @@ import impactkit
 
 
 def coupling(n):
-    """E of DESIGN.md: tridiagonal, E_ii = 2 (i < n), E_nn = 1, off-diagonals -1."""
+    """E of docs/theory.md §1: tridiagonal, E_ii = 2 (i < n), E_nn = 1, off-diagonals -1."""
     e = 2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)
     e[-1, -1] = 1.0
     return e

@@ -68,7 +68,9 @@ System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing
 /// r = 0.7, Ω = 1 unless given.
 System PaperSystem(double omega = 1.0);
 
-/// A general system; the contact DOF defaults to the last.
+/// A general system. `contact_dof` is the index of the mass that meets the
+/// stop, 0-based as everywhere in the library (the system file's key
+/// `contact_dof` is 1-based, as users count masses); default the last.
 System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
                      const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing, double omega,
                      double stop, double restitution,

@@ -1,7 +1,7 @@
 #pragma once
 /// \file orbit_contacts.hpp
 /// How near a periodic orbit is to changing its sequence of impacts — the
-/// monitors that end smooth continuation (DESIGN.md §5) — and its extent in
+/// monitors that end smooth continuation (docs/theory.md §6) — and its extent in
 /// the contact coordinate x_c.
 ///
 /// Two events end a P(p, q) branch, each watched by a quantity that is
