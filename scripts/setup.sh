@@ -8,7 +8,7 @@ packages=(
   build-essential cmake
   libeigen3-dev libsundials-dev libceres-dev libfmt-dev libboost-dev
   catch2 libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libtomlplusplus-dev gnuplot-nox
+  libcli11-dev nlohmann-json3-dev libtomlplusplus-dev gnuplot-nox zlib1g-dev
   clang-format
   openmpi-bin libopenmpi-dev
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib

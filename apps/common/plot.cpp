@@ -5,11 +5,13 @@
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +20,8 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
+
+#include "common/provenance.hpp"
 
 extern char** environ;  // POSIX: the environment gnuplot inherits
 
@@ -310,14 +314,40 @@ void KeepSource(const TemporaryDirectory& directory) {
   }
 }
 
-/// Runs the script and returns its PNG, keeping the source if asked.
+void AppendBigEndian(std::string& bytes, std::uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((value >> shift) & 0xff);
+}
+
+/// `png` with an iTXt chunk (PNG 1.2, 11.3.4.5: UTF-8 text, uncompressed)
+/// of `keyword` and `text` right after the IHDR chunk, which every PNG
+/// starts with. The chunk's CRC is zlib's crc32, as PNG specifies.
+std::string WithText(const std::string& png, std::string_view keyword, std::string_view text) {
+  constexpr std::size_t kAfterHeader = 8 + 4 + 4 + 13 + 4;  // signature, IHDR chunk
+  if (png.size() < kAfterHeader || png.compare(12, 4, "IHDR") != 0) {
+    throw PlotError("gnuplot's image is not a PNG");
+  }
+  std::string chunk = "iTXt";
+  chunk.append(keyword);
+  chunk += std::string("\0\0\0\0\0", 5);  // keyword end, no compression, no language tags
+  chunk.append(text);
+  const auto* data = reinterpret_cast<const Bytef*>(chunk.data());
+  const auto crc = static_cast<std::uint32_t>(::crc32(0L, data, static_cast<uInt>(chunk.size())));
+  std::string out = png.substr(0, kAfterHeader);
+  AppendBigEndian(out, static_cast<std::uint32_t>(chunk.size() - 4));
+  out += chunk;
+  AppendBigEndian(out, crc);
+  return out + png.substr(kAfterHeader);
+}
+
+/// Runs the script and returns its PNG, which records the command line,
+/// keeping the source if asked.
 std::string Render(const TemporaryDirectory& directory, const fs::path& script,
                    const fs::path& image) {
   RunGnuplot(script, directory / "gnuplot.log");
   std::string png = ReadFile(image);
   if (png.empty()) throw PlotError("gnuplot produced no image");
   KeepSource(directory);
-  return png;
+  return WithText(png, "Description", CommandLineProvenance());
 }
 
 }  // namespace

@@ -4,6 +4,9 @@
 /// temporary directory, gnuplot renders a PNG there, and the bytes come
 /// back to the caller, who writes them like any other output (whole or not
 /// at all). pngcairo is used when gnuplot has it, else the plain png terminal.
+/// Each PNG records the version and the command that drew it in an iTXt
+/// chunk with the keyword "Description" (what image viewers and PIL's
+/// `Image.info` show).
 ///
 /// With IMPACTKIT_PLOT_SOURCE=DIR in the environment, each figure's script
 /// and data are also copied into DIR/<n>/ (n = 1, 2, ... per figure): a

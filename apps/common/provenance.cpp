@@ -50,6 +50,10 @@ void RecordCommandLine(int argc, const char* const* argv) {
   CommandLine() = fmt::format("{}", fmt::join(words, " "));
 }
 
+std::string CommandLineProvenance() {
+  return fmt::format("impactkit {}\ncommand: {}", IMPACTKIT_VERSION, CommandLine());
+}
+
 std::string Provenance::Text() const {
   const std::string system = system_file.empty()
                                  ? "the paper's system (built in)"

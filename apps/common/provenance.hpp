@@ -18,6 +18,10 @@ namespace impactkit::cli {
 /// Keeps the command line for the outputs' provenance; main() calls it once.
 void RecordCommandLine(int argc, const char* const* argv);
 
+/// "impactkit VERSION\ncommand: ...": what a figure records of its run (the
+/// data files beside it carry the whole provenance).
+std::string CommandLineProvenance();
+
 struct Provenance {
   std::string version;      ///< impactkit's version
   std::string command;      ///< the command line, quoted for a POSIX shell

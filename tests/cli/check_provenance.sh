@@ -103,6 +103,30 @@ run "${basins[@]}"
 check_csv "$work/b.csv" "${basins[*]}"
 check_json "$work/b.json" "${basins[*]}"
 
+# A figure records the version and the command in an iTXt chunk; the chunks
+# are read here by their layout (PNG 1.2), each CRC checked with zlib's.
+if command -v gnuplot >/dev/null; then
+  run simulate --periods 2 --plot p.png
+  python3 - "$work/p.png" "impactkit $version" "command: impactkit simulate --periods 2 --plot p.png" <<'PY' ||
+import struct, sys, zlib
+path, version, command = sys.argv[1:]
+data = open(path, "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+at, texts = 8, {}
+while at < len(data):
+    (length,) = struct.unpack(">I", data[at:at + 4])
+    kind, body = data[at + 4:at + 8], data[at + 8:at + 8 + length]
+    (crc,) = struct.unpack(">I", data[at + 8 + length:at + 12 + length])
+    assert zlib.crc32(kind + body) == crc, f"bad CRC in {kind}"
+    if kind == b"iTXt":
+        keyword, rest = body.split(b"\0", 1)
+        texts[keyword.decode()] = rest[2:].split(b"\0", 2)[2].decode()
+    at += 12 + length
+assert texts.get("Description") == version + "\n" + command, texts
+PY
+    fail "p.png: no provenance text chunk"
+fi
+
 # A word with characters a shell treats specially is quoted so that the
 # command line can be pasted back.
 run resonance --steps 3 --out 'a b.csv'
