@@ -77,6 +77,7 @@ class Samples(TypedDict):
     x: FloatArray
     v: FloatArray
     stuck: BoolArray
+    event: npt.NDArray[np.str_]
 
 class Impacts(TypedDict):
     t: FloatArray
@@ -117,6 +118,7 @@ def simulate(
     bounce_height_resolution: float = 1e-10,
     max_events_per_period: int = 100_000,
     max_events: int = 200_000_000,
+    events: bool = False,
 ) -> Simulation: ...
 
 class Orbit:

@@ -53,7 +53,8 @@ class InterruptWatch : public Observer {
   mutable std::chrono::steady_clock::time_point last_check_ = std::chrono::steady_clock::now();
 };
 
-/// Samples (t, x, v, stuck) as arrays of shapes (n,), (n, N), (n, N), (n,).
+/// Samples (t, x, v, stuck, event) as arrays of shapes (n,), (n, N), (n, N),
+/// (n,), (n,); event "" on the time grid, else the event's name.
 py::dict SampleArrays(const std::vector<Sample>& samples, int dof) {
   std::vector<double> t, x, v;
   std::vector<bool> stuck_bits;
@@ -64,12 +65,18 @@ py::dict SampleArrays(const std::vector<Sample>& samples, int dof) {
   }
   const auto n = static_cast<py::ssize_t>(samples.size());
   py::array_t<bool> stuck(n);
-  for (py::ssize_t i = 0; i < n; ++i) stuck.mutable_at(i) = samples[i].stuck;
+  py::list events;
+  for (py::ssize_t i = 0; i < n; ++i) {
+    stuck.mutable_at(i) = samples[i].stuck;
+    events.append(samples[i].kind == SampleKind::kGrid ? "" : ToString(samples[i].kind));
+  }
   py::dict out;
   out["t"] = MoveToArray(std::move(t));
   out["x"] = MoveToArray<double, 2>(std::move(x), {n, dof});
   out["v"] = MoveToArray<double, 2>(std::move(v), {n, dof});
   out["stuck"] = stuck;
+  // A numpy array of str, as the other fields are arrays.
+  out["event"] = py::module_::import("numpy").attr("array")(events, "U13");
   return out;
 }
 
@@ -96,7 +103,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
                   std::optional<Eigen::VectorXd> v0, double record_from, double dt,
                   const std::string& chatter, double chatter_span, double chatter_threshold,
                   double bounce_height_resolution, std::int64_t max_events_per_period,
-                  std::int64_t max_events) {
+                  std::int64_t max_events, bool events) {
   const SimulationOptions options =
       MakeOptions(chatter, chatter_span, chatter_threshold, bounce_height_resolution,
                   max_events_per_period, max_events);
@@ -116,7 +123,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
                       dt, (t_end - record_from) / dt, kMaxSamples));
 
   FlatImpactRecorder impacts;
-  TimeSeriesRecorder series(record_from, dt > 0.0 ? dt : 1.0);
+  TimeSeriesRecorder series(record_from, dt > 0.0 ? dt : 1.0, events);
   StroboscopicRecorder strobe(system.ForcingPeriod());
   StickingRecorder sticking;
   InterruptWatch watch;
@@ -172,11 +179,15 @@ void BindSimulate(py::module_& module) {
              py::arg("chatter_span") = 1e-4, py::arg("chatter_threshold") = 1e-4,
              py::arg("bounce_height_resolution") = 1e-10,
              py::arg("max_events_per_period") = 100'000, py::arg("max_events") = 200'000'000,
+             py::arg("events") = false,
              R"(Simulates from (x0, v0) at t = 0 (rest by default) to t_end, exactly.
 
 Nothing is recorded before record_from. Returns a dict of numpy arrays:
-  samples   {t (n,), x (n, N), v (n, N), stuck (n,) bool} every dt from
-            record_from (empty when dt = 0)
+  samples   {t (n,), x (n, N), v (n, N), stuck (n,) bool, event (n,) str}
+            every dt from record_from (empty when dt = 0); with events=True
+            also each event, in time order: every impact twice at its instant
+            ('impact_before', 'impact_after': v_c -> -r v_c), 'stick' and
+            'release' (event '' on the grid)
   impacts   {t, phase, velocity (m,), x (m, N), v (m, N) just before impact}
   strobe    the state at every t = k T (forcing phase 0), as samples
   sticking  (k, 2) [begin, end] of each interval held at the stop

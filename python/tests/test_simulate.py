@@ -96,3 +96,32 @@ def test_work_bound_and_landings_are_reachable():
     assert np.all(run["impacts"]["velocity"] > 1e-8)
     bounded = impactkit.simulate(impactkit.System.paper(0.2), 100.0, max_events_per_period=5)
     assert bounded["status"].startswith("work bound reached")
+
+
+def test_events_are_samples_of_their_own_in_time_order():
+    s = impactkit.System.paper(0.2)
+    period = 2 * np.pi / 0.2
+    grid_only = impactkit.simulate(s, 103 * period, record_from=100 * period, dt=0.5)
+    r = impactkit.simulate(s, 103 * period, record_from=100 * period, dt=0.5, events=True)
+    samples, imp = r["samples"], r["impacts"]
+    event = samples["event"]
+    assert set(np.unique(event)) == {"", "impact_before", "impact_after", "stick", "release"}
+    assert np.all(np.diff(samples["t"]) >= 0)
+    # The grid is the one recorded without events.
+    grid = event == ""
+    np.testing.assert_array_equal(samples["t"][grid], grid_only["samples"]["t"])
+    assert set(np.unique(grid_only["samples"]["event"])) == {""}
+    # Each impact twice at its instant: before it the impacts' arrays, after
+    # it v_c = -r v_c (the impact law, r = 0.7).
+    before, after = event == "impact_before", event == "impact_after"
+    np.testing.assert_array_equal(samples["t"][before], imp["t"])
+    np.testing.assert_array_equal(samples["t"][after], imp["t"])
+    np.testing.assert_array_equal(samples["v"][before, 1], imp["velocity"])
+    np.testing.assert_allclose(samples["v"][after, 1], -0.7 * imp["velocity"], rtol=0, atol=1e-15)
+    # Sticking begins where each interval of r["sticking"] does (inside the
+    # window) and releases where it ends.
+    sticks, releases = samples["t"][event == "stick"], samples["t"][event == "release"]
+    inside = r["sticking"][r["sticking"][:, 0] > 100 * period]
+    np.testing.assert_allclose(sticks, inside[:, 0], rtol=0, atol=1e-9)
+    assert np.all(samples["stuck"][event == "stick"])
+    assert releases.size >= 3
