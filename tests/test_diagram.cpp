@@ -413,3 +413,36 @@ TEST_CASE("diagram: default options are valid and bad ones are refused", "[diagr
   CHECK(error.find("threads") != std::string::npos);
   CHECK_THROWS_AS(TraceDiagram({}, Options(0.5, 1.0, 2)), InvalidInput);
 }
+
+TEST_CASE(
+    "diagram: a long orbit's multiplier passing through infinity is not a fold (the N = 1 "
+    "cascade to P(16,16))",
+    "[diagram]") {
+  // det(D P - I) of P(16,16) changes sign near Ω = 2.281 where one
+  // multiplier passes through infinity (an impact slows to a graze), not
+  // through +1: it was reported as a fold with multiplier -0.000016. Every
+  // fold and period doubling of the depth-8 network has its multiplier at
+  // ±1 (to the acceptance 0.05; on long orbits such as P(7,8) the location
+  // is only good to ~1e-3 in the multiplier, docs/continuation.md).
+  const System system =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.3, 0.1, 0.8);
+  const Diagram diagram = TraceDiagram(
+      {{system, testing::SeededOrbit(system, 1, 1), "P(1,1) at 1.3"}}, Options(0.6, 3.0, 8));
+  int checked = 0;
+  for (const DiagramNode& node : diagram.nodes) {
+    if (node.kind != DiagramNodeKind::kSpecialPoint) continue;
+    INFO(node.Name() << " at " << node.parameter << " on P(" << node.p << "," << node.q << ")");
+    if (node.special == SpecialPointType::kFold) {
+      CHECK(std::abs(RecomputedMultiplier(system, diagram, node, 1.0) - 1.0) < 0.05);
+      ++checked;
+    }
+    if (node.special == SpecialPointType::kPeriodDoubling) {
+      CHECK(std::abs(RecomputedMultiplier(system, diagram, node, -1.0) + 1.0) < 0.05);
+      ++checked;
+    }
+  }
+  CHECK(checked >= 10);
+  const bool cascade = std::any_of(diagram.branches.begin(), diagram.branches.end(),
+                                   [](const DiagramBranch& b) { return b.branch.p == 16; });
+  CHECK(cascade);
+}

@@ -48,7 +48,8 @@ struct TestFunction {
   double (*distance)(std::complex<double> multiplier);
   /// A located zero whose critical multiplier is farther than this is not
   /// this bifurcation (Π (λ_i λ_j − 1) also vanishes at a real pair with
-  /// product 1, a neutral saddle).
+  /// product 1, a neutral saddle; det(D P ∓ I) changes sign where a
+  /// multiplier passes through infinity).
   double max_distance;
 };
 
