@@ -422,8 +422,8 @@ TEST_CASE(
   // multiplier passes through infinity (an impact slows to a graze), not
   // through +1: it was reported as a fold with multiplier -0.000016. Every
   // fold and period doubling of the depth-8 network has its multiplier at
-  // ±1 (to the acceptance 0.05; on long orbits such as P(7,8) the location
-  // is only good to ~1e-3 in the multiplier, docs/continuation.md).
+  // ±1 (to the acceptance 0.05: at a fold a fresh solve of a long orbit such
+  // as P(7,8) is ill-conditioned, docs/continuation.md).
   const System system =
       UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.3, 0.1, 0.8);
   const Diagram diagram = TraceDiagram(

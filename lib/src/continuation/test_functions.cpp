@@ -30,9 +30,9 @@ constexpr double kAny = std::numeric_limits<double>::infinity();
 /// det(D P ∓ I) also changes sign where a multiplier passes through
 /// infinity rather than ±1: an impact of a long orbit slowing to a graze
 /// makes D P's saltation terms (1/v) blow up. A located zero is a fold or a
-/// period doubling only with a multiplier this close to ±1: loose, since
-/// on long orbits (P(7,8)) a genuine fold is located with its multiplier
-/// only within ~1e-3, while a pole leaves the nearest one anywhere.
+/// period doubling only with a multiplier this close to ±1: loose, since a
+/// genuine one lands within ~1e-6 and a pole leaves the nearest multiplier
+/// anywhere; the margin keeps a poorly conditioned genuine one.
 constexpr double kRealCrossing = 0.05;
 
 constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
