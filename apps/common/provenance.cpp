@@ -1,8 +1,8 @@
 #include "common/provenance.hpp"
 
 #include <fmt/format.h>
+#include <zlib.h>
 
-#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <vector>
@@ -29,17 +29,15 @@ std::string ShellQuoted(const std::string& word) {
   return quoted + "'";
 }
 
-/// FNV-1a, 64 bits, of the file's bytes: it identifies a version of a
-/// system file (not a security hash); no library of the stack has a hash.
-std::string Fnv1a64OfFile(const std::string& path) {
+/// zlib's CRC-32 of the file's bytes: it identifies a version of a system
+/// file (not a security hash).
+std::string Crc32OfFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidInput(fmt::format("{}: cannot read the system file again", path));
-  std::uint64_t hash = 14695981039346656037ull;
-  for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
-    hash ^= static_cast<unsigned char>(*it);
-    hash *= 1099511628211ull;
-  }
-  return fmt::format("{:016x}", hash);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto crc =
+      ::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size()));
+  return fmt::format("{:08x}", crc);
 }
 
 }  // namespace
@@ -57,7 +55,7 @@ std::string CommandLineProvenance() {
 std::string Provenance::Text() const {
   const std::string system = system_file.empty()
                                  ? "the paper's system (built in)"
-                                 : fmt::format("{} (FNV-1a 64 {})", system_file, system_hash);
+                                 : fmt::format("{} (CRC-32 {})", system_file, system_hash);
   return fmt::format("impactkit {}\ncommand: {}\nsystem: {}\nparameters: {}\nrun: {}", version,
                      command, system, parameters, run);
 }
@@ -66,7 +64,7 @@ nlohmann::json Provenance::Json() const {
   return {{"impactkit_version", version},
           {"command", command},
           {"system_file", system_file.empty() ? nlohmann::json() : nlohmann::json(system_file)},
-          {"system_fnv1a64", system_hash.empty() ? nlohmann::json() : nlohmann::json(system_hash)},
+          {"system_crc32", system_hash.empty() ? nlohmann::json() : nlohmann::json(system_hash)},
           {"parameters", parameters},
           {"run", run}};
 }
@@ -76,7 +74,7 @@ Provenance MakeProvenance(const SystemOptions& options, const System& system, st
   p.version = IMPACTKIT_VERSION;
   p.command = CommandLine();
   p.system_file = options.file;
-  if (!options.file.empty()) p.system_hash = Fnv1a64OfFile(options.file);
+  if (!options.file.empty()) p.system_hash = Crc32OfFile(options.file);
   p.parameters = ParameterList(system);
   p.run = std::move(run);
   return p;

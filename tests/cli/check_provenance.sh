@@ -1,26 +1,24 @@
 # Usage: check_provenance.sh IMPACTKIT SYSTEM_FILE
 # Every output file of every subcommand says what produced it (docs/cli.md,
 # "Output files"): CSV comment lines "impactkit VERSION", "command: " (the
-# command as typed), "system: " (the file with its FNV-1a 64 hash, or the
+# command as typed), "system: " (the file with its CRC-32, or the
 # built-in system), "parameters: ", "run: "; a JSON's "provenance" object with
 # the same. The hash is recomputed here, independently, with Python.
 source "$(dirname "$0")/testlib.sh"
 impactkit=$1
 system_file=$2
 version=$("$impactkit" --version | awk '{ print $2 }')
-fnv=$(python3 -c '
-import sys
-h = 0xcbf29ce484222325
-for b in open(sys.argv[1], "rb").read():
-    h = ((h ^ b) * 0x100000001b3) & 0xffffffffffffffff
-print(f"{h:016x}")' "$system_file")
+crc=$(python3 -c '
+import sys, zlib
+data = open(sys.argv[1], "rb").read()
+print("%08x" % zlib.crc32(data))' "$system_file")
 
 # check_csv FILE COMMAND-WORDS [SYSTEM]: the header of FILE, written by the
 # run `impactkit COMMAND-WORDS`, with SYSTEM the --system file if any.
 check_csv() {
   local file=$1 command=$2 system=${3:-}
   local want_system="the paper's system (built in)"
-  [[ -n $system ]] && want_system="$system (FNV-1a 64 $fnv)"
+  [[ -n $system ]] && want_system="$system (CRC-32 $crc)"
   mapfile -t head < <(grep '^#' "$file")
   [[ ${#head[@]} == 5 ]] || fail "$file: ${#head[@]} comment lines, want 5"
   [[ ${head[0]} == "# impactkit $version" ]] || fail "$file: version line '${head[0]}'"
@@ -32,12 +30,12 @@ check_csv() {
 
 # check_json FILE COMMAND-WORDS [SYSTEM]: the same in FILE's "provenance".
 check_json() {
-  python3 - "$1" "impactkit $2" "${3:-}" "$version" "$fnv" <<'PY' || fail "$1: bad provenance"
+  python3 - "$1" "impactkit $2" "${3:-}" "$version" "$crc" <<'PY' || fail "$1: bad provenance"
 import json, sys
-path, command, system, version, fnv = sys.argv[1:]
+path, command, system, version, crc = sys.argv[1:]
 p = json.load(open(path))["provenance"]
 want = {"impactkit_version": version, "command": command,
-        "system_file": system or None, "system_fnv1a64": fnv if system else None}
+        "system_file": system or None, "system_crc32": crc if system else None}
 for key, value in want.items():
     if p.get(key) != value:
         sys.exit(f"{path}: provenance {key} = {p.get(key)!r}, want {value!r}")
