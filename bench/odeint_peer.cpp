@@ -47,10 +47,11 @@ PlainOdeintRun PlainOdeintImpacts(const System& s, double t_end, double toleranc
   const Eigen::Vector2d minv_a = minv * s.forcing;
   const PaperRhs rhs{
       Times(minv, s.damping), Times(minv, s.stiffness), {minv_a(0), minv_a(1)}, s.omega};
-  const int c = s.contact_dof;
+  const StopParameters& stop = s.SoleStop("the plain Odeint peer");
+  const int c = stop.dof;
   // The impulse acts along M^{-1} e_c and sets v_c to -r v_c.
   const std::array<double, 2> impulse{minv(0, c) / minv(c, c), minv(1, c) / minv(c, c)};
-  auto gap = [&](const State& y) { return y[c] - s.stop; };
+  auto gap = [&](const State& y) { return y[c] - stop.position; };
 
   auto stepper =
       odeint::make_dense_output(tolerance, tolerance, odeint::runge_kutta_dopri5<State>());
@@ -85,10 +86,10 @@ PlainOdeintRun PlainOdeintImpacts(const System& s, double t_end, double toleranc
     }
     times.push_back(t_impact);
     stepper.calc_state(t_impact, y);
-    const double dv = -(1.0 + s.restitution) * y[2 + c];
+    const double dv = -(1.0 + stop.restitution) * y[2 + c];
     y[2] += impulse[0] * dv;
     y[3] += impulse[1] * dv;
-    y[c] = s.stop;
+    y[c] = stop.position;
     // The acceleration jumps: restart, which also drops the stale stored
     // derivative, with the last step size.
     stepper.initialize(y, t_impact, stepper.current_time_step());

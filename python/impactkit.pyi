@@ -15,6 +15,12 @@ IntArray = npt.NDArray[np.int64]
 
 class NumericalError(RuntimeError): ...
 
+class StopDict(TypedDict, total=False):
+    dof: int
+    side: Literal["upper", "lower"]
+    position: float
+    restitution: float
+
 class System:
     def __init__(self) -> None: ...
     @staticmethod
@@ -58,6 +64,9 @@ class System:
     @property
     def contact_dof(self) -> int: ...
     @property
+    def stops(self) -> list[StopDict]: ...
+    def with_stops(self, stops: list[StopDict]) -> System: ...
+    @property
     def is_chain(self) -> bool: ...
     @property
     def forcing_period(self) -> float: ...
@@ -83,6 +92,7 @@ class Impacts(TypedDict):
     t: FloatArray
     phase: FloatArray
     velocity: FloatArray
+    stop: IntArray
     x: FloatArray
     v: FloatArray
 

@@ -6,11 +6,13 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "oscillator_model.hpp"
 
@@ -77,7 +79,8 @@ int Jacobian(sunrealtype /*t*/, N_Vector /*y*/, N_Vector /*dydt*/, SUNMatrix jac
 }
 
 int ImpactRoot(sunrealtype /*t*/, N_Vector y, sunrealtype* g, void* user_data) {
-  g[0] = static_cast<CallbackData*>(user_data)->impacts->Gap(N_VGetArrayPointer(y));
+  const ImpactSequence& impacts = *static_cast<CallbackData*>(user_data)->impacts;
+  for (int k = 0; k < impacts.StopCount(); ++k) g[k] = impacts.Gap(k, N_VGetArrayPointer(y));
   return 0;
 }
 
@@ -114,16 +117,28 @@ class Cvode {
   Cvode(const Cvode&) = delete;
   Cvode& operator=(const Cvode&) = delete;
 
-  // Stop at upward crossings of g = x_c - xs. CVODE never reports a root at
+  // Stop at upward crossings of each stop's g = s (x_c - xs), one root
+  // function per stop. CVODE never reports a root at
   // the initial point of a (re)start. A restart after an impact is at g >= 0
   // (CVODE returns the far side of the root) and g then falls (v_c < 0, or
   // v_c = 0 with a_c <= 0: else the run has stopped), which the direction
   // filter ignores: the same impact cannot be reported twice.
   void StopAtImpacts(const ImpactSequence& impacts) {
     data_.impacts = &impacts;
-    Check(CVodeRootInit(memory_.get(), 1, ImpactRoot), "CVodeRootInit");
-    int upwards = 1;
-    Check(CVodeSetRootDirection(memory_.get(), &upwards), "CVodeSetRootDirection");
+    Check(CVodeRootInit(memory_.get(), impacts.StopCount(), ImpactRoot), "CVodeRootInit");
+    std::vector<int> upwards(impacts.StopCount(), 1);
+    Check(CVodeSetRootDirection(memory_.get(), upwards.data()), "CVodeSetRootDirection");
+  }
+
+  // The stops whose roots were found at the returned time (two when
+  // their crossings fall in one step's root bracket).
+  std::vector<int> RootStops() const {
+    std::vector<int> found(data_.impacts->StopCount()), stops;
+    Check(CVodeGetRootInfo(memory_.get(), found.data()), "CVodeGetRootInfo");
+    for (int k = 0; k < static_cast<int>(found.size()); ++k) {
+      if (found[k] != 0) stops.push_back(k);
+    }
+    return stops;
   }
 
   // Integrates towards t_out; returns true if it stopped at a root before.
@@ -166,17 +181,21 @@ class Cvode {
 ReferenceRun CvodeImpacts(const System& s, Eigen::VectorXd x0, Eigen::VectorXd v0, double t0,
                           double t_end, const CvodeOptions& o) {
   const LinearOscillator oscillator(s);
+  double farthest = 0.0;
+  for (const StopParameters& stop : s.stops) farthest = std::max(farthest, std::abs(stop.position));
   ImpactSequence sequence(s, oscillator, o.max_impacts, o.min_interimpact,
-                          o.atol + o.rtol * std::abs(s.stop));
+                          o.atol + o.rtol * farthest);
   Eigen::VectorXd y0 = oscillator.StackState(x0, v0);
   if (!sequence.Begin(t0, y0) || t_end <= t0) return sequence.Finish(t0, y0, 0);
 
   Cvode cvode(oscillator, t0, y0, o.rtol, o.atol, o.max_step);
   cvode.StopAtImpacts(sequence);
   // A root exactly at t_end is left for a run that goes further, as odeint does.
-  while (cvode.AdvanceTo(t_end) && cvode.t() < t_end) {
-    if (!sequence.Impact(cvode.t(), cvode.State())) break;
-    cvode.Restart();
+  bool going = true;
+  while (going && cvode.AdvanceTo(t_end) && cvode.t() < t_end) {
+    for (int stop : cvode.RootStops())
+      going = going && sequence.Impact(cvode.t(), cvode.State(), stop);
+    if (going) cvode.Restart();
   }
   return sequence.Finish(cvode.t(), cvode.State(), cvode.rhs_evaluations());
 }

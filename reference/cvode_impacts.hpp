@@ -12,7 +12,8 @@
 /// reaches rtol = 1e-12 with long steps. Observed global error: ~1e-10 after
 /// 100 time units, growing about linearly.
 ///
-/// Impacts are roots of g = x_c - xs crossed upwards (CVodeRootInit with
+/// Impacts are roots of each stop's g = s (x_c - xs) crossed upwards (one root
+/// function per stop, CVodeRootInit with
 /// CVodeSetRootDirection(+1)); CVODE returns at the root, the impact law is
 /// applied, and the integrator restarts there (CVodeReInit).
 

@@ -39,8 +39,8 @@ Eigen::Map<Eigen::VectorXd> AsVector(State& y) {
 // step (a graze) leave g < 0 at both ends and are missed: the known limit of
 // the method.
 bool CrossedStop(const Stepper& stepper, const ImpactSequence& sequence) {
-  return sequence.Gap(stepper.previous_state().data()) < 0.0 &&
-         sequence.Gap(stepper.current_state().data()) >= 0.0;
+  return sequence.Gap(0, stepper.previous_state().data()) < 0.0 &&
+         sequence.Gap(0, stepper.current_state().data()) >= 0.0;
 }
 
 // Bisection on the dense output of the last step, where g went from negative
@@ -57,7 +57,7 @@ double LocateCrossing(const Stepper& stepper, const ImpactSequence& sequence, do
     const double t_mid = 0.5 * (t_lo + t_hi);
     if (t_mid <= t_lo || t_mid >= t_hi) break;  // the bracket is two adjacent doubles
     stepper.calc_state(t_mid, y_mid);
-    if (sequence.Gap(y_mid.data()) < 0.0) {
+    if (sequence.Gap(0, y_mid.data()) < 0.0) {
       t_lo = t_mid;
       y.swap(y_mid);
     } else {
@@ -89,9 +89,12 @@ std::optional<double> NextImpact(Stepper& stepper, const CountingRhs& rhs,
 
 ReferenceRun OdeintImpacts(const System& s, Eigen::VectorXd x0, Eigen::VectorXd v0, double t0,
                            double t_end, const OdeintOptions& o) {
+  // The classic step-and-check style watches one stop; the CVODE reference
+  // watches any number.
+  if (s.stops.size() != 1) throw std::invalid_argument("OdeintImpacts: one stop only");
   const LinearOscillator oscillator(s);
   ImpactSequence sequence(s, oscillator, o.max_impacts, o.min_interimpact,
-                          o.abs_tol + o.rel_tol * std::abs(s.stop));
+                          o.abs_tol + o.rel_tol * std::abs(s.stops[0].position));
   const Eigen::VectorXd y0 = oscillator.StackState(x0, v0);
   State y(y0.begin(), y0.end());
   if (!sequence.Begin(t0, AsVector(y)) || t_end <= t0) return sequence.Finish(t0, AsVector(y), 0);
@@ -103,7 +106,7 @@ ReferenceRun OdeintImpacts(const System& s, Eigen::VectorXd x0, Eigen::VectorXd 
   stepper.initialize(y, t0, kInitialStep);
   while (const std::optional<double> t_impact =
              NextImpact(stepper, rhs, sequence, t_end, o.crossing_tol, y)) {
-    if (!sequence.Impact(*t_impact, AsVector(y))) {
+    if (!sequence.Impact(*t_impact, AsVector(y), 0)) {
       return sequence.Finish(*t_impact, AsVector(y), rhs_evaluations);
     }
     // The acceleration jumps at the impact; initialize() also discards the

@@ -82,37 +82,44 @@ Eigen::VectorXd LinearOscillator::StackState(const Eigen::VectorXd& x,
 ImpactSequence::ImpactSequence(const System& system, const LinearOscillator& oscillator,
                                long max_impacts, double min_interimpact, double position_tolerance)
     : oscillator_(oscillator),
-      contact_dof_(system.contact_dof),
-      velocity_index_(oscillator.Dof() + system.contact_dof),
-      stop_(system.stop),
-      restitution_(system.restitution),
       max_impacts_(max_impacts),
       min_interimpact_(min_interimpact),
       min_flight_depth_(kResolvedDepthInTolerances * position_tolerance) {
-  Require(contact_dof_ >= 0 && contact_dof_ < oscillator.Dof(), "contact_dof must be in [0, N)");
-  inverse_mass_column_ = system.mass.inverse().col(contact_dof_);
+  const Eigen::MatrixXd inverse_mass = system.mass.inverse();
+  for (const StopParameters& stop : system.stops) {
+    Require(stop.dof >= 0 && stop.dof < oscillator.Dof(), "a stop's dof must be in [0, N)");
+    stops_.push_back({stop.dof, stop.side == StopSide::kUpper ? 1.0 : -1.0, stop.position,
+                      stop.restitution, inverse_mass.col(stop.dof)});
+  }
 }
 
 bool ImpactSequence::Begin(double t0, Eigen::Ref<Eigen::VectorXd> y) {
-  if (Gap(y.data()) < 0.0) return true;
-  if (y[velocity_index_] > 0.0) return Impact(t0, y);
-  chatter_detected_ = NextFlightUnresolvable(t0, y);
-  return !chatter_detected_;
+  for (int k = 0; k < StopCount(); ++k) {
+    if (Gap(k, y.data()) < 0.0) continue;
+    if (stops_[k].sign * y[oscillator_.Dof() + stops_[k].dof] > 0.0) return Impact(t0, y, k);
+    chatter_detected_ = NextFlightUnresolvable(t0, y, k);
+    if (chatter_detected_) return false;
+  }
+  return true;
 }
 
-bool ImpactSequence::Impact(double t, Eigen::Ref<Eigen::VectorXd> y) {
-  const bool too_soon = !impacts_.empty() && t - impacts_.back().t < min_interimpact_;
-  const double v_c = std::max(y[velocity_index_], 0.0);
-  impacts_.push_back({t, v_c});
+bool ImpactSequence::Impact(double t, Eigen::Ref<Eigen::VectorXd> y, int stop) {
+  const StopLaw& law = stops_[stop];
+  const int velocity_index = oscillator_.Dof() + law.dof;
+  const bool too_soon =
+      !impacts_.empty() && impacts_.back().stop == stop && t - impacts_.back().t < min_interimpact_;
+  const double speed = std::max(law.sign * y[velocity_index], 0.0);
+  impacts_.push_back({t, speed, stop});
   // Newton's law with the stop's impulse λ acting through the mass matrix:
   // v+ = v− + λ M⁻¹ e_c with v_c+ = −r v_c−.
-  const double impulse = -(1.0 + restitution_) * v_c / inverse_mass_column_(contact_dof_);
+  const double v_c = law.sign * speed;
+  const double impulse = -(1.0 + law.restitution) * v_c / law.inverse_mass_column(law.dof);
   for (int j = 0; j < oscillator_.Dof(); ++j) {
-    if (j != contact_dof_) y[oscillator_.Dof() + j] += impulse * inverse_mass_column_(j);
+    if (j != law.dof) y[oscillator_.Dof() + j] += impulse * law.inverse_mass_column(j);
   }
-  y[velocity_index_] = -restitution_ * v_c;
+  y[velocity_index] = -law.restitution * v_c;
   chatter_detected_ = too_soon || static_cast<long>(impacts_.size()) >= max_impacts_ ||
-                      NextFlightUnresolvable(t, y);
+                      NextFlightUnresolvable(t, y, stop);
   return !chatter_detected_;
 }
 
@@ -123,11 +130,12 @@ bool ImpactSequence::Impact(double t, Eigen::Ref<Eigen::VectorXd> y) {
 // held) and following them would follow round-off: CVODE lets the mass
 // through the stop, odeint keeps it bouncing at a noise-level speed for ever.
 // Stop here instead, as an observed short interval would.
-bool ImpactSequence::NextFlightUnresolvable(double t,
-                                            const Eigen::Ref<const Eigen::VectorXd>& y) const {
-  const double a_c = oscillator_.Acceleration(t, y)[contact_dof_];
+bool ImpactSequence::NextFlightUnresolvable(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
+                                            int stop) const {
+  const StopLaw& law = stops_[stop];
+  const double a_c = law.sign * oscillator_.Acceleration(t, y)[law.dof];
   if (a_c <= 0.0) return false;  // moving off, or at least not pushed back
-  const double speed = std::abs(y[velocity_index_]);
+  const double speed = std::abs(y[oscillator_.Dof() + law.dof]);
   return 2.0 * speed <= a_c * min_interimpact_ || speed * speed <= 2.0 * a_c * min_flight_depth_;
 }
 

@@ -47,8 +47,10 @@ class LinearOscillator {
   double omega_;
 };
 
-/// Applies the impact law v_c -> -r v_c, records the impacts, and decides when
-/// to give up because impacts accumulate. States are stacked y = (x, v).
+/// Applies the impact law v_c -> -r v_c at each stop, records the impacts,
+/// and decides when to give up because impacts accumulate. States are
+/// stacked y = (x, v). A stop limits x_c from above (s = +1: x_c <= xs) or
+/// below (s = -1: x_c >= xs).
 class ImpactSequence {
  public:
   /// position_tolerance: the integrator's absolute accuracy in x_c near the
@@ -61,28 +63,36 @@ class ImpactSequence {
   /// once, as after an impact. Returns false if the run must stop.
   bool Begin(double t0, Eigen::Ref<Eigen::VectorXd> y);
 
-  /// Records the impact at t (y: the state just before it) and applies the
-  /// impact law to y. A root found with v_c <= 0 is a graze blurred by
-  /// round-off: it is recorded with velocity 0 and leaves v_c = 0. Returns
-  /// false if the run must stop: impacts accumulate or max_impacts is reached.
-  bool Impact(double t, Eigen::Ref<Eigen::VectorXd> y);
+  /// Records the impact at `stop` at t (y: the state just before it) and
+  /// applies the impact law to y. A root found moving away is a graze
+  /// blurred by round-off: it is recorded with velocity 0 and leaves v_c =
+  /// 0. Returns false if the run must stop: impacts accumulate or
+  /// max_impacts is reached.
+  bool Impact(double t, Eigen::Ref<Eigen::VectorXd> y, int stop);
 
-  /// The signed distance g = x_c - xs (< 0 in free flight).
-  double Gap(const double* y) const { return y[contact_dof_] - stop_; }
+  int StopCount() const { return static_cast<int>(stops_.size()); }
+  /// The signed distance g = s (x_c - xs) of `stop` (< 0 in free flight).
+  double Gap(int stop, const double* y) const {
+    const StopLaw& law = stops_[stop];
+    return law.sign * (y[law.dof] - law.position);
+  }
 
   /// The run's result, ending at (t, y). Call once, at the end: it hands
   /// over the recorded impacts.
   ReferenceRun Finish(double t, const Eigen::Ref<const Eigen::VectorXd>& y, long rhs_evaluations);
 
  private:
-  bool NextFlightUnresolvable(double t, const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  struct StopLaw {
+    int dof;
+    double sign;
+    double position;
+    double restitution;
+    Eigen::VectorXd inverse_mass_column;  ///< M⁻¹ e_c: the direction of the stop's impulse
+  };
+  bool NextFlightUnresolvable(double t, const Eigen::Ref<const Eigen::VectorXd>& y, int stop) const;
 
   const LinearOscillator& oscillator_;
-  int contact_dof_;
-  int velocity_index_;  // of v_c in y
-  double stop_;
-  double restitution_;
-  Eigen::VectorXd inverse_mass_column_;  ///< M⁻¹ e_c: the direction of the stop's impulse
+  std::vector<StopLaw> stops_;
   long max_impacts_;
   double min_interimpact_;
   double min_flight_depth_;

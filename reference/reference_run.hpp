@@ -10,7 +10,8 @@ namespace impactkit::reference {
 
 struct ReferenceImpact {
   double t;         ///< impact time
-  double velocity;  ///< v_c just before the impact (> 0)
+  double velocity;  ///< the speed towards the stop just before the impact (> 0)
+  int stop = 0;     ///< which stop (an index into System::stops)
 };
 
 struct ReferenceRun {

@@ -94,7 +94,7 @@ TEST_CASE("the issue's elastic 3-mass chatter runs in bounded work, to the same 
   const SimulationSummary summary = Simulator(s).Run(state, t_end);
   CHECK(summary.status == SimulationStatus::kReachedEnd);
   CHECK(summary.impacts < 100000);
-  CHECK(state.stuck);
+  CHECK(state.Stuck());
   // A 100 times finer rule moves the end state by no more than the coarse
   // rule's bounce speed (~1e-5 here) and its consequences.
   SimulationOptions finer;

@@ -72,7 +72,7 @@ void CvodeFlight(const System& system, const Eigen::VectorXd& eta, double t, Eig
   const HybridState before = ImpactMap(system).ToState(eta);
   *x = before.x;
   *v = before.v;
-  (*v)(system.contact_dof) *= -system.restitution;
+  (*v)(system.stops[0].dof) *= -system.stops[0].restitution;
   reference::CvodeLinearFlow(system.mass, system.damping, system.stiffness, system.forcing,
                              Eigen::VectorXd::Zero(system.Dof()), system.omega, before.t, *x, *v,
                              t);
@@ -82,7 +82,7 @@ void CvodeFlight(const System& system, const Eigen::VectorXd& eta, double t, Eig
 /// `duration`), by CVODE: sampled, then golden-section refined.
 double CvodeClearance(const System& system, const Eigen::VectorXd& eta, double duration) {
   const double t0 = eta(system.Dof() - 1);
-  const int c = system.contact_dof;
+  const int c = system.stops[0].dof;
   auto height = [&](double t) {
     Eigen::VectorXd x, v;
     CvodeFlight(system, eta, t, &x, &v);
@@ -99,7 +99,7 @@ double CvodeClearance(const System& system, const Eigen::VectorXd& eta, double d
     const double m1 = b - g * (b - a), m2 = a + g * (b - a);
     (height(m1) > height(m2) ? b : a) = height(m1) > height(m2) ? m2 : m1;
   }
-  return system.stop - height(0.5 * (a + b));
+  return system.stops[0].position - height(0.5 * (a + b));
 }
 
 /// Consecutive points differ by no more than the largest step allows.
@@ -163,7 +163,7 @@ TEST_CASE(
         std::complex<double>(0, w) * system.damping.cast<std::complex<double>>();
     const Eigen::VectorXcd x =
         dynamic.partialPivLu().solve(system.forcing.cast<std::complex<double>>());
-    return std::abs(x(system.contact_dof)) - system.stop;
+    return std::abs(x(system.stops[0].dof)) - system.stops[0].position;
   };
   double lo = 1.9, hi = 2.1;
   REQUIRE((amplitude(lo) > 0) != (amplitude(hi) > 0));
@@ -181,7 +181,7 @@ TEST_CASE(
   const Eigen::VectorXd a =
       at.mass.inverse() * (at.forcing * std::cos(at.omega * (eta(1) + 2 * at.ForcingPeriod())) -
                            at.damping * v - at.stiffness * x);
-  const int c = at.contact_dof;
+  const int c = at.stops[0].dof;
   CHECK(v(c) * v(c) / (2 * std::abs(a(c))) < 1e-9);
 }
 

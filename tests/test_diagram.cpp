@@ -62,7 +62,7 @@ double CvodeClearance(const System& system, const Eigen::VectorXd& eta, int p) {
   const ImpactMap map(system);
   const MapResult image = map.Apply(eta, p, false);
   REQUIRE(image.status == MapStatus::kOk);
-  const int c = system.contact_dof, tau = map.TimeIndex();
+  const int c = system.stops[0].dof, tau = map.TimeIndex();
   double clearance = 1e300;
   for (int k = 0; k < p; ++k) {
     const Eigen::VectorXd& from = k == 0 ? eta : image.path[k - 1];
@@ -71,7 +71,7 @@ double CvodeClearance(const System& system, const Eigen::VectorXd& eta, int p) {
     auto height = [&](double t) {
       if (t - t0 < 1e-9) return before.x(c);  // CVODE needs an interval
       Eigen::VectorXd x = before.x, v = before.v;
-      v(c) *= -system.restitution;
+      v(c) *= -system.stops[0].restitution;
       reference::CvodeLinearFlow(system.mass, system.damping, system.stiffness, system.forcing,
                                  Eigen::VectorXd::Zero(system.Dof()), system.omega, t0, x, v, t);
       return x(c);
@@ -91,7 +91,7 @@ double CvodeClearance(const System& system, const Eigen::VectorXd& eta, int p) {
     // An interior maximum, not the impact the flight starts from (where x_c
     // = xs trivially).
     if (top - t0 > 1e-6 && t0 + duration - top > 1e-6) {
-      clearance = std::min(clearance, system.stop - height(top));
+      clearance = std::min(clearance, system.stops[0].position - height(top));
     }
   }
   return clearance;
@@ -108,13 +108,13 @@ std::pair<double, double> CvodeShallowestArrival(const System& system, const Eig
   const ImpactMap map(system);
   const MapResult image = map.Apply(eta, p, false);
   REQUIRE(image.status == MapStatus::kOk);
-  const int c = system.contact_dof, tau = map.TimeIndex();
+  const int c = system.stops[0].dof, tau = map.TimeIndex();
   std::pair<double, double> shallowest{1e300, 0.0};
   for (int k = 0; k < p; ++k) {
     const Eigen::VectorXd& from = k == 0 ? eta : image.path[k - 1];
     const HybridState before = map.ToState(from);
     Eigen::VectorXd x = before.x, v = before.v;
-    v(c) *= -system.restitution;
+    v(c) *= -system.stops[0].restitution;
     const double t = image.path[k](tau);
     reference::CvodeLinearFlow(system.mass, system.damping, system.stiffness, system.forcing,
                                Eigen::VectorXd::Zero(system.Dof()), system.omega, from(tau), x, v,
@@ -123,7 +123,7 @@ std::pair<double, double> CvodeShallowestArrival(const System& system, const Eig
         system.forcing * std::cos(system.omega * t) - system.damping * v - system.stiffness * x;
     const double a = system.mass.ldlt().solve(force)(c);
     const double depth = v(c) * v(c) / (2.0 * std::abs(a));
-    if (depth < shallowest.first) shallowest = {depth, system.stop - x(c)};
+    if (depth < shallowest.first) shallowest = {depth, system.stops[0].position - x(c)};
   }
   return shallowest;
 }

@@ -65,7 +65,7 @@ class InvariantChecker : public Observer {
     positive_speeds_ = positive_speeds_ && impact.velocity > 0 && std::isfinite(impact.velocity);
   }
   void OnSegment(const Segment& segment) override {
-    const int c = s_.contact_dof;
+    const int c = s_.stops[0].dof;
     // The scale of x_c's rounding: its closed form's coefficients.
     const double scale = segment.Position(c).Scale();
     for (const double t :
@@ -76,7 +76,7 @@ class InvariantChecker : public Observer {
       // The event time carries the search's tolerance and the rounding of
       // t; the state, the rounding of its terms.
       const double allowed = std::abs(v_(c)) * 2 * TimeTolerance(t) + kRelativeRounding * scale;
-      worst_overshoot_ = std::max(worst_overshoot_, (x_(c) - s_.stop) / allowed);
+      worst_overshoot_ = std::max(worst_overshoot_, (x_(c) - s_.stops[0].position) / allowed);
     }
   }
   bool positive_speeds_ = true;
@@ -114,10 +114,11 @@ TEST_CASE("600 random systems, r = 1 and near 1 included: bounded work, invarian
       continue;
     }
     ++runs;
-    INFO("run " << runs << ": N = " << s.Dof() << ", r = " << s.restitution << ", Ω = " << s.omega
-                << ", xs = " << s.stop << ", contact " << s.contact_dof);
+    INFO("run " << runs << ": N = " << s.Dof() << ", r = " << s.stops[0].restitution << ", Ω = "
+                << s.omega << ", xs = " << s.stops[0].position << ", contact " << s.stops[0].dof);
     HybridState state = RestState(s);
-    state.x(s.contact_dof) = std::min(0.0, s.stop);  // at rest on the stop when xs < 0
+    state.x(s.stops[0].dof) =
+        std::min(0.0, s.stops[0].position);  // at rest on the stop when xs < 0
     InvariantChecker checker(s);
     const SimulationSummary summary = simulator->Run(state, kPeriods * s.ForcingPeriod(), checker);
     events += summary.impacts + summary.landings + summary.releases + summary.chatter_jumps;

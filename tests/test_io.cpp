@@ -122,9 +122,9 @@ void CheckSameSystem(const System& actual, const System& expected) {
   CHECK(actual.stiffness == expected.stiffness);
   CHECK(actual.forcing == expected.forcing);
   CHECK(actual.omega == expected.omega);
-  CHECK(actual.stop == expected.stop);
-  CHECK(actual.restitution == expected.restitution);
-  CHECK(actual.contact_dof == expected.contact_dof);
+  CHECK(actual.stops[0].position == expected.stops[0].position);
+  CHECK(actual.stops[0].restitution == expected.stops[0].restitution);
+  CHECK(actual.stops[0].dof == expected.stops[0].dof);
   REQUIRE(actual.chain.has_value() == expected.chain.has_value());
   if (expected.chain) {
     CHECK(actual.chain->dof == expected.chain->dof);
@@ -226,7 +226,7 @@ TEST_CASE("SystemToJson reads back to the same general system", "[io]") {
   // chain form: it must come back with the same matrices and contact DOF.
   System chain_elsewhere =
       UniformChain({2, 1.5, 1.0 / 3.0, 0.1}, Eigen::Vector2d(0.5, 0.25), 0.9, 0.1, 0.7);
-  chain_elsewhere.contact_dof = 0;
+  chain_elsewhere.stops[0].dof = 0;
   System expected = chain_elsewhere;
   expected.chain.reset();
   CheckSameSystem(FromJson(SystemToJson(chain_elsewhere)), expected);
@@ -352,6 +352,21 @@ TEST_CASE("every error in a system file is one line naming the file and the fiel
       {"bad.json", R"({"stiffness": [[2, -1], [-0.5, 1]]})",
        {"K (stiffness matrix) must be symmetric"}},
       {"bad.json", R"({"contact_dof": 3})", {"contact DOF must be in [1, 2], got 3"}},
+      // Stop lists.
+      {"bad.json", R"({"xs": 0.2, "stops": [{"position": 0.1}]})",
+       {"'stops' cannot be combined with xs, r or contact_dof"}},
+      {"bad.json", R"({"stops": []})", {"'stops' must be a non-empty array of stops"}},
+      {"bad.json", R"({"stops": [{"dof": 2}]})", {"'stops[1].position' is required"}},
+      {"bad.json", R"({"stops": [{"position": 0.1, "side": "left"}]})",
+       {"'stops[1].side' must be \"upper\" (x <= position) or \"lower\"", "got \"left\""}},
+      {"bad.json", R"({"stops": [{"position": 0.1}, {"position": -0.1, "sid": "lower"}]})",
+       {"unknown key \"sid\" in 'stops[2]'; allowed: dof, side, position, restitution"}},
+      {"bad.toml", "[[stops]]\nposition = 0.1\n[[stops]]\nposition = 0.2\n",
+       {"stops 1 and 2 both limit mass 2 from above"}},
+      {"bad.toml", "[[stops]]\nposition = 0.1\n[[stops]]\nposition = 0.2\nside = \"lower\"\n",
+       {"the stops of mass 2 leave it no room: the lower one at 0.2 must be below the upper one at 0.1"}},
+      {"bad.toml", "[[stops]]\nposition = 0.1\n[[stops]]\nposition = -0.1\nside = \"lower\"\nrestitution = 2\n",
+       {"r2 (restitution of stop 2) must be in [0, 1], got 2"}},
   };
   // clang-format on
   for (const BadFile& bad : cases) {

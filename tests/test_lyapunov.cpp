@@ -34,7 +34,8 @@ Eigen::VectorXd SettledImpact(const System& system, int periods) {
 /// |log(v_0/v_n)| / time_span.
 double LiouvilleSum(const System& system, const LyapunovResult& result) {
   const double trace = system.mass.llt().solve(system.damping).trace();
-  return -trace + 2.0 * std::log(system.restitution) * result.impacts_used / result.time_span;
+  return -trace +
+         2.0 * std::log(system.stops[0].restitution) * result.impacts_used / result.time_span;
 }
 
 /// Largest exponent of the flow from two simulated trajectories (Benettin):
@@ -53,8 +54,8 @@ double SeparationGrowthRate(const System& system, const HybridState& start, int 
     const double t_end = a.t + chunk * system.ForcingPeriod();
     simulator.Run(a, t_end);
     simulator.Run(b, t_end);
-    REQUIRE_FALSE(a.stuck);
-    REQUIRE_FALSE(b.stuck);
+    REQUIRE_FALSE(a.Stuck());
+    REQUIRE_FALSE(b.Stuck());
     Eigen::VectorXd d(2 * n);
     d << b.x - a.x, b.v - a.v;
     const double distance = d.norm();

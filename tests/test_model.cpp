@@ -38,7 +38,7 @@ TEST_CASE("uniform chain matrices", "[model]") {
   CHECK(s.mass.isApprox(2.0 * Eigen::Matrix3d::Identity()));
   CHECK(s.stiffness.isApprox(5.0 * e));
   CHECK(s.damping.isApprox(0.3 * e));
-  CHECK(s.contact_dof == 2);
+  CHECK(s.stops[0].dof == 2);
 }
 
 TEST_CASE("named parameters round-trip and rebuild the chain", "[model]") {

@@ -108,7 +108,7 @@ TEST_CASE("a series with events has each impact before and after, and every stic
     INFO("omega = " << omega);
     const System s = PaperSystem(omega);
     const double period = s.ForcingPeriod();
-    const int c = s.contact_dof;
+    const int c = s.stops[0].dof;
     TimeSeriesRecorder plain(100 * period, period / 50),
         with_events(100 * period, period / 50, true);
     ImpactRecorder impacts;
@@ -161,9 +161,9 @@ TEST_CASE("a series with events has each impact before and after, and every stic
       const Impact& impact = impacts.Impacts()[k];
       CHECK(before[k].t == impact.t);
       CHECK(after[k].t == impact.t);
-      CHECK(before[k].x(c) == s.stop);
+      CHECK(before[k].x(c) == s.stops[0].position);
       CHECK(before[k].v(c) == impact.velocity);
-      CHECK_THAT(after[k].v(c), WithinAbs(-s.restitution * impact.velocity, 1e-15));
+      CHECK_THAT(after[k].v(c), WithinAbs(-s.stops[0].restitution * impact.velocity, 1e-15));
       CHECK(after[k].v(0) == before[k].v(0));
     }
     // Sticking at chatter ends where the mass is held, released at the releases.
@@ -172,7 +172,7 @@ TEST_CASE("a series with events has each impact before and after, and every stic
       REQUIRE(release_samples.size() == releases.times.size());
       for (const Sample& stick : sticks) {
         CHECK(stick.stuck);
-        CHECK(stick.x(c) == s.stop);
+        CHECK(stick.x(c) == s.stops[0].position);
         CHECK(stick.v(c) == 0.0);
         CHECK(std::count(chatter.EndTimes().begin(), chatter.EndTimes().end(), stick.t) == 1);
         // The state there, by a separate run to that instant.

@@ -13,7 +13,7 @@ TEST_CASE("the closed-form range matches a simulation with the stop out of reach
   for (double omega : {0.4, 0.62, 1.0, 1.62, 2.3}) {
     INFO("omega = " << omega);
     System s = PaperSystem(omega);
-    s.stop = 1e6;  // never reached: the linear chain
+    s.stops[0].position = 1e6;  // never reached: the linear chain
     // Transients decay at least like e^{-c t / (2m)} (the slowest mode's
     // rate ζω = c λ_1 / 2 ≥ 0.019 here): 1500 time units leave < 1e-12.
     const int periods = static_cast<int>(std::ceil(1500.0 / s.ForcingPeriod()));
@@ -61,7 +61,7 @@ TEST_CASE("an SDOF response has the textbook amplitude", "[resonance]") {
   s.damping = Eigen::MatrixXd::Constant(1, 1, 0.3);
   s.stiffness = Eigen::MatrixXd::Constant(1, 1, 3.0);
   s.forcing = Eigen::VectorXd::Constant(1, 0.5);
-  s.contact_dof = 0;
+  s.stops[0].dof = 0;
   s.chain.reset();
   const double omega = 0.9;
   const double expected = 0.5 / std::hypot(3.0 - 2.0 * omega * omega, 0.3 * omega);

@@ -27,15 +27,16 @@ class ImpactLawChecker : public Observer {
     Eigen::VectorXd x, v;
     if (pending_speed_ >= 0 && segment.Mode() == SegmentMode::kFree) {
       segment.StateAt(segment.Begin(), &x, &v);
-      worst_rebound_error_ = std::max(
-          worst_rebound_error_, std::abs(v(s_.contact_dof) + s_.restitution * pending_speed_));
+      worst_rebound_error_ =
+          std::max(worst_rebound_error_,
+                   std::abs(v(s_.stops[0].dof) + s_.stops[0].restitution * pending_speed_));
     }
     pending_speed_ = -1.0;
     const double dt = s_.ForcingPeriod() / 4000.0;
     for (double t = segment.Begin(); t <= segment.End(); t += dt) {
       segment.StateAt(t, &x, &v);
       all_finite_ = all_finite_ && x.allFinite() && v.allFinite();
-      max_gap_ = std::max(max_gap_, x(s_.contact_dof) - s_.stop);
+      max_gap_ = std::max(max_gap_, x(s_.stops[0].dof) - s_.stops[0].position);
     }
   }
   double worst_rebound_error_ = 0.0;
@@ -192,7 +193,7 @@ TEST_CASE("release happens where the contact force vanishes (paper Eq. 16)", "[s
     HybridState at = RestState(s);
     simulator.Run(at, t);
     CHECK_THAT(0.1 * at.v(0) + (at.x(0) - 0.1), WithinAbs(0.0, 1e-10));
-    CHECK_THAT(at.x(1), WithinAbs(s.stop, 1e-15));
+    CHECK_THAT(at.x(1), WithinAbs(s.stops[0].position, 1e-15));
   }
 }
 
@@ -213,7 +214,7 @@ TEST_CASE("the stuck phase follows the paper's Eq. 17", "[simulate]") {
   HybridState at_begin = RestState(s), at_end = RestState(s);
   simulator.Run(at_begin, stick.begin);
   simulator.Run(at_end, stick.end);
-  REQUIRE(at_begin.stuck);
+  REQUIRE(at_begin.Stuck());
   Eigen::VectorXd x = at_begin.x.head(1), v = at_begin.v.head(1);
   const Eigen::MatrixXd one = Eigen::MatrixXd::Ones(1, 1);
   reference::CvodeLinearFlow(one, 0.2 * one, 2.0 * one, Eigen::VectorXd::Constant(1, 0.5),
@@ -231,7 +232,7 @@ TEST_CASE("chatter: accumulation and threshold methods agree on the sticking mot
   HybridState a = RestState(s), b = RestState(s);
   Simulator(s).Run(a, 50 * s.ForcingPeriod());
   Simulator(s, threshold).Run(b, 50 * s.ForcingPeriod());
-  CHECK(a.stuck == b.stuck);
+  CHECK(a.Stuck() == b.Stuck());
   CHECK((a.x - b.x).cwiseAbs().maxCoeff() < 1e-5);
   CHECK((a.v - b.v).cwiseAbs().maxCoeff() < 1e-5);
 }
@@ -243,7 +244,7 @@ TEST_CASE("runs can be split anywhere without changing the result", "[simulate]"
   simulator.Run(whole, 20 * s.ForcingPeriod());
   for (int k = 1; k <= 20; ++k) simulator.Run(split, k * s.ForcingPeriod());
   CHECK((whole.x - split.x).cwiseAbs().maxCoeff() < 1e-9);
-  CHECK(whole.stuck == split.stuck);
+  CHECK(whole.Stuck() == split.Stuck());
 }
 
 TEST_CASE("bad run arguments are rejected", "[simulate]") {

@@ -293,7 +293,7 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   // Recomputed at the located xs: an orbit whose stuck phase only just
   // holds (Fs's interior minimum small beside its Fs(t*) ~ 0.09) ...
   System at_end = system;
-  at_end.stop = end.parameter;
+  at_end.stops[0].position = end.parameter;
   StickingOrbit again;
   REQUIRE(FindStickingOrbit(at_end, end.orbit.state, StickingOrbitOptions{}, &again).termination ==
           Termination::kConverged);
@@ -302,7 +302,7 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   // ... and the simulation 1e-3 beyond it sticks twice per period: the
   // early release and the sticking that follows it.
   System beyond = system;
-  beyond.stop = end.parameter + 1e-3;
+  beyond.stops[0].position = end.parameter + 1e-3;
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(beyond, 300, 4);
   REQUIRE(seed);
   CHECK(seed->releases == 2);

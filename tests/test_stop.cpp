@@ -32,7 +32,7 @@ double Evaluate(const LinearOutput& w, const Eigen::VectorXd& x, const Eigen::Ve
 
 TEST_CASE("the stop's reset and its Jacobian", "[stop]") {
   const System system = GeneralThreeDof();
-  const Stop stop(system);
+  const Stop stop(system, 0);
   Eigen::VectorXd v(3);
   v << 0.3, 0.7, -0.2;
   Eigen::VectorXd after = v;
@@ -46,7 +46,7 @@ TEST_CASE("the stop's reset and its Jacobian", "[stop]") {
   auto kinetic = [&](const Eigen::VectorXd& u) { return 0.5 * u.dot(system.mass * u); };
   CHECK_THAT(kinetic(after) - kinetic(v), WithinAbs(-(1 - 0.36) * 0.49 / (2 * column(1)), 1e-15));
   // A diagonal M: only v_c changes, to the last bit (the paper's law).
-  const Stop paper_stop(PaperSystem());
+  const Stop paper_stop(PaperSystem(), 0);
   Eigen::VectorXd u(2);
   u << 0.3, 0.7;
   paper_stop.Reset(u);
@@ -68,10 +68,11 @@ TEST_CASE("the stop's reset and its Jacobian", "[stop]") {
 
 TEST_CASE("the stop's witnesses are the gap and the contact force", "[stop]") {
   const System system = GeneralThreeDof();
-  const Stop stop(system);
+  const Stop stop(system, 0);
   const Eigen::Vector3d x(-0.3, 0.15, 0.4), v(0.2, 0.0, -0.5);
   const double t = 1.7;
-  CHECK_THAT(Evaluate(stop.Gap(3).output, x, v, system.omega, t), WithinAbs(x(1) - 0.15, 1e-16));
+  CHECK_THAT(Evaluate(stop.Gap({0, 1, 2}).output, x, v, system.omega, t),
+             WithinAbs(x(1) - 0.15, 1e-16));
 
   // Held: x_2 = xs, v_2 = a_2 = 0. The other rows of M a = f − R e_2, R
   // the stop's reaction, give a without row 2, and row 2 then gives the
@@ -86,11 +87,13 @@ TEST_CASE("the stop's witnesses are the gap and the contact force", "[stop]") {
   const double fs = f(1) - system.mass.row(1).dot(a);
 
   const HybridSystem hybrid(system);
-  const Eigen::VectorXd x_held = hybrid.Held(x), v_held = hybrid.Held(v);
-  CHECK_THAT(hybrid.ContactForce(t, x_held, v_held), WithinAbs(fs, 1e-12));
-  CHECK_THAT(Evaluate(stop.Release(system).output, x_held, v_held, system.omega, t),
+  const Eigen::VectorXd x_held = hybrid.Held(0, x), v_held = hybrid.Held(0, v);
+  CHECK_THAT(hybrid.ContactForce(0, t, x_held, v_held), WithinAbs(fs, 1e-12));
+  const Eigen::Vector3d held_positions(0.0, 0.15, 0.0);
+  CHECK_THAT(Evaluate(stop.Release(system, {0, 2}, held_positions).output, x_held, v_held,
+                      system.omega, t),
              WithinAbs(-fs, 1e-12));
-  CHECK(hybrid.Full(x_held, 0.15) == x);
+  CHECK(hybrid.Full(0, x_held, 0.15) == x);
   CHECK(Stop::Holds(1e-9));
   CHECK_FALSE(Stop::Holds(0.0));
   CHECK_FALSE(Stop::Holds(-1e-9));
@@ -110,14 +113,14 @@ TEST_CASE("the hybrid system's vector field is M⁻¹(A cos Ωt − C v − K x)
   // free flow's own vector field (x' = v, v' = a).
   double rate = 0.0;
   Eigen::VectorXd force(3), acceleration(3);
-  CHECK_THAT(hybrid.ContactAcceleration(t, x, v, &rate, &force, &acceleration),
+  CHECK_THAT(hybrid.ContactAcceleration(0, t, x, v, &rate, &force, &acceleration),
              WithinAbs(a(1), 1e-14));
   const double h = 1e-6;
   double ignored;
   const double ahead =
-      hybrid.ContactAcceleration(t + h, x + h * v, v + h * a, &ignored, &force, &acceleration);
+      hybrid.ContactAcceleration(0, t + h, x + h * v, v + h * a, &ignored, &force, &acceleration);
   const double behind =
-      hybrid.ContactAcceleration(t - h, x - h * v, v - h * a, &ignored, &force, &acceleration);
+      hybrid.ContactAcceleration(0, t - h, x - h * v, v - h * a, &ignored, &force, &acceleration);
   CHECK_THAT(rate, WithinAbs((ahead - behind) / (2 * h), 1e-7));
 }
 
@@ -142,7 +145,7 @@ TEST_CASE("a full mass matrix no longer gains energy at impacts and stays bounde
     explicit Check(const System& s) : s_(s) {}
     void OnImpact(const Impact& impact) override {
       Eigen::VectorXd after = impact.v;
-      Stop(s_).Reset(after);
+      Stop(s_, 0).Reset(after);
       gained += after.dot(s_.mass * after) > impact.v.dot(s_.mass * impact.v);
       largest = std::max(largest, impact.x.cwiseAbs().maxCoeff());
       ++count;

@@ -155,16 +155,42 @@ std::string ParameterList(const System& system) {
   return fmt::format("{}", fmt::join(items, " "));
 }
 
+namespace {
+
+/// The stops as "xs=0.1, r=0.7" for the one upper stop of the seed's
+/// model, else one "x2 <= 0.1 (r=0.7)" per stop.
+std::string DescribeStops(const System& system) {
+  const StopParameters& first = system.stops[0];
+  if (system.StopCount() == 1 && first.side == StopSide::kUpper) {
+    return fmt::format("xs={:.6g}, r={:.6g}", first.position, first.restitution);
+  }
+  std::vector<std::string> stops;
+  for (const StopParameters& stop : system.stops) {
+    stops.push_back(fmt::format("x{} {} {:.6g} (r={:.6g})", stop.dof + 1,
+                                stop.side == StopSide::kUpper ? "<=" : ">=", stop.position,
+                                stop.restitution));
+  }
+  return fmt::format("stops {}", fmt::join(stops, ", "));
+}
+
+}  // namespace
+
+std::string ImpactSpeedLabel(const System& system) {
+  if (system.StopCount() > 1) return "impact speed (every stop)";
+  return fmt::format("impact velocity v{}(t-)", system.stops[0].dof + 1);
+}
+
 std::string DescribeSystem(const System& system) {
   const std::string common =
-      fmt::format("A=({:.6g}), omega={:.6g}, xs={:.6g}, r={:.6g}", fmt::join(system.forcing, ", "),
-                  system.omega, system.stop, system.restitution);
+      fmt::format("A=({:.6g}), omega={:.6g}, {}", fmt::join(system.forcing, ", "), system.omega,
+                  DescribeStops(system));
   if (system.chain) {
     const ChainParameters& chain = *system.chain;
     return fmt::format("uniform chain n={} m={:.6g} k={:.6g} c={:.6g}, {}", chain.dof, chain.mass,
                        chain.stiffness, chain.damping, common);
   }
-  return fmt::format("general N={} (contact mass {}), {}", system.Dof(), system.contact_dof + 1,
+  if (system.StopCount() > 1) return fmt::format("general N={}, {}", system.Dof(), common);
+  return fmt::format("general N={} (contact mass {}), {}", system.Dof(), system.stops[0].dof + 1,
                      common);
 }
 

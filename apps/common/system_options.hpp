@@ -47,4 +47,8 @@ std::string ParameterList(const System& system);
 /// xs=0.1, r=0.7", or for general matrices their size and contact mass.
 std::string DescribeSystem(const System& system);
 
+/// The axis label of impact speeds: "impact velocity v2(t-)" for one stop,
+/// "impact speed (every stop)" for several.
+std::string ImpactSpeedLabel(const System& system);
+
 }  // namespace impactkit::cli

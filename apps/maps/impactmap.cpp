@@ -61,7 +61,7 @@ void RunImpactMap(const ImpactMapRequest& request) {
     LineChart chart;
     chart.title = fmt::format("impact map, Ω = {}", system.omega);
     chart.x_label = fmt::format("phase at impact, t mod T (T = {:.6g})", system.ForcingPeriod());
-    chart.y_label = fmt::format("impact velocity v{}(t-)", system.contact_dof + 1);
+    chart.y_label = ImpactSpeedLabel(system);
     chart.curves.push_back(points);
     WriteChartPng(*plot, chart);
   }

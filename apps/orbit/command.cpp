@@ -38,7 +38,7 @@ void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary&
   fmt::print("orbit:       P({},{}) at omega = {}, {}\n", orbit.p, orbit.q, orbit.omega,
              orbit.stable ? "stable" : "unstable");
   fmt::print("impacts:     phase (t mod T, T = {:.6g})   velocity v{}(t-)\n",
-             system.ForcingPeriod(), system.contact_dof + 1);
+             system.ForcingPeriod(), system.SoleStop("impactkit orbit").dof + 1);
   for (const OrbitImpact& i : orbit.impacts) {
     fmt::print("             {:<28.12f} {:.12f}\n", i.phase, i.velocity);
   }

@@ -54,7 +54,7 @@ void Print(const System& system, const StickingOrbit& orbit, const StickingOrbit
     }
   }
   fmt::print("multipliers: on the release section (sticking collapses x{0}, v{0})\n",
-             system.contact_dof + 1);
+             system.SoleStop("impactkit orbit").dof + 1);
   for (const std::complex<double>& m : orbit.multipliers) {
     fmt::print("             {:<+20.12e} {:<+20.12e} {:.12f}\n", m.real(), m.imag(), std::abs(m));
   }

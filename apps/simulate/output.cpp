@@ -31,23 +31,34 @@ void AppendState(std::vector<double>& row, const Eigen::VectorXd& x, const Eigen
   row.insert(row.end(), v.begin(), v.end());
 }
 
-/// The paper's Fig. 4 style: the contact mass solid and dark, the others
-/// dashed in distinct colours, the stop as a dotted line.
+bool HasStop(const System& system, int dof) {
+  for (const StopParameters& stop : system.stops) {
+    if (stop.dof == dof) return true;
+  }
+  return false;
+}
+
+/// The paper's Fig. 4 style: the masses at stops solid and dark, the others
+/// dashed in distinct colours, each stop as a dotted line.
 LineChart TimeSeriesChart(const SimulateResult& result) {
   static constexpr std::array<const char*, 6> kPalette = {"#1f77b4", "#d62728", "#2ca02c",
                                                           "#9467bd", "#ff7f0e", "#8c564b"};
   const System& system = result.system;
   LineChart chart;
+  const StopParameters& first = system.stops[0];
   chart.title =
-      fmt::format("impactkit simulate: Ω = {:.6g}, xs = {:.6g}, r = {:.6g}: {}", system.omega,
-                  system.stop, system.restitution, MotionLabel(result.analysis));
+      system.StopCount() == 1
+          ? fmt::format("impactkit simulate: Ω = {:.6g}, xs = {:.6g}, r = {:.6g}: {}", system.omega,
+                        first.position, first.restitution, MotionLabel(result.analysis))
+          : fmt::format("impactkit simulate: Ω = {:.6g}, {} stops: {}", system.omega,
+                        system.StopCount(), MotionLabel(result.analysis));
   chart.x_label = "t";
   chart.y_label = "displacement";
   const std::vector<Sample>& samples = result.recorders.series->Samples();
   for (int i = 0, other = 0; i < system.Dof(); ++i) {
     Curve curve;
     curve.title = fmt::format("x{}", i + 1);
-    curve.dashed = i != system.contact_dof;
+    curve.dashed = !HasStop(system, i);
     if (curve.dashed) curve.color = kPalette[other++ % kPalette.size()];
     for (const Sample& sample : samples) {
       curve.x.push_back(sample.t);
@@ -55,7 +66,15 @@ LineChart TimeSeriesChart(const SimulateResult& result) {
     }
     chart.curves.push_back(std::move(curve));
   }
-  chart.lines.push_back({system.stop, fmt::format("stop xs = {:.6g}", system.stop)});
+  for (int k = 0; k < system.StopCount(); ++k) {
+    const StopParameters& stop = system.stops[k];
+    chart.lines.push_back(
+        {stop.position,
+         system.StopCount() == 1
+             ? fmt::format("stop xs = {:.6g}", stop.position)
+             : fmt::format("stop {}: x{} {} {:.6g}", k + 1, stop.dof + 1,
+                           stop.side == StopSide::kUpper ? "<=" : ">=", stop.position)});
+  }
   return chart;
 }
 
@@ -71,7 +90,7 @@ SimulateOutputs::SimulateOutputs(const SimulateRequest& request, const System& s
   }
   if (!request.impacts.empty()) {
     impacts_ = &set_.AddCsv(request.impacts, provenance_.Text(),
-                            StateColumns({"t", "phase", "v"}, dof, {}));
+                            StateColumns({"t", "phase", "v"}, dof, {"stop"}));
   }
   plot_ = AddIfAsked(set_, request.plot);
   json_ = AddIfAsked(set_, request.json);
@@ -105,6 +124,7 @@ void SimulateOutputs::WriteImpacts(const SimulateResult& result) {
   for (const Impact& impact : result.recorders.steady.Impacts()) {
     row.assign({impact.t, impact.phase, impact.velocity});
     AppendState(row, impact.x, impact.v);
+    row.push_back(impact.stop + 1);  // stops count from 1 in files, as in the system file
     impacts_->WriteRow(row);
   }
 }

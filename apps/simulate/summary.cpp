@@ -44,7 +44,7 @@ std::vector<double> ToVector(const Eigen::VectorXd& v) { return {v.begin(), v.en
 
 Json StateJson(const HybridState& state) {
   return {
-      {"t", state.t}, {"x", ToVector(state.x)}, {"v", ToVector(state.v)}, {"stuck", state.stuck}};
+      {"t", state.t}, {"x", ToVector(state.x)}, {"v", ToVector(state.v)}, {"stuck", state.Stuck()}};
 }
 
 Json RunJson(const SimulateResult& result) {

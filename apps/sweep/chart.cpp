@@ -4,11 +4,13 @@
 
 #include <algorithm>
 
+#include "common/system_options.hpp"
+
 namespace impactkit::cli {
 
 std::vector<LineChart> SweepCharts(const System& system, const SweepOptions& options,
                                    const SweepResult& result) {
-  const int c = system.contact_dof + 1;
+  const int c = system.stops[0].dof + 1;
   LineChart ranges, speeds;
   ranges.title = fmt::format("impactkit sweep: max - min of x{} in each recorded period", c);
   // Both panels span the whole sweep, also where one of them has no data
@@ -21,7 +23,7 @@ std::vector<LineChart> SweepCharts(const System& system, const SweepOptions& opt
   ranges.x_range = range;
   ranges.y_from_zero = true;
   ranges.y_label = fmt::format("max - min x{}", c);
-  speeds.title = fmt::format("impact velocity v{}(t-)", c);
+  speeds.title = ImpactSpeedLabel(system);
   speeds.x_label = ParameterLabel(options.parameter);
   speeds.x_range = range;
   speeds.y_label = "impact velocity";

@@ -29,10 +29,12 @@ class FlatImpactRecorder : public Observer {
     t.push_back(impact.t);
     phase.push_back(impact.phase);
     velocity.push_back(impact.velocity);
+    stop.push_back(impact.stop);
     x.insert(x.end(), impact.x.begin(), impact.x.end());
     v.insert(v.end(), impact.v.begin(), impact.v.end());
   }
   std::vector<double> t, phase, velocity, x, v;
+  std::vector<int> stop;
 };
 
 /// Asks the simulator to stop when Python has a pending signal. The
@@ -145,6 +147,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   impact_arrays["t"] = MoveToArray(std::move(impacts.t));
   impact_arrays["phase"] = MoveToArray(std::move(impacts.phase));
   impact_arrays["velocity"] = MoveToArray(std::move(impacts.velocity));
+  impact_arrays["stop"] = MoveToArray(std::move(impacts.stop));
   impact_arrays["x"] = MoveToArray<double, 2>(std::move(impacts.x), {m, dof});
   impact_arrays["v"] = MoveToArray<double, 2>(std::move(impacts.v), {m, dof});
 
@@ -166,7 +169,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   result["stuck_time"] = summary.stuck_time;
   result["seconds"] = summary.elapsed_seconds;
   result["final_state"] = py::dict(py::arg("t") = state.t, py::arg("x") = state.x,
-                                   py::arg("v") = state.v, py::arg("stuck") = state.stuck);
+                                   py::arg("v") = state.v, py::arg("stuck") = state.Stuck());
   return result;
 }
 
@@ -188,7 +191,8 @@ Nothing is recorded before record_from. Returns a dict of numpy arrays:
             also each event, in time order: every impact twice at its instant
             ('impact_before', 'impact_after': v_c -> -r v_c), 'stick' and
             'release' (event '' on the grid)
-  impacts   {t, phase, velocity (m,), x (m, N), v (m, N) just before impact}
+  impacts   {t, phase, velocity (m,), stop (m,) int: which stop (0-based), x (m, N),
+             v (m, N) just before impact}
   strobe    the state at every t = k T (forcing phase 0), as samples
   sticking  (k, 2) [begin, end] of each interval held at the stop
 and status ('reached end', 'event limit reached', 'work bound reached: ...', ...),

@@ -25,6 +25,34 @@ void SetValidated(System& system, const std::string& name, double value) {
   system = std::move(changed);
 }
 
+/// A stop as Python sees it: a dict with the file's keys, dof 0-based.
+py::dict StopDict(const StopParameters& stop) {
+  return py::dict(py::arg("dof") = stop.dof,
+                  py::arg("side") = stop.side == StopSide::kUpper ? "upper" : "lower",
+                  py::arg("position") = stop.position, py::arg("restitution") = stop.restitution);
+}
+
+StopParameters StopFromDict(const py::dict& entry, int index) {
+  const std::string where = "stops[" + std::to_string(index) + "]";
+  for (const auto& [key, unused] : entry) {
+    const std::string name = py::str(key);
+    Require(name == "dof" || name == "side" || name == "position" || name == "restitution",
+            where + ": unknown key '" + name + "'; allowed: dof, side, position, restitution");
+  }
+  Require(entry.contains("dof") && entry.contains("position"),
+          where + " needs 'dof' (0-based) and 'position'");
+  StopParameters stop;
+  stop.dof = entry["dof"].cast<int>();
+  stop.position = entry["position"].cast<double>();
+  const std::string side =
+      entry.contains("side") ? entry["side"].cast<std::string>() : std::string("upper");
+  Require(side == "upper" || side == "lower",
+          where + ": side must be 'upper' (x <= position) or 'lower', got '" + side + "'");
+  stop.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
+  if (entry.contains("restitution")) stop.restitution = entry["restitution"].cast<double>();
+  return stop;
+}
+
 }  // namespace
 
 void BindSystem(py::module_& module) {
@@ -84,8 +112,31 @@ void BindSystem(py::module_& module) {
       .def_property_readonly(
           "forcing", [](const System& s) { return s.forcing; }, "A (a copy).")
       .def_property_readonly(
-          "contact_dof", [](const System& s) { return s.contact_dof; },
-          "The mass that meets the stop (0-based).")
+          "contact_dof", [](const System& s) { return s.SoleStop("contact_dof").dof; },
+          "The mass that meets the stop (0-based), of a system with one stop.")
+      .def_property_readonly(
+          "stops",
+          [](const System& s) {
+            py::list stops;
+            for (const StopParameters& stop : s.stops) stops.append(StopDict(stop));
+            return stops;
+          },
+          "The stops: a list of {dof (0-based), side ('upper': x <= position, 'lower'), "
+          "position, restitution}.")
+      .def(
+          "with_stops",
+          [](const System& s, const std::vector<py::dict>& entries) {
+            System copy = s;
+            copy.stops.clear();
+            for (std::size_t k = 0; k < entries.size(); ++k) {
+              copy.stops.push_back(StopFromDict(entries[k], static_cast<int>(k)));
+            }
+            Validate(copy);
+            return copy;
+          },
+          py::arg("stops"),
+          "A copy with these stops: dicts {dof (0-based), position, side='upper', "
+          "restitution=0.7}; ValueError if they are invalid.")
       .def_property_readonly(
           "is_chain", [](const System& s) { return s.chain.has_value(); },
           "True for a uniform chain (then m, k, c, n are parameters).")

@@ -83,3 +83,27 @@ def test_json_round_trip(tmp_path):
     back = impactkit.System.from_file(path)
     np.testing.assert_array_equal(back.damping, s.damping)
     assert back["omega"] == 0.9
+
+
+def test_stops_as_dicts_and_impacts_name_their_stop():
+    clearance = impactkit.System.chain(n=1, forcing=[1.0]).with_stops([
+        {"dof": 0, "side": "upper", "position": 0.5, "restitution": 0.8},
+        {"dof": 0, "side": "lower", "position": -0.5}])
+    assert clearance.stops == [
+        {"dof": 0, "side": "upper", "position": 0.5, "restitution": 0.8},
+        {"dof": 0, "side": "lower", "position": -0.5, "restitution": 0.7}]
+    assert clearance["xs2"] == -0.5 and clearance["r2"] == 0.7
+    impacts = impactkit.simulate(clearance, 200 * clearance.forcing_period,
+                                 record_from=190 * clearance.forcing_period)["impacts"]
+    # Each impact is at its stop's position, moving into it.
+    upper, lower = impacts["stop"] == 0, impacts["stop"] == 1
+    assert upper.any() and lower.any() and (upper | lower).all()
+    np.testing.assert_array_equal(impacts["x"][upper, 0], 0.5)
+    np.testing.assert_array_equal(impacts["x"][lower, 0], -0.5)
+    assert (impacts["v"][upper, 0] > 0).all() and (impacts["v"][lower, 0] < 0).all()
+    with pytest.raises(ValueError, match="one stop so far"):
+        clearance.contact_dof
+    with pytest.raises(ValueError, match="leave it no room"):
+        clearance.with_stops([{"dof": 0, "position": 0.1}, {"dof": 0, "side": "lower", "position": 0.2}])
+    with pytest.raises(ValueError, match="unknown key 'sid'"):
+        clearance.with_stops([{"dof": 0, "position": 0.1, "sid": "lower"}])

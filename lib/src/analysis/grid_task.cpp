@@ -50,9 +50,23 @@ std::string Numbers(const Eigen::MatrixXd& matrix) {
 }  // namespace
 
 std::string SystemIdentity(const System& system) {
-  return fmt::format("M={} C={} K={} A={} omega={} xs={} r={} contact={}", Numbers(system.mass),
-                     Numbers(system.damping), Numbers(system.stiffness), Numbers(system.forcing),
-                     system.omega, system.stop, system.restitution, system.contact_dof);
+  const std::string matrices =
+      fmt::format("M={} C={} K={} A={} omega={}", Numbers(system.mass), Numbers(system.damping),
+                  Numbers(system.stiffness), Numbers(system.forcing), system.omega);
+  const StopParameters& first = system.stops[0];
+  // One upper stop keeps the identity it had before stop lists, so that
+  // its checkpoints stay valid.
+  if (system.StopCount() == 1 && first.side == StopSide::kUpper) {
+    return fmt::format("{} xs={} r={} contact={}", matrices, first.position, first.restitution,
+                       first.dof);
+  }
+  std::string stops;
+  for (const StopParameters& stop : system.stops) {
+    stops += fmt::format(" stop={}:{}:{}:{}", stop.dof,
+                         stop.side == StopSide::kUpper ? "upper" : "lower", stop.position,
+                         stop.restitution);
+  }
+  return matrices + stops;
 }
 
 std::string SweepIdentity(const SweepOptions& o) {

@@ -48,7 +48,7 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   const double period = system.ForcingPeriod();
   HybridState state = RestState(system);
   simulator.Run(state, transient * period);
-  ReleaseRecorder recorder(system.contact_dof);
+  ReleaseRecorder recorder(system.SoleStop("seeding a sticking orbit").dof);
   simulator.Run(state, (transient + 2 * max_q + 1) * period, recorder);
   const std::vector<Eigen::VectorXd>& releases = recorder.Releases();
   if (releases.empty()) return std::nullopt;

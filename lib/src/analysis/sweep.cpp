@@ -139,7 +139,7 @@ bool RunValue(const System& system, const SweepOptions& options, HybridState& st
     point->last_impact = steady.Impacts().back();
   }
   const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
-  point->range_contact = Ranges(periods, system.contact_dof);
+  point->range_contact = Ranges(periods, system.stops[0].dof);
   point->range_first = Ranges(periods, 0);
   if (reached) {
     point->classification = ClassifyMotion(system, steady.Strobe(), steady.Impacts(),

@@ -72,7 +72,7 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
     const Eigen::VectorXd from = impact_state(contacts.clearance_flight);
     const HybridState at = map->FlightState(from, contacts.clearance_time);
     double value, slope, curvature;
-    map->FlightCoordinate(from, system.contact_dof)
+    map->FlightCoordinate(from, system.stops[0].dof)
         .ValueSlopeCurvature(contacts.clearance_time, &value, &slope, &curvature);
     const auto before =
         std::find_if(branch.points.rbegin(), branch.points.rend(), [&](const BranchPoint& b) {
@@ -83,7 +83,7 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
       rate = std::abs(*before->orbit.contacts.clearance / (before->parameter - point.parameter));
     }
     Eigen::VectorXd v = at.v;
-    v(system.contact_dof) = std::sqrt(2.0 * std::abs(curvature) * rate * offset);
+    v(system.stops[0].dof) = std::sqrt(2.0 * std::abs(curvature) * rate * offset);
     orbit.p = branch.p + 1;
     eta = map->ToEta(at.t, at.x, v);
   }

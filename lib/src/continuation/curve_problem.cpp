@@ -103,7 +103,7 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const 
   }
   const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
   if (!map) return false;
-  const int c = base_.contact_dof, time = map->TimeIndex();
+  const int c = base_.stops[0].dof, time = map->TimeIndex();
   const Eigen::VectorXd eta = Eta(x);
   if (!(eta(time + 1 + c) > 0)) return false;
   if (type_ == SpecialPointType::kGrazing) {
@@ -113,7 +113,7 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const 
     if (!start) return false;
     const HybridState at = map->FlightState(*start, x(eta_size_));
     g->resize(2);
-    *g << at.x(c) - map->GetSystem().stop + kGrazingMargin, at.v(c);
+    *g << at.x(c) - map->GetSystem().stops[0].position + kGrazingMargin, at.v(c);
     return g->allFinite();
   }
   const MapResult image = map->Apply(eta, options_.orbit.p, true);

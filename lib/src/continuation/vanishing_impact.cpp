@@ -53,7 +53,8 @@ double NonImpactingClearance(const System& s) {
   const Eigen::MatrixXcd dynamic = s.stiffness.cast<Complex>() - w * w * s.mass.cast<Complex>() +
                                    Complex(0.0, w) * s.damping.cast<Complex>();
   const Eigen::VectorXcd x = dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
-  return s.stop - std::abs(x(s.contact_dof));
+  const StopParameters& stop = s.SoleStop("the non-impacting clearance");
+  return stop.position - std::abs(x(stop.dof));
 }
 
 std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& problem,

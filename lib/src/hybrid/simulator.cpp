@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "hybrid/chatter_rule.hpp"
 #include "impactkit/dynamics/events.hpp"
@@ -83,7 +84,8 @@ struct Simulator::Impl {
 
 namespace {
 
-/// One run: the loop of simulate.hpp's pseudocode over a hybrid state.
+/// One run: the loop of simulate.hpp's pseudocode over a hybrid state, in
+/// the mode of the stops that hold their masses (none: free flight).
 class HybridRun {
  public:
   HybridRun(const HybridSystem& hybrid, const SimulationOptions& options,
@@ -94,19 +96,34 @@ class HybridRun {
         state_(state),
         t_end_(t_end),
         observer_(observer),
-        rule_(options, hybrid.GetStop().Restitution(), hybrid.TimeScale()),
+        witnesses_(hybrid.StopCount()),
+        length_scales_(hybrid.StopCount(), 1.0),
+        last_impacts_(hybrid.StopCount(), -std::numeric_limits<double>::infinity()),
+        stick_begins_(hybrid.StopCount(), state.t),
         force_scratch_(hybrid_.GetSystem().Dof()),
-        acceleration_scratch_(hybrid_.GetSystem().Dof()) {}
+        acceleration_scratch_(hybrid_.GetSystem().Dof()) {
+    for (int k = 0; k < hybrid.StopCount(); ++k) {
+      rules_.emplace_back(options, hybrid.GetStop(k).Restitution(), hybrid.TimeScale());
+    }
+  }
 
   SimulationSummary Execute();
 
  private:
-  void FreePhase();
-  void StuckPhase();
-  void ArriveAtStop(double te, double speed);
-  void ApplyImpact(double te, double speed);
+  /// The event that ends a phase: stop `stop`'s witness crossing at `time`.
+  struct Event {
+    int stop = -1;
+    double time = 0.0;
+  };
+  void Phase();
+  std::optional<Event> FirstEvent(const Mode& mode, const Eigen::VectorXd& z0);
+  std::optional<double> ReleaseTime(int stop, double end) const;
+  std::optional<double> ImpactTime(int stop, double end);
+  void MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, double t);
+  void ArriveAtStop(int stop, double te, double speed);
+  void ApplyImpact(int stop, double te, double speed);
   bool OverWorkBound();
-  double LengthScale() const;
+  double LengthScale(int stop) const;
   /// Where the current phase's search stops if no event comes first: t_end,
   /// or kPhaseSlice forcing periods on, so that a run without events still
   /// asks its observers (ShouldStop: Ctrl-C, progress) as it goes.
@@ -114,10 +131,10 @@ class HybridRun {
     return std::min(t_end_, state_.t + kPhaseSlice * hybrid_.GetSystem().ForcingPeriod());
   }
   static constexpr double kPhaseSlice = 1000;
-  EventOptions Search() const;
-  EventOptions HeldSearch() const;
-  void JumpToAccumulation(double te, double t_star);
-  void LandAtStop();
+  EventOptions Search(int stop) const;
+  EventOptions HeldSearch(const Signal& release) const;
+  void JumpToAccumulation(int stop, double te, double t_star);
+  void LandAtStop(int stop);
   std::int64_t Events() const {
     return summary_.impacts + summary_.landings + summary_.releases + summary_.chatter_jumps;
   }
@@ -128,14 +145,14 @@ class HybridRun {
   HybridState& state_;
   const double t_end_;
   Observer& observer_;
-  const ChatterRule rule_;
+  std::vector<ChatterRule> rules_;  ///< per stop (restitutions differ)
   SimulationSummary summary_;
-  Signal witness_;
-  Impact impact_;  ///< reused: no allocation per impact
+  std::vector<Signal> witnesses_;      ///< per stop, on the current phase's flow
+  std::vector<double> length_scales_;  ///< per stop, of the current flight (LengthScale())
+  std::vector<double> last_impacts_;   ///< per stop
+  std::vector<double> stick_begins_;   ///< per stop
+  Impact impact_;                      ///< reused: no allocation per impact
   Eigen::VectorXd force_scratch_, acceleration_scratch_;
-  double last_impact_ = -std::numeric_limits<double>::infinity();
-  double length_scale_ = 1.0;  ///< of the current flight (LengthScale())
-  double stick_begin_ = 0.0;
   static constexpr int kMaxStalledPhases = 1000;
   static constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
   int stalled_phases_ = 0;
@@ -145,7 +162,6 @@ class HybridRun {
 
 SimulationSummary HybridRun::Execute() {
   const auto start = std::chrono::steady_clock::now();
-  stick_begin_ = state_.t;
   window_begin_ = state_.t;
   while (state_.t < t_end_) {
     if (Events() >= options_.max_events) {
@@ -157,7 +173,7 @@ SimulationSummary HybridRun::Execute() {
       break;
     }
     const double before = state_.t;
-    state_.stuck ? StuckPhase() : FreePhase();
+    Phase();
     // Events at one instant, over and over, would loop forever.
     stalled_phases_ = state_.t > before ? 0 : stalled_phases_ + 1;
     if (stalled_phases_ > kMaxStalledPhases) {
@@ -174,60 +190,123 @@ SimulationSummary HybridRun::Execute() {
   return summary_;
 }
 
-void HybridRun::FreePhase() {
-  const System& s = hybrid_.GetSystem();
-  const LinearFlow& flow = hybrid_.FreeFlow();
-  const int c = s.contact_dof;
+/// One phase of the current mode: its exact motion up to the first event
+/// of any stop (or the slice's end), then that event.
+void HybridRun::Phase() {
+  const Mode& mode = hybrid_.Holding(state_.held);
+  const LinearFlow& flow = mode.Flow();
   const double t0 = state_.t;
-  const Eigen::VectorXd z0 = flow.Transient(t0, state_.x, state_.v);
-  flow.Output(hybrid_.Gap(), t0, z0, &witness_);
-  length_scale_ = LengthScale();
-  const bool pressing_now = state_.x(c) == s.stop && state_.v(c) > 0;
-  const std::optional<double> te = pressing_now
-                                       ? std::optional<double>(t0)
-                                       : FirstUpcrossing(witness_, t0, SliceEnd(), Search());
-  const double end = te.value_or(SliceEnd());
-  if (end > t0) observer_.OnSegment(Segment(flow, t0, z0, t0, end, SegmentMode::kFree, c, s.stop));
-  flow.State(t0, z0, end, &state_.x, &state_.v);
-  state_.t = end;
-  if (!te) return;
-  state_.x(c) = s.stop;
-  ArriveAtStop(end, std::max(state_.v(c), 0.0));
+  const Eigen::VectorXd z0 = flow.Transient(t0, mode.Reduced(state_.x), mode.Reduced(state_.v));
+  const std::optional<Event> event = FirstEvent(mode, z0);
+  const double end = event ? event->time : SliceEnd();
+  const bool stuck = state_.Stuck();
+  if (end > t0) {
+    observer_.OnSegment(Segment(flow, t0, z0, t0, end,
+                                stuck ? SegmentMode::kStuck : SegmentMode::kFree, mode.Moving(),
+                                mode.HeldPositions()));
+  }
+  MoveTo(mode, t0, z0, end);
+  if (stuck) summary_.stuck_time += end - t0;
+  if (!event) return;
+  const int k = event->stop;
+  if (mode.Holds(k)) {
+    state_.held &= ~StopBit(k);
+    ++summary_.releases;
+    observer_.OnRelease(stick_begins_[k], end);
+    return;
+  }
+  const Stop& stop = hybrid_.GetStop(k);
+  state_.x(stop.Dof()) = stop.Position();
+  ArriveAtStop(k, end, std::max(stop.SpeedTowards(state_.v(stop.Dof())), 0.0));
 }
 
-/// The length scale of the flight from the current state: the rounding of
-/// its gap comes from the state and the forced response (the gap signal's
-/// own coefficients can be far smaller, for a mass barely moving off the
-/// stop while the others swing).
-double HybridRun::LengthScale() const {
+/// The earliest event of the stops' witnesses on the mode's flow from z0:
+/// each searched up to the earliest found so far (a crossing later than
+/// that cannot end the phase), the first stop in order on a tie.
+std::optional<HybridRun::Event> HybridRun::FirstEvent(const Mode& mode, const Eigen::VectorXd& z0) {
+  const double t0 = state_.t;
+  std::optional<Event> first;
+  double end = SliceEnd();
+  for (int k = 0; k < hybrid_.StopCount(); ++k) {
+    const PreparedOutput* witness = mode.Witness(k);
+    if (!witness) continue;
+    mode.Flow().Output(*witness, t0, z0, &witnesses_[k]);
+    const std::optional<double> te = mode.Holds(k) ? ReleaseTime(k, end) : ImpactTime(k, end);
+    if (!te || (first && *te >= end)) continue;
+    first = Event{k, *te};
+    end = *te;
+    if (end == t0) break;  // nothing comes earlier
+  }
+  return first;
+}
+
+/// A held stop's release in (t0, end]: at once if the stop does not hold
+/// the mass here (Stop::Holds), else where −Fs first crosses 0 upwards.
+std::optional<double> HybridRun::ReleaseTime(int stop, double end) const {
+  const Signal& release = witnesses_[stop];
+  const EventOptions search = HeldSearch(release);
+  if (!Stop::Holds(release, state_.t, search)) return state_.t;
+  return FirstUpcrossing(release, state_.t, end, search);
+}
+
+/// An arrival at a stop whose mass moves, in (t0, end]: at once if the
+/// mass is at the stop moving into it, or past it (a near-simultaneous
+/// event at another stop came first, by less than the time tolerance),
+/// else where its gap first crosses 0 upwards.
+std::optional<double> HybridRun::ImpactTime(int stop, double end) {
+  const Stop& s = hybrid_.GetStop(stop);
+  length_scales_[stop] = LengthScale(stop);
+  const double gap = s.Sign() * (state_.x(s.Dof()) - s.Position());
+  if (gap > 0 || (gap == 0 && s.SpeedTowards(state_.v(s.Dof())) > 0)) return state_.t;
+  return FirstUpcrossing(witnesses_[stop], state_.t, end, Search(stop));
+}
+
+/// The state at t along the mode's flow from z0.
+void HybridRun::MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, double t) {
+  state_.t = t;
+  if (mode.Held() == 0) {
+    mode.Flow().State(t0, z0, t, &state_.x, &state_.v);
+    return;
+  }
+  Eigen::VectorXd x, v;
+  mode.Flow().State(t0, z0, t, &x, &v);
+  mode.Expand(x, v, &state_.x, &state_.v);
+}
+
+/// The length scale of the flight from the current state for stop `stop`:
+/// the rounding of its gap comes from the state and the forced response
+/// (the gap signal's own coefficients can be far smaller, for a mass
+/// barely moving off the stop while the others swing).
+double HybridRun::LengthScale(int stop) const {
   const double per_radian = hybrid_.TimeScale() / (2 * std::numbers::pi);
-  return std::abs(hybrid_.GetSystem().stop) + state_.x.lpNorm<Eigen::Infinity>() +
-         state_.v.lpNorm<Eigen::Infinity>() * per_radian + witness_.Scale();
+  return std::abs(hybrid_.GetStop(stop).Position()) + state_.x.lpNorm<Eigen::Infinity>() +
+         state_.v.lpNorm<Eigen::Infinity>() * per_radian + witnesses_[stop].Scale();
 }
 
-/// The event search's options for the flight from the current state: gap
-/// heights below the bounce resolution are not resolved (chatter_rule.hpp),
-/// and one that leaves the stop from rest starts where the gap and its
-/// slope are 0 in truth, to the rounding of the length scale.
-EventOptions HybridRun::Search() const {
-  const int c = hybrid_.GetSystem().contact_dof;
+/// The event search's options for the flight to stop `stop` from the
+/// current state: gap heights below the bounce resolution are not resolved
+/// (chatter_rule.hpp), and one that leaves the stop from rest starts where
+/// the gap and its slope are 0 in truth, to the rounding of the length
+/// scale.
+EventOptions HybridRun::Search(int stop) const {
+  const Stop& s = hybrid_.GetStop(stop);
   EventOptions events = events_;
-  events.resolution = options_.bounce_height_resolution * length_scale_;
-  if (state_.x(c) == hybrid_.GetSystem().stop && state_.v(c) == 0.0) {
-    events.start_noise = kRounding * length_scale_;
+  events.resolution = options_.bounce_height_resolution * length_scales_[stop];
+  if (state_.x(s.Dof()) == s.Position() && state_.v(s.Dof()) == 0.0) {
+    events.start_noise = kRounding * length_scales_[stop];
   }
   return events;
 }
 
-/// The release search's options on the held phase's witness (in witness_):
-/// it starts where the contact force may be 0 to the rounding of its terms,
-/// and a dip of the force below 0 that returns within the bounce resolution
-/// of its scale is no release (a mass at rest on the stop with no force, at
-/// an antiresonance, would otherwise be certified piece by tiny piece).
-EventOptions HybridRun::HeldSearch() const {
+/// The release search's options on a held phase's witness: it starts where
+/// the contact force may be 0 to the rounding of its terms, and a dip of
+/// the force below 0 that returns within the bounce resolution of its scale
+/// is no release (a mass at rest on the stop with no force, at an
+/// antiresonance, would otherwise be certified piece by tiny piece).
+EventOptions HybridRun::HeldSearch(const Signal& release) const {
   EventOptions events = events_;
-  events.start_noise = kRounding * witness_.Scale();
-  events.resolution = options_.bounce_height_resolution * witness_.Scale();
+  events.start_noise = kRounding * release.Scale();
+  events.resolution = options_.bounce_height_resolution * release.Scale();
   return events;
 }
 
@@ -243,104 +322,88 @@ bool HybridRun::OverWorkBound() {
   return Events() - window_events_ > options_.max_events_per_period;
 }
 
-/// The contact mass reached the stop with speed `speed` >= 0: a landing
-/// when the arrival's height is unresolved (chatter_rule.hpp), otherwise an
+/// Stop `stop`'s mass reached it with speed `speed` >= 0: a landing when
+/// the arrival's height is unresolved (chatter_rule.hpp), otherwise an
 /// impact. The gap's curvature there is the arrival's acceleration.
-void HybridRun::ArriveAtStop(double te, double speed) {
+void HybridRun::ArriveAtStop(int stop, double te, double speed) {
   double gap, slope, acceleration;
-  witness_.ValueSlopeCurvature(te, &gap, &slope, &acceleration);
-  if (rule_.IsLanding(speed, acceleration, length_scale_)) {
+  witnesses_[stop].ValueSlopeCurvature(te, &gap, &slope, &acceleration);
+  if (rules_[stop].IsLanding(speed, acceleration, length_scales_[stop])) {
     // Resting on the stop and pushed into it, or touching it tangentially:
     // sticking or a grazing touch, not an impact.
-    if (state_.v(hybrid_.GetSystem().contact_dof) > 0) hybrid_.GetStop().Absorb(state_.v);
+    const Stop& s = hybrid_.GetStop(stop);
+    if (s.SpeedTowards(state_.v(s.Dof())) > 0) {
+      s.Absorb(state_.v, hybrid_.Holding(state_.held).ImpulseDirection(stop));
+    }
     ++summary_.landings;
-    LandAtStop();
+    LandAtStop(stop);
     return;
   }
-  ApplyImpact(te, speed);
+  ApplyImpact(stop, te, speed);
 }
 
-void HybridRun::ApplyImpact(double te, double speed) {
-  const System& s = hybrid_.GetSystem();
-  const int c = s.contact_dof;
+void HybridRun::ApplyImpact(int stop, double te, double speed) {
+  const System& system = hybrid_.GetSystem();
+  const Stop& s = hybrid_.GetStop(stop);
+  const Mode& mode = hybrid_.Holding(state_.held);
+  const int c = s.Dof();
   impact_.t = te;
-  impact_.phase = s.Phase(te);
+  impact_.phase = system.Phase(te);
   impact_.velocity = speed;
+  impact_.stop = stop;
   impact_.x = state_.x;
   impact_.v = state_.v;
-  state_.v(c) = speed;
-  hybrid_.GetStop().Reset(state_.v);
+  state_.v(c) = s.Sign() * speed;
+  s.Reset(state_.v, mode.ImpulseDirection(stop));
   impact_.v_after = state_.v;
   observer_.OnImpact(impact_);
   ++summary_.impacts;
-  const double previous = last_impact_;
-  last_impact_ = te;
+  const double previous = last_impacts_[stop];
+  last_impacts_[stop] = te;
   // The acceleration after the reset (the rebound's), which the chatter
-  // prediction models.
+  // prediction models, towards the stop.
   double jerk;
-  const double acceleration = hybrid_.ContactAcceleration(te, state_.x, state_.v, &jerk,
-                                                          &force_scratch_, &acceleration_scratch_);
+  const double acceleration = mode.Acceleration(stop, te, state_.x, state_.v, &jerk,
+                                                &force_scratch_, &acceleration_scratch_);
   const std::optional<double> t_star =
-      rule_.EndsAt(te, previous, speed, -state_.v(c), acceleration, jerk, length_scale_);
-  if (t_star) JumpToAccumulation(te, std::min(t_end_, *t_star));
+      rules_[stop].EndsAt(te, previous, speed, -s.SpeedTowards(state_.v(c)),
+                          s.Sign() * acceleration, s.Sign() * jerk, length_scales_[stop]);
+  if (t_star) JumpToAccumulation(stop, te, std::min(t_end_, *t_star));
 }
 
-void HybridRun::JumpToAccumulation(double te, double t_star) {
-  const System& s = hybrid_.GetSystem();
-  const LinearFlow& held = hybrid_.StuckFlow();
-  const int c = s.contact_dof;
+void HybridRun::JumpToAccumulation(int stop, double te, double t_star) {
+  const Mode& held = hybrid_.Holding(state_.held | StopBit(stop));
+  const Stop& s = hybrid_.GetStop(stop);
   if (t_star > te) {
-    const Eigen::VectorXd z0 = held.Transient(te, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
+    const Eigen::VectorXd z0 =
+        held.Flow().Transient(te, held.Reduced(state_.x), held.Reduced(state_.v));
     // Not sticking yet: the impacts accumulate until t*, where sticking (if
     // the contact force holds the mass) begins.
-    observer_.OnSegment(Segment(held, te, z0, te, t_star, SegmentMode::kChatter, c, s.stop));
-    Eigen::VectorXd xs, vs;
-    held.State(te, z0, t_star, &xs, &vs);
-    state_.x = hybrid_.Full(xs, s.stop);
-    state_.v = hybrid_.Full(vs, 0.0);
+    observer_.OnSegment(Segment(held.Flow(), te, z0, te, t_star, SegmentMode::kChatter,
+                                held.Moving(), held.HeldPositions()));
+    MoveTo(held, te, z0, t_star);
   }
   state_.t = t_star;
-  state_.v(c) = 0.0;
+  state_.v(s.Dof()) = 0.0;
   ++summary_.chatter_jumps;
   observer_.OnChatter(te, t_star);
-  LandAtStop();
+  LandAtStop(stop);
 }
 
-void HybridRun::LandAtStop() {
-  const System& s = hybrid_.GetSystem();
-  state_.x(s.contact_dof) = s.stop;
-  state_.v(s.contact_dof) = 0.0;
-  const LinearFlow& held = hybrid_.StuckFlow();
+/// Stop `stop`'s mass at rest on it: held from here if the stop pushes on
+/// it (Stop::Holds on the held mode's release witness).
+void HybridRun::LandAtStop(int stop) {
+  const Stop& s = hybrid_.GetStop(stop);
+  state_.x(s.Dof()) = s.Position();
+  state_.v(s.Dof()) = 0.0;
+  const StopSet candidate = state_.held | StopBit(stop);
+  const Mode& held = hybrid_.Holding(candidate);
   const Eigen::VectorXd z0 =
-      held.Transient(state_.t, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
-  held.Output(hybrid_.Release(), state_.t, z0, &witness_);
-  state_.stuck = Stop::Holds(witness_, state_.t, HeldSearch());
-  if (state_.stuck) stick_begin_ = state_.t;
-}
-
-void HybridRun::StuckPhase() {
-  const System& s = hybrid_.GetSystem();
-  const LinearFlow& held = hybrid_.StuckFlow();
-  const int c = s.contact_dof;
-  const double t0 = state_.t;
-  const Eigen::VectorXd z0 = held.Transient(t0, hybrid_.Held(state_.x), hybrid_.Held(state_.v));
-  held.Output(hybrid_.Release(), t0, z0, &witness_);
-  const EventOptions search = HeldSearch();
-  const std::optional<double> tr = !Stop::Holds(witness_, t0, search)
-                                       ? std::optional<double>(t0)
-                                       : FirstUpcrossing(witness_, t0, SliceEnd(), search);
-  const double end = tr.value_or(SliceEnd());
-  if (end > t0) observer_.OnSegment(Segment(held, t0, z0, t0, end, SegmentMode::kStuck, c, s.stop));
-  Eigen::VectorXd xs, vs;
-  held.State(t0, z0, end, &xs, &vs);
-  state_.x = hybrid_.Full(xs, s.stop);
-  state_.v = hybrid_.Full(vs, 0.0);
-  state_.t = end;
-  summary_.stuck_time += end - t0;
-  if (!tr) return;
-  state_.stuck = false;
-  ++summary_.releases;
-  observer_.OnRelease(stick_begin_, end);
+      held.Flow().Transient(state_.t, held.Reduced(state_.x), held.Reduced(state_.v));
+  held.Flow().Output(*held.Witness(stop), state_.t, z0, &witnesses_[stop]);
+  if (!Stop::Holds(witnesses_[stop], state_.t, HeldSearch(witnesses_[stop]))) return;
+  state_.held = candidate;
+  stick_begins_[stop] = state_.t;
 }
 
 }  // namespace

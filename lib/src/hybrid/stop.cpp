@@ -1,59 +1,94 @@
 #include "impactkit/hybrid/stop.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "dynamics/subsystem.hpp"
-
 namespace impactkit {
+namespace {
 
-Stop::Stop(const System& system)
-    : dof_(system.contact_dof), position_(system.stop), restitution_(system.restitution) {
-  const Eigen::VectorXd column =
-      system.mass.partialPivLu().solve(Eigen::VectorXd::Unit(system.Dof(), dof_));
-  impulse_direction_ = column / column(dof_);
-  impulse_direction_(dof_) = 1.0;
+/// The position of DOF `dof` among `moving`.
+int IndexAmong(const std::vector<int>& moving, int dof) {
+  return static_cast<int>(std::find(moving.begin(), moving.end(), dof) - moving.begin());
 }
 
-void Stop::Reset(Eigen::VectorXd& v, double restitution) const {
+std::vector<int> AllDofs(int n) {
+  std::vector<int> all(n);
+  for (int i = 0; i < n; ++i) all[i] = i;
+  return all;
+}
+
+}  // namespace
+
+Stop::Stop(const System& system, int index)
+    : dof_(system.stops[index].dof),
+      sign_(system.stops[index].Sign()),
+      position_(system.stops[index].position),
+      restitution_(system.stops[index].restitution),
+      impulse_direction_(ImpulseDirection(system.mass, AllDofs(system.Dof()))) {}
+
+Eigen::VectorXd Stop::ImpulseDirection(const Eigen::MatrixXd& mass,
+                                       const std::vector<int>& moving) const {
+  const int c = IndexAmong(moving, dof_);
+  const auto m = static_cast<int>(moving.size());
+  const Eigen::VectorXd column =
+      Eigen::MatrixXd(mass(moving, moving)).partialPivLu().solve(Eigen::VectorXd::Unit(m, c));
+  Eigen::VectorXd direction = Eigen::VectorXd::Zero(mass.rows());
+  direction(moving) = column / column(c);
+  direction(dof_) = 1.0;
+  return direction;
+}
+
+void Stop::Reset(Eigen::VectorXd& v, const Eigen::VectorXd& direction, double restitution) const {
   // v_c is set directly rather than as v_c + Δ: −r v_c, the paper's law to
   // the last bit; the others move with the impulse (not at all for a
   // diagonal M, whose impulse direction is exactly e_c).
   const double change = -(1.0 + restitution) * v(dof_);
   for (Eigen::Index j = 0; j < v.size(); ++j) {
-    if (j != dof_) v(j) += change * impulse_direction_(j);
+    if (j != dof_) v(j) += change * direction(j);
   }
   v(dof_) = -restitution * v(dof_);
 }
 
-Witness Stop::Gap(int dofs) const {
-  return {"the contact mass reaches the stop (an impact)",
-          {Eigen::RowVectorXd::Unit(dofs, dof_), Eigen::RowVectorXd::Zero(dofs), 0.0, -position_}};
+Witness Stop::Gap(const std::vector<int>& moving) const {
+  const auto m = static_cast<int>(moving.size());
+  return {"a mass reaches its stop (an impact)",
+          {sign_ * Eigen::RowVectorXd::Unit(m, IndexAmong(moving, dof_)),
+           Eigen::RowVectorXd::Zero(m), 0.0, -sign_ * position_}};
 }
 
-/// Fs = row c of (A cos Ωt - C v - K x - M a) with x_c = xs, v_c = a_c = 0 and
-/// a the accelerations of the stuck subsystem: linear in its state.
-LinearOutput Stop::ContactForce(const System& s) const {
+/// Fs = s × row c of (A cos Ωt − C v − K x − M a), with the held masses at
+/// their stops (v = a = 0 there) and a the accelerations of the masses F
+/// that move, M_FF a_F = A_F cos Ωt − C_FF v_F − K_FF x_F − K_FH xs_H: linear
+/// in their state.
+LinearOutput Stop::ContactForce(const System& s, const std::vector<int>& moving,
+                                const Eigen::VectorXd& held_positions) const {
   const int c = dof_;
-  const Eigen::MatrixXd ms = WithoutIndex(s.mass, c);
-  const Eigen::RowVectorXd coupling =
-      WithoutIndex(Eigen::VectorXd(s.mass.row(c).transpose()), c).transpose() * ms.inverse();
-  auto row = [&](const Eigen::MatrixXd& m) {
-    return Eigen::RowVectorXd(WithoutIndex(Eigen::VectorXd(m.row(c).transpose()), c).transpose());
-  };
-  auto column = [&](const Eigen::MatrixXd& m) {
-    return WithoutIndex(Eigen::VectorXd(m.col(c)), c);
-  };
+  const Eigen::MatrixXd ms = s.mass(moving, moving);
+  const Eigen::RowVectorXd coupling = s.mass(c, moving) * ms.inverse();
   LinearOutput f;
-  f.wx = -row(s.stiffness) + coupling * WithoutIndex(s.stiffness, c);
-  f.wv = -row(s.damping) + coupling * WithoutIndex(s.damping, c);
-  f.cos_amplitude = s.forcing(c) - coupling.dot(WithoutIndex(s.forcing, c));
-  f.offset = (-s.stiffness(c, c) + coupling.dot(column(s.stiffness))) * position_;
+  f.wx = -s.stiffness(c, moving) + coupling * s.stiffness(moving, moving);
+  f.wv = -s.damping(c, moving) + coupling * s.damping(moving, moving);
+  f.cos_amplitude = s.forcing(c) - coupling.dot(s.forcing(moving));
+  f.offset = 0.0;
+  for (int h = 0; h < s.Dof(); ++h) {
+    // A mass that moves, or one held at 0, adds nothing.
+    if (held_positions(h) == 0.0) continue;
+    const Eigen::VectorXd column = s.stiffness(moving, h);
+    f.offset += (-s.stiffness(c, h) + coupling.dot(column)) * held_positions(h);
+  }
+  if (sign_ < 0) {
+    f.wx = -f.wx;
+    f.wv = -f.wv;
+    f.cos_amplitude = -f.cos_amplitude;
+    f.offset = -f.offset;
+  }
   return f;
 }
 
-Witness Stop::Release(const System& system) const {
-  LinearOutput minus = ContactForce(system);
+Witness Stop::Release(const System& system, const std::vector<int>& moving,
+                      const Eigen::VectorXd& held_positions) const {
+  LinearOutput minus = ContactForce(system, moving, held_positions);
   minus.wx = -minus.wx;
   minus.wv = -minus.wv;
   minus.cos_amplitude = -minus.cos_amplitude;

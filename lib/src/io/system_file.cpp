@@ -20,8 +20,9 @@ namespace {
 using Json = nlohmann::json;
 using Keys = std::span<const std::string_view>;
 
-constexpr std::array<std::string_view, 9> kTopLevelKeys = {
-    "chain", "mass", "damping", "stiffness", "forcing", "omega", "xs", "r", "contact_dof"};
+constexpr std::array<std::string_view, 10> kTopLevelKeys = {
+    "chain", "mass", "damping", "stiffness", "forcing", "omega", "xs", "r", "contact_dof", "stops"};
+constexpr std::array<std::string_view, 4> kStopKeys = {"dof", "side", "position", "restitution"};
 /// The chain's keys are the model's chain parameters (model/parameters.hpp),
 /// n first: it sizes the chain the others fill.
 std::vector<std::string_view> ChainKeys() {
@@ -33,6 +34,15 @@ std::vector<std::string_view> ChainKeys() {
   return keys;
 }
 
+/// One entry of `stops`, before the defaults (the last mass, upper, the
+/// paper's restitution) fill its gaps.
+struct StopFields {
+  std::optional<int> dof;  ///< 1-based, as in the file
+  StopSide side = StopSide::kUpper;
+  double position = 0.0;
+  std::optional<double> restitution;
+};
+
 /// What a file states, before the paper's defaults fill the gaps.
 struct SystemFields {
   std::optional<ChainParameters> chain;  ///< the chain form, its gaps already filled
@@ -40,6 +50,7 @@ struct SystemFields {
   std::optional<Eigen::VectorXd> forcing;
   std::optional<double> omega, stop, restitution;
   std::optional<int> contact_dof;  ///< 1-based, as in the file
+  std::optional<std::vector<StopFields>> stops;
   bool General() const { return mass || damping || stiffness || contact_dof; }
 };
 
@@ -105,6 +116,11 @@ class FieldReader {
     return vector;
   }
 
+  std::string Text(const Json& value, std::string_view subject) const {
+    if (!value.is_string()) Fail(subject, fmt::format("must be a string, got {}", Describe(value)));
+    return value.get<std::string>();
+  }
+
   /// A matrix is an array of rows of equal length (whether it is N x N is
   /// the model's to check).
   Eigen::MatrixXd Matrix(const Json& value, std::string_view name) const {
@@ -150,6 +166,39 @@ ChainParameters ReadChain(const Json& value, const ChainParameters& defaults,
   return chain;
 }
 
+StopFields ReadStop(const Json& value, std::size_t index, const FieldReader& reader) {
+  const std::string name = fmt::format("stops[{}]", index + 1);
+  reader.RequireObject(value, name, kStopKeys);
+  auto field = [&](const char* key) { return Field(fmt::format("{}.{}", name, key)); };
+  StopFields stop;
+  if (value.contains("dof")) stop.dof = reader.WholeNumber(value["dof"], field("dof"), 1);
+  if (value.contains("side")) {
+    const std::string side = reader.Text(value["side"], field("side"));
+    if (side != "upper" && side != "lower") {
+      reader.Fail(field("side"), fmt::format("must be \"upper\" (x <= position) or \"lower\" (x >= "
+                                             "position), got {}",
+                                             Json(side).dump()));
+    }
+    stop.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
+  }
+  if (!value.contains("position")) reader.Fail(field("position"), "is required");
+  stop.position = reader.Number(value["position"], field("position"));
+  if (value.contains("restitution")) {
+    stop.restitution = reader.Number(value["restitution"], field("restitution"));
+  }
+  return stop;
+}
+
+std::vector<StopFields> ReadStops(const Json& value, const FieldReader& reader) {
+  if (!value.is_array() || value.empty()) {
+    reader.Fail(Field("stops"),
+                "must be a non-empty array of stops, each {dof, side, position, restitution}");
+  }
+  std::vector<StopFields> stops;
+  for (std::size_t i = 0; i < value.size(); ++i) stops.push_back(ReadStop(value[i], i, reader));
+  return stops;
+}
+
 /// The fields of `document`; the chain's gaps are filled from `paper`.
 SystemFields ReadFields(const Json& document, const System& paper, const FieldReader& reader) {
   reader.RequireObject(document, "", kTopLevelKeys);
@@ -174,6 +223,14 @@ SystemFields ReadFields(const Json& document, const System& paper, const FieldRe
   fields.restitution = number("r");
   if (document.contains("contact_dof")) {
     fields.contact_dof = reader.WholeNumber(document["contact_dof"], Field("contact_dof"), 1);
+  }
+  if (document.contains("stops")) {
+    if (fields.stop || fields.restitution || fields.contact_dof) {
+      reader.Fail(Field("stops"),
+                  "cannot be combined with xs, r or contact_dof: give the one stop by those "
+                  "keys or every stop in 'stops'");
+    }
+    fields.stops = ReadStops(document["stops"], reader);
   }
   if (fields.chain && fields.General()) {
     reader.Fail(Field("chain"),
@@ -201,12 +258,12 @@ int GeneralDof(const SystemFields& fields, const System& paper) {
   return paper.Dof();
 }
 
-/// The system the fields describe, gaps filled from `paper`. Throws
-/// InvalidInput (without the file name) for values the model rejects.
-System Build(const SystemFields& fields, const System& paper) {
+/// The system the fields describe but for a `stops` list: one stop, by the
+/// keys xs, r and contact_dof.
+System BuildWithoutStopList(const SystemFields& fields, const System& paper) {
   const double omega = fields.omega.value_or(paper.omega);
-  const double stop = fields.stop.value_or(paper.stop);
-  const double restitution = fields.restitution.value_or(paper.restitution);
+  const double stop = fields.stop.value_or(paper.stops[0].position);
+  const double restitution = fields.restitution.value_or(paper.stops[0].restitution);
   if (!fields.General()) {
     const ChainParameters chain = fields.chain.value_or(*paper.chain);
     return UniformChain(chain, fields.forcing.value_or(DefaultForcing(paper, chain.dof)), omega,
@@ -222,6 +279,26 @@ System Build(const SystemFields& fields, const System& paper) {
                        fields.damping.value_or(defaults.damping),
                        fields.stiffness.value_or(defaults.stiffness), forcing, omega, stop,
                        restitution, contact_dof);
+}
+
+/// The stops of a `stops` list, gaps filled: the last mass, the paper's
+/// restitution.
+std::vector<StopParameters> BuildStops(const std::vector<StopFields>& fields, int dof,
+                                       const System& paper) {
+  std::vector<StopParameters> stops;
+  for (const StopFields& stop : fields) {
+    stops.push_back({stop.dof.value_or(dof) - 1, stop.side, stop.position,
+                     stop.restitution.value_or(paper.stops[0].restitution)});
+  }
+  return stops;
+}
+
+/// The system the fields describe, gaps filled from `paper`. Throws
+/// InvalidInput (without the file name) for values the model rejects.
+System Build(const SystemFields& fields, const System& paper) {
+  System system = BuildWithoutStopList(fields, paper);
+  if (fields.stops) system.stops = BuildStops(*fields.stops, system.Dof(), paper);
+  return system;
 }
 
 /// A system file is at most a few levels deep (top level, chain, matrix
@@ -354,8 +431,11 @@ System ParseSystem(std::string_view text, SystemFileFormat format, std::string_v
 
 std::string SystemToJson(const System& system) {
   nlohmann::ordered_json json;
-  // The chain form is exact only when the contact DOF is the chain's last.
-  const bool chain_form = system.chain && system.contact_dof == system.Dof() - 1;
+  // One upper stop is written by the keys xs, r (and contact_dof), as
+  // before stop lists; the chain form is exact only when that stop is on
+  // the chain's last mass or the stops are listed.
+  const bool one_stop = system.StopCount() == 1 && system.stops[0].side == StopSide::kUpper;
+  const bool chain_form = system.chain && (!one_stop || system.stops[0].dof == system.Dof() - 1);
   if (chain_form) {
     json["chain"] = {{"n", system.chain->dof},
                      {"m", system.chain->mass},
@@ -368,9 +448,19 @@ std::string SystemToJson(const System& system) {
   }
   json["forcing"] = std::vector<double>(system.forcing.begin(), system.forcing.end());
   json["omega"] = system.omega;
-  json["xs"] = system.stop;
-  json["r"] = system.restitution;
-  if (!chain_form) json["contact_dof"] = system.contact_dof + 1;
+  if (one_stop) {
+    json["xs"] = system.stops[0].position;
+    json["r"] = system.stops[0].restitution;
+    if (!chain_form) json["contact_dof"] = system.stops[0].dof + 1;
+  } else {
+    json["stops"] = nlohmann::ordered_json::array();
+    for (const StopParameters& stop : system.stops) {
+      json["stops"].push_back({{"dof", stop.dof + 1},
+                               {"side", stop.side == StopSide::kUpper ? "upper" : "lower"},
+                               {"position", stop.position},
+                               {"restitution", stop.restitution}});
+    }
+  }
   return json.dump(2);
 }
 

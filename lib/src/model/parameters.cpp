@@ -9,17 +9,43 @@
 namespace impactkit {
 namespace {
 
-/// Index of the parameter A<i> (1-based in the name), or -1.
-int ForcingIndex(std::string_view name, int dof) {
-  if (name.size() < 2 || name[0] != 'A') return -1;
+/// k - 1 for a name `base`<k> with 1 <= k <= count (A2 -> 1), or -1.
+int NumberedIndex(std::string_view name, std::string_view base, int count) {
+  if (name.size() <= base.size() || !name.starts_with(base)) return -1;
   int index = 0;
-  for (char ch : name.substr(1)) {
+  for (char ch : name.substr(base.size())) {
     if (ch < '0' || ch > '9') return -1;
     index = index * 10 + (ch - '0');
-    if (index > dof) return -1;
+    if (index > count) return -1;
   }
   return index >= 1 ? index - 1 : -1;
 }
+
+/// Index of the parameter A<i> (1-based in the name), or -1.
+int ForcingIndex(std::string_view name, int dof) { return NumberedIndex(name, "A", dof); }
+
+/// The stop a stop parameter's name refers to: 0 for the plain name (xs,
+/// r), k - 1 for xs<k>, r<k> with 2 <= k <= the number of stops; -1 for
+/// any other name.
+int StopIndex(std::string_view name, std::string_view base, const System& s) {
+  if (name == base) return 0;
+  const int index = NumberedIndex(name, base, s.StopCount());
+  return index >= 1 ? index : -1;
+}
+
+/// Stop parameters name the stop in the name; the table's get and set
+/// stand for the first stop, these for any.
+double GetStopParameter(const System& s, std::string_view base, int stop) {
+  const StopParameters& p = s.stops[stop];
+  return base == "xs" ? p.position : p.restitution;
+}
+
+void SetStopParameter(System& s, std::string_view base, int stop, double value) {
+  StopParameters& p = s.stops[stop];
+  (base == "xs" ? p.position : p.restitution) = value;
+}
+
+bool IsStopParameter(const ParameterSpec& spec) { return spec.name == "xs" || spec.name == "r"; }
 
 /// Applies `change` to the chain's parameters and rebuilds its matrices; A
 /// keeps the entries the new size has room for.
@@ -30,7 +56,12 @@ void RebuildChain(System& s, Change change) {
   Eigen::VectorXd forcing = Eigen::VectorXd::Zero(chain.dof);
   const int kept = std::min<int>(chain.dof, static_cast<int>(s.forcing.size()));
   forcing.head(kept) = s.forcing.head(kept);
-  s = UniformChain(chain, forcing, s.omega, s.stop, s.restitution);
+  // One stop on the last mass stays on the last mass as n changes (the
+  // paper's chain); stops given on other masses stay on them.
+  const bool follows_last = s.StopCount() == 1 && s.stops[0].dof == s.Dof() - 1;
+  std::vector<StopParameters> stops = s.stops;
+  s = UniformChain(chain, forcing, s.omega, stops[0].position, stops[0].restitution);
+  if (!follows_last) s.stops = std::move(stops);
 }
 
 void SetDof(System& s, double value) {
@@ -47,10 +78,12 @@ void SetDof(System& s, double value) {
 constexpr std::array<ParameterSpec, 8> kTable = {{
     {"omega", "forcing frequency", "> 0", false, [](const System& s) { return s.omega; },
      [](System& s, double v) { s.omega = v; }},
-    {"xs", "stop position", "finite", false, [](const System& s) { return s.stop; },
-     [](System& s, double v) { s.stop = v; }},
-    {"r", "coefficient of restitution", "in [0, 1]", false,
-     [](const System& s) { return s.restitution; }, [](System& s, double v) { s.restitution = v; }},
+    {"xs", "stop position (xs2, xs3, ... of further stops)", "finite", false,
+     [](const System& s) { return s.stops[0].position; },
+     [](System& s, double v) { s.stops[0].position = v; }},
+    {"r", "coefficient of restitution (r2, r3, ... of further stops)", "in [0, 1]", false,
+     [](const System& s) { return s.stops[0].restitution; },
+     [](System& s, double v) { s.stops[0].restitution = v; }},
     {"A", "forcing amplitude on mass i", "finite", false, nullptr, nullptr},
     {"m", "mass", "> 0", true, [](const System& s) { return s.chain->mass; },
      [](System& s, double v) { RebuildChain(s, [&](ChainParameters& c) { c.mass = v; }); }},
@@ -74,7 +107,11 @@ std::span<const ParameterSpec> ParameterTable() { return kTable; }
 const ParameterSpec* FindParameter(const System& s, std::string_view name) {
   for (const ParameterSpec& spec : kTable) {
     if (spec.chain_only && !s.chain) continue;
-    if (spec.get ? name == spec.name : ForcingIndex(name, s.Dof()) >= 0) return &spec;
+    if (IsStopParameter(spec) ? StopIndex(name, spec.name, s) >= 0
+        : spec.get            ? name == spec.name
+                              : ForcingIndex(name, s.Dof()) >= 0) {
+      return &spec;
+    }
   }
   return nullptr;
 }
@@ -83,7 +120,9 @@ std::vector<std::string> ParameterNames(const System& s) {
   std::vector<std::string> names;
   for (const ParameterSpec& spec : kTable) {
     if (spec.chain_only && !s.chain) continue;
-    if (spec.get) {
+    if (IsStopParameter(spec)) {
+      for (int k = 0; k < s.StopCount(); ++k) names.push_back(StopParameterName(spec.name, k));
+    } else if (spec.get) {
       names.emplace_back(spec.name);
     } else {
       for (int i = 0; i < s.Dof(); ++i) names.push_back(fmt::format("{}{}", spec.name, i + 1));
@@ -95,13 +134,17 @@ std::vector<std::string> ParameterNames(const System& s) {
 double GetParameter(const System& s, std::string_view name) {
   const ParameterSpec* spec = FindParameter(s, name);
   if (!spec) UnknownParameter(s, name);
+  if (IsStopParameter(*spec))
+    return GetStopParameter(s, spec->name, StopIndex(name, spec->name, s));
   return spec->get ? spec->get(s) : s.forcing(ForcingIndex(name, s.Dof()));
 }
 
 void SetParameter(System& s, std::string_view name, double value) {
   const ParameterSpec* spec = FindParameter(s, name);
   if (!spec) UnknownParameter(s, name);
-  if (spec->set) {
+  if (IsStopParameter(*spec)) {
+    SetStopParameter(s, spec->name, StopIndex(name, spec->name, s), value);
+  } else if (spec->set) {
     spec->set(s, value);
   } else {
     s.forcing(ForcingIndex(name, s.Dof())) = value;

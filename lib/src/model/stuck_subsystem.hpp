@@ -1,15 +1,18 @@
 #pragma once
 /// \file stuck_subsystem.hpp (private)
-/// The equations of the other masses while the contact mass is held at the
-/// stop: rows and columns of the contact DOF c removed, its coupling to
-/// x_c = xs becoming a constant force,
+/// The equations of the masses that move while a set H of stops holds
+/// theirs: rows and columns of the held DOFs removed, their coupling to the
+/// held positions becoming a constant force,
 ///
-///     M' x'' + C' x' + K' x = A' cos(Ω t) − K_{·c} xs.
+///     M' x'' + C' x' + K' x = A' cos(Ω t) − K_{·H} xs_H.
 ///
-/// Validation and the simulator build their stuck flow from this one place.
+/// Validation and the hybrid system build their held flows from this one
+/// place.
 
 #include <Eigen/Dense>
+#include <vector>
 
+#include "impactkit/dynamics/flow.hpp"
 #include "impactkit/model/system.hpp"
 
 namespace impactkit::detail {
@@ -17,13 +20,16 @@ namespace impactkit::detail {
 struct StuckSubsystem {
   Eigen::MatrixXd mass, damping, stiffness;
   Eigen::VectorXd forcing;
-  Eigen::VectorXd constant_force;  ///< −K_{·c} xs without row c
+  Eigen::VectorXd constant_force;  ///< −K_{·H} xs_H on the moving DOFs
 };
 
-StuckSubsystem StuckSubsystemOf(const System& system);
+/// The DOFs that move while the stops in `held` hold theirs, in order.
+std::vector<int> MovingDofs(const System& system, StopSet held);
 
-/// The message of a stuck subsystem that has no bounded steady response:
-/// "stuck subsystem (mass 2 held at the stop): <why>".
-std::string StuckSubsystemError(const System& system, const std::string& why);
+StuckSubsystem StuckSubsystemOf(const System& system, StopSet held);
+
+/// The exact flow of that subsystem. Throws InvalidInput "stuck subsystem
+/// (mass 2 held at the stop): <why>" when it has no bounded steady response.
+LinearFlow HeldFlow(const System& system, StopSet held);
 
 }  // namespace impactkit::detail

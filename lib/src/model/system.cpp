@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <bit>
 #include <cmath>
 #include <complex>
 #include <numbers>
 
-#include "dynamics/subsystem.hpp"
 #include "impactkit/dynamics/flow.hpp"
 #include "model/stuck_subsystem.hpp"
 
@@ -134,6 +134,61 @@ void ValidateDerivedScales(const System& s) {
                       response, s.omega, kLargest));
 }
 
+/// How messages name stop k's position and restitution: the parameter
+/// names (xs and r for the first stop, xs<k>, r<k> for the others).
+std::string PositionName(const System& s, int k) {
+  return s.StopCount() == 1
+             ? "xs (stop position)"
+             : fmt::format("{} (position of stop {})", StopParameterName("xs", k), k + 1);
+}
+
+std::string RestitutionName(const System& s, int k) {
+  return s.StopCount() == 1
+             ? "r (coefficient of restitution)"
+             : fmt::format("{} (restitution of stop {})", StopParameterName("r", k), k + 1);
+}
+
+void ValidateStop(const System& s, int k) {
+  const StopParameters& stop = s.stops[k];
+  const int n = s.Dof();
+  Require(
+      stop.dof >= 0 && stop.dof < n,
+      s.StopCount() == 1
+          ? fmt::format("contact DOF must be in [1, {}], got {}", n, stop.dof + 1)
+          : fmt::format("the mass of stop {} must be in [1, {}], got {}", k + 1, n, stop.dof + 1));
+  Require(std::isfinite(stop.position),
+          fmt::format("{} must be finite, got {}", PositionName(s, k), stop.position));
+  Require(std::isfinite(stop.restitution) && stop.restitution >= 0 && stop.restitution <= 1,
+          fmt::format("{} must be in [0, 1], got {}", RestitutionName(s, k), stop.restitution));
+}
+
+/// Two stops on one mass: one above and one below it, leaving room
+/// between them (two on one side would make one of them unreachable).
+void ValidateStopPair(const System& s, int j, int k) {
+  const StopParameters &a = s.stops[j], &b = s.stops[k];
+  if (a.dof != b.dof) return;
+  Require(a.side != b.side,
+          fmt::format("stops {} and {} both limit mass {} from {}: one of them could never be "
+                      "reached; give a mass at most one stop on each side",
+                      j + 1, k + 1, a.dof + 1, a.side == StopSide::kUpper ? "above" : "below"));
+  const StopParameters &upper = a.side == StopSide::kUpper ? a : b,
+                       &lower = a.side == StopSide::kUpper ? b : a;
+  Require(lower.position < upper.position,
+          fmt::format("the stops of mass {} leave it no room: the lower one at {} must be below "
+                      "the upper one at {}",
+                      a.dof + 1, lower.position, upper.position));
+}
+
+void ValidateStops(const System& s) {
+  Require(!s.stops.empty(), "the system needs at least one stop");
+  Require(s.StopCount() <= kMaxStops,
+          fmt::format("the system has {} stops; at most {}", s.StopCount(), kMaxStops));
+  for (int k = 0; k < s.StopCount(); ++k) ValidateStop(s, k);
+  for (int j = 0; j < s.StopCount(); ++j) {
+    for (int k = j + 1; k < s.StopCount(); ++k) ValidateStopPair(s, j, k);
+  }
+}
+
 void ValidateScalars(const System& s) {
   const int n = s.Dof();
   Require(s.forcing.size() == n, fmt::format("A (forcing) must have N = {} entries, got {}", n,
@@ -141,23 +196,14 @@ void ValidateScalars(const System& s) {
   Require(s.forcing.allFinite(), "A (forcing) has a NaN or infinite entry");
   Require(std::isfinite(s.omega) && s.omega > 0,
           fmt::format("omega (forcing frequency) must be finite and > 0, got {}", s.omega));
-  Require(std::isfinite(s.stop), fmt::format("xs (stop position) must be finite, got {}", s.stop));
-  Require(std::isfinite(s.restitution) && s.restitution >= 0 && s.restitution <= 1,
-          fmt::format("r (coefficient of restitution) must be in [0, 1], got {}", s.restitution));
-  Require(s.contact_dof >= 0 && s.contact_dof < n,
-          fmt::format("contact DOF must be in [1, {}], got {}", n, s.contact_dof + 1));
+  ValidateStops(s);
 }
 
-/// The subsystem that moves while the contact mass sticks must have a
-/// bounded steady response too.
-void ValidateStuckSubsystem(const System& s) {
-  const detail::StuckSubsystem stuck = detail::StuckSubsystemOf(s);
-  try {
-    LinearFlow(stuck.mass, stuck.damping, stuck.stiffness, stuck.forcing, stuck.constant_force,
-               s.omega);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(detail::StuckSubsystemError(s, e.what()));
-  }
+/// The subsystem that moves while one stop holds its mass must have a
+/// bounded steady response too (sets of several held stops are checked
+/// when a motion first reaches them: there can be 2^K of them).
+void ValidateStuckSubsystems(const System& s) {
+  for (int k = 0; k < s.StopCount(); ++k) detail::HeldFlow(s, StopBit(k));
 }
 
 }  // namespace
@@ -177,6 +223,16 @@ Eigen::MatrixXd ChainCouplingMatrix(int dof) {
     if (i + 1 < dof) e(i, i + 1) = e(i + 1, i) = -1.0;
   }
   return e;
+}
+
+const StopParameters& System::SoleStop(std::string_view what) const {
+  Require(stops.size() == 1, fmt::format("{} handles systems with one stop so far; this one has {}",
+                                         what, stops.size()));
+  return stops.front();
+}
+
+std::string StopParameterName(std::string_view base, int stop) {
+  return stop == 0 ? std::string(base) : fmt::format("{}{}", base, stop + 1);
 }
 
 System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
@@ -204,9 +260,8 @@ System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping
   s.stiffness = stiffness;
   s.forcing = forcing;
   s.omega = omega;
-  s.stop = stop;
-  s.restitution = restitution;
-  s.contact_dof = contact_dof.value_or(static_cast<int>(mass.rows()) - 1);
+  s.stops = {StopParameters{contact_dof.value_or(static_cast<int>(mass.rows()) - 1),
+                            StopSide::kUpper, stop, restitution}};
   return s;
 }
 
@@ -225,7 +280,7 @@ void ValidateParameters(const System& s) {
   }
   RequireScales(s.forcing, "every entry of A (forcing)");
   RequireScale(s.omega, "omega (forcing frequency)", true);
-  RequireScale(s.stop, "xs (stop position)");
+  for (int k = 0; k < s.StopCount(); ++k) RequireScale(s.stops[k].position, PositionName(s, k));
   ValidateDerivedScales(s);
 }
 
@@ -234,7 +289,7 @@ void Validate(const System& s) {
   // Constructing the flows rejects an undamped resonance (no bounded
   // steady response): the same test the simulator relies on.
   LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()), s.omega);
-  if (s.Dof() > 1) ValidateStuckSubsystem(s);
+  if (s.Dof() > 1) ValidateStuckSubsystems(s);
 }
 
 HybridState RestState(const System& s) {
@@ -242,6 +297,15 @@ HybridState RestState(const System& s) {
   state.x = Eigen::VectorXd::Zero(s.Dof());
   state.v = Eigen::VectorXd::Zero(s.Dof());
   return state;
+}
+
+StopSet StopsAtRest(const System& s, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+  StopSet at_rest = 0;
+  for (int k = 0; k < s.StopCount(); ++k) {
+    const StopParameters& stop = s.stops[k];
+    if (x(stop.dof) == stop.position && v(stop.dof) == 0.0) at_rest |= StopBit(k);
+  }
+  return at_rest;
 }
 
 void ValidateState(const System& s, const HybridState& state) {
@@ -252,25 +316,64 @@ void ValidateState(const System& s, const HybridState& state) {
                   n, n, static_cast<int>(state.x.size()), static_cast<int>(state.v.size())));
   Require(std::isfinite(state.t) && state.x.allFinite() && state.v.allFinite(),
           "the initial state has a NaN or infinite entry");
-  const int c = s.contact_dof;
-  Require(state.x(c) <= s.stop,
-          fmt::format("initial x{} = {} is beyond the stop xs = {}; it must be <= xs", c + 1,
-                      state.x(c), s.stop));
-  Require(!state.stuck || (state.x(c) == s.stop && state.v(c) == 0.0),
-          fmt::format("a stuck initial state needs x{} = xs and v{} = 0", c + 1, c + 1));
+  for (int k = 0; k < s.StopCount(); ++k) {
+    const StopParameters& stop = s.stops[k];
+    const int c = stop.dof;
+    const bool upper = stop.side == StopSide::kUpper;
+    Require(stop.Sign() * (state.x(c) - stop.position) <= 0,
+            fmt::format("initial x{} = {} is beyond the stop {} = {}; it must be {} {}", c + 1,
+                        state.x(c), StopParameterName("xs", k), stop.position,
+                        upper ? "<=" : ">=", StopParameterName("xs", k)));
+  }
+  Require(state.held < (s.StopCount() == kMaxStops ? ~StopSet{0} : StopBit(s.StopCount())),
+          fmt::format("the held stops name a stop beyond the system's {}", s.StopCount()));
+  const StopSet not_at_rest = state.held & ~StopsAtRest(s, state.x, state.v);
+  if (not_at_rest != 0) {
+    const int k = std::countr_zero(not_at_rest);
+    const int c = s.stops[k].dof;
+    throw InvalidInput(fmt::format("a stuck initial state needs x{} = {} and v{} = 0", c + 1,
+                                   StopParameterName("xs", k), c + 1));
+  }
 }
 
 namespace detail {
 
-StuckSubsystem StuckSubsystemOf(const System& s) {
-  const int c = s.contact_dof;
-  return {WithoutIndex(s.mass, c), WithoutIndex(s.damping, c), WithoutIndex(s.stiffness, c),
-          WithoutIndex(s.forcing, c),
-          -WithoutIndex(Eigen::VectorXd(s.stiffness.col(c)), c) * s.stop};
+std::vector<int> MovingDofs(const System& s, StopSet held) {
+  std::vector<int> moving;
+  for (int i = 0; i < s.Dof(); ++i) {
+    bool is_held = false;
+    for (int k = 0; k < s.StopCount(); ++k) {
+      is_held = is_held || ((held & StopBit(k)) != 0 && s.stops[k].dof == i);
+    }
+    if (!is_held) moving.push_back(i);
+  }
+  return moving;
 }
 
-std::string StuckSubsystemError(const System& s, const std::string& why) {
-  return fmt::format("stuck subsystem (mass {} held at the stop): {}", s.contact_dof + 1, why);
+StuckSubsystem StuckSubsystemOf(const System& s, StopSet held) {
+  const std::vector<int> moving = MovingDofs(s, held);
+  Eigen::VectorXd held_positions = Eigen::VectorXd::Zero(s.Dof());
+  for (int k = 0; k < s.StopCount(); ++k) {
+    if ((held & StopBit(k)) != 0) held_positions(s.stops[k].dof) = s.stops[k].position;
+  }
+  return {s.mass(moving, moving), s.damping(moving, moving), s.stiffness(moving, moving),
+          s.forcing(moving), -(s.stiffness(moving, Eigen::all) * held_positions)};
+}
+
+LinearFlow HeldFlow(const System& s, StopSet held) {
+  const StuckSubsystem stuck = StuckSubsystemOf(s, held);
+  try {
+    return LinearFlow(stuck.mass, stuck.damping, stuck.stiffness, stuck.forcing,
+                      stuck.constant_force, s.omega);
+  } catch (const InvalidInput& e) {
+    std::vector<std::string> masses;
+    for (int k = 0; k < s.StopCount(); ++k) {
+      if ((held & StopBit(k)) != 0) masses.push_back(std::to_string(s.stops[k].dof + 1));
+    }
+    throw InvalidInput(fmt::format("stuck subsystem (mass {} held at {}): {}",
+                                   fmt::join(masses, ", "),
+                                   s.StopCount() == 1 ? "the stop" : "its stop", e.what()));
+  }
 }
 
 }  // namespace detail

@@ -41,6 +41,7 @@ ImpactMap::ImpactMap(const System& system, const ImpactMapOptions& options)
 
 ImpactMap::ImpactMap(std::shared_ptr<const HybridSystem> hybrid, const ImpactMapOptions& options)
     : hybrid_(std::move(hybrid)), options_(options) {
+  hybrid_->GetSystem().SoleStop("the impact map");
   std::string error;
   if (!options_.IsValid(&error)) throw InvalidInput(error);
 }
@@ -49,7 +50,7 @@ Eigen::VectorXd ImpactMap::ToEta(double t, const Eigen::VectorXd& x,
                                  const Eigen::VectorXd& v) const {
   const int n = GetSystem().Dof();
   Eigen::VectorXd eta(2 * n);
-  eta << WithoutIndex(x, GetSystem().contact_dof), t, v;
+  eta << WithoutIndex(x, GetSystem().stops[0].dof), t, v;
   return eta;
 }
 
@@ -57,7 +58,7 @@ HybridState ImpactMap::ToState(const Eigen::VectorXd& eta) const {
   const int n = GetSystem().Dof();
   HybridState state;
   state.t = eta(n - 1);
-  state.x = EmbedAtStop(eta.head(n - 1), GetSystem().contact_dof, GetSystem().stop);
+  state.x = EmbedAtStop(eta.head(n - 1), GetSystem().stops[0].dof, GetSystem().stops[0].position);
   state.v = eta.tail(n);
   return state;
 }
@@ -67,32 +68,32 @@ void ImpactMap::ValidateEta(const Eigen::VectorXd& eta) const {
   if (eta.size() != 2 * n) {
     throw InvalidInput(
         fmt::format("an impact state eta = (x without x{}, t, v1..v{}) has {} entries, got {}",
-                    GetSystem().contact_dof + 1, n, 2 * n, eta.size()));
+                    GetSystem().stops[0].dof + 1, n, 2 * n, eta.size()));
   }
   if (!eta.allFinite()) throw InvalidInput("the impact state has a NaN or infinite entry");
-  const double speed = eta(n + GetSystem().contact_dof);
+  const double speed = eta(n + GetSystem().stops[0].dof);
   if (!(speed > 0)) {
     throw InvalidInput(fmt::format(
         "not an impact state: v{} = {} must be > 0 (the speed towards the stop just before impact)",
-        GetSystem().contact_dof + 1, speed));
+        GetSystem().stops[0].dof + 1, speed));
   }
 }
 
 Eigen::MatrixXd ImpactMap::ResetInEta() const {
-  const int n = GetSystem().Dof(), c = GetSystem().contact_dof;
+  const int n = GetSystem().Dof(), c = GetSystem().stops[0].dof;
   Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n, 2 * n);  // ∂y(τ−)/∂η
   for (int j = 0, k = 0; j < n; ++j) {
     if (j != c) embedding(j, k++) = 1.0;
   }
   embedding.bottomRightCorner(n, n).setIdentity();
-  return hybrid_->GetStop().ResetJacobian(n) * embedding;
+  return hybrid_->GetStop(0).ResetJacobian(n) * embedding;
 }
 
 Eigen::VectorXd ImpactMap::FlightTransient(const Eigen::VectorXd& eta) const {
   ValidateEta(eta);
   const HybridState before = ToState(eta);
   Eigen::VectorXd v_after = before.v;
-  hybrid_->GetStop().Reset(v_after);
+  hybrid_->GetStop(0).Reset(v_after);
   return hybrid_->FreeFlow().Transient(before.t, before.x, v_after);
 }
 
@@ -120,14 +121,14 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::M
                      MapStatus* status) const {
   const System& system = GetSystem();
   const LinearFlow& flow = hybrid_->FreeFlow();
-  const int n = system.Dof(), c = system.contact_dof;
+  const int n = system.Dof(), c = system.stops[0].dof;
   const HybridState before = ToState(eta);
   const double t = before.t;
   Eigen::VectorXd v_after = before.v;
-  hybrid_->GetStop().Reset(v_after);
+  hybrid_->GetStop(0).Reset(v_after);
 
   const Eigen::VectorXd z0 = flow.Transient(t, before.x, v_after);
-  const Signal gap = flow.Output(hybrid_->Gap(), t, z0);
+  const Signal gap = flow.Output(hybrid_->Gap(0), t, z0);
   const EventOptions events{1e-13, hybrid_->TimeScale()};
   const auto te =
       FirstUpcrossing(gap, t, t + options_.max_flight_periods * system.ForcingPeriod(), events);
@@ -137,7 +138,7 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::M
   }
   Eigen::VectorXd x, v;
   flow.State(t, z0, *te, &x, &v);
-  x(c) = system.stop;
+  x(c) = system.stops[0].position;
   const double speed = v(c);
   if (!(speed > options_.min_speed)) {
     const Eigen::VectorXd f = hybrid_->VectorField(*te, x, v);
@@ -186,8 +187,9 @@ MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian
 Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p,
                                                const ImpactMap& below, const ImpactMap& above,
                                                double delta) const {
-  const int n = GetSystem().Dof(), c = GetSystem().contact_dof;
-  const double stop_rate = (above.GetSystem().stop - below.GetSystem().stop) / delta;
+  const int n = GetSystem().Dof(), c = GetSystem().stops[0].dof;
+  const double stop_rate =
+      (above.GetSystem().stops[0].position - below.GetSystem().stops[0].position) / delta;
   Eigen::VectorXd derivative = Eigen::VectorXd::Zero(2 * n);
   Eigen::VectorXd at = eta;
   for (int k = 0; k < p; ++k) {

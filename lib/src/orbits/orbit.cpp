@@ -57,7 +57,7 @@ class FixedPointProblem {
 
  private:
   std::optional<MapResult> Map(const Eigen::VectorXd& eta, bool with_jacobian) const {
-    const int speed_index = map_.TimeIndex() + 1 + map_.GetSystem().contact_dof;
+    const int speed_index = map_.TimeIndex() + 1 + map_.GetSystem().stops[0].dof;
     if (!eta.allFinite() || !(eta(speed_index) > 0)) return std::nullopt;
     MapResult image = map_.Apply(eta, options_.p, with_jacobian);
     if (image.status != MapStatus::kOk) return std::nullopt;
@@ -140,7 +140,7 @@ PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, in
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(eta.size());
   shift(map.TimeIndex()) = q * system.ForcingPeriod();
   orbit.residual = (image.eta - eta - shift).cwiseAbs().maxCoeff();
-  const int n = system.Dof(), c = system.contact_dof;
+  const int n = system.Dof(), c = system.stops[0].dof;
   for (int k = 0; k < p; ++k) {
     const Eigen::VectorXd& at = k == 0 ? eta : image.path[k - 1];
     const double t = at(map.TimeIndex());

@@ -17,10 +17,10 @@ OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& 
                                    image.impacts_done, p, ToString(image.status)));
   }
   const System& system = map.GetSystem();
-  const int c = system.contact_dof;
+  const int c = system.stops[0].dof;
   const EventOptions events{1e-13, 1.0};
   OrbitContacts contacts;
-  contacts.contact_min = contacts.contact_max = system.stop;
+  contacts.contact_min = contacts.contact_max = system.stops[0].position;
   contacts.slowest_depth = std::numeric_limits<double>::infinity();
   Eigen::VectorXd from = eta;
   for (int k = 0; k < p; ++k) {
@@ -33,7 +33,7 @@ OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& 
       contacts.contact_min = std::min(contacts.contact_min, value);
       contacts.contact_max = std::max(contacts.contact_max, value);
       if (curvature < 0) {
-        const double clearance = system.stop - value;
+        const double clearance = system.stops[0].position - value;
         if (!contacts.clearance || clearance < *contacts.clearance) {
           contacts.clearance = clearance;
           contacts.clearance_time = t;

@@ -57,12 +57,16 @@ class StickingMap::Cycle {
         with_jacobian_(with_jacobian),
         with_contacts_(with_contacts),
         n_(hybrid.GetSystem().Dof()),
-        c_(hybrid.GetSystem().contact_dof),
+        c_(hybrid.GetSystem().SoleStop("the sticking map").dof),
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
-        rule_(options.simulation, hybrid.GetStop().Restitution(), hybrid.TimeScale()) {
+        rule_(options.simulation, hybrid.GetStop(0).Restitution(), hybrid.TimeScale()) {
     const Eigen::MatrixXd inverse_mass = hybrid.GetSystem().mass.inverse();
     constraint_direction_ = inverse_mass.col(c_) / inverse_mass(c_, c_);
-    const LinearOutput release = hybrid.GetStop().Release(hybrid.GetSystem()).output;
+    const LinearOutput release =
+        hybrid.GetStop(0)
+            .Release(hybrid.GetSystem(), hybrid.Holding(StopBit(0)).Moving(),
+                     hybrid.Holding(StopBit(0)).HeldPositions())
+            .output;
     release_gradient_.resize(2 * (n_ - 1));
     release_gradient_ << release.wx, release.wv;
     if (with_contacts_) {
@@ -125,7 +129,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   const System& system = hybrid_.GetSystem();
   const int held = n_ - 1, m = 2 * n_ - 1;
   t_ = s(m - 1);
-  x_ = EmbedAtStop(s.head(held), c_, system.stop);
+  x_ = EmbedAtStop(s.head(held), c_, system.stops[0].position);
   v_ = EmbedAtStop(s.segment(held, held), c_, 0.0);
   if (with_jacobian_) {
     dy_ = Eigen::MatrixXd::Zero(2 * n_, m);
@@ -168,7 +172,7 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
   const System& system = hybrid_.GetSystem();
   const LinearFlow& flow = hybrid_.FreeFlow();
   const Eigen::VectorXd z0 = flow.Transient(t_, x_, v_);
-  const Signal gap = flow.Output(hybrid_.Gap(), t_, z0);
+  const Signal gap = flow.Output(hybrid_.Gap(0), t_, z0);
   // At a release the gap leaves 0 with zero speed and acceleration. Off
   // the release surface (a Newton iterate) a pressing force would turn that
   // tangency into a spurious impact at t0; searching from a short time later
@@ -194,7 +198,7 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.State(t0, z0, *te, &x_, &v_);
-  x_(c_) = system.stop;
+  x_(c_) = system.stops[0].position;
   t_ = *te;
   if (with_jacobian_) {
     ThroughFlight(flow.Transition(*te - t0), hybrid_.VectorField(t0, x0, v0),
@@ -212,7 +216,7 @@ double StickingMap::Cycle::FlightClearance(double t0, const Eigen::VectorXd& z0,
   for (const double t : SignChanges(velocity, begin, end, events_)) {
     if (velocity.Derivative().Value(t) >= 0) continue;  // a minimum
     flow.State(t0, z0, t, &x, &v);
-    clearance = std::min(clearance, hybrid_.GetSystem().stop - x(c_));
+    clearance = std::min(clearance, hybrid_.GetSystem().stops[0].position - x(c_));
   }
   return clearance;
 }
@@ -232,7 +236,7 @@ double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, doubl
 /// *t_star.
 bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, StickingCycle* cycle,
                                             double* t_star) {
-  const Stop& stop = hybrid_.GetStop();
+  const Stop& stop = hybrid_.GetStop(0);
   const double speed = std::max(v_(c_), 0.0);
   *t_star = te;
   if (rule_.IsLanding(speed, arrival_acceleration_, gap_scale_)) {
@@ -247,7 +251,7 @@ bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, Sticking
   if (with_jacobian_) dy_ = stop.ResetJacobian(n_) * dy_;
   double jerk;
   Eigen::VectorXd force(n_), acceleration(n_);
-  const double a = hybrid_.ContactAcceleration(te, x_, v_, &jerk, &force, &acceleration);
+  const double a = hybrid_.ContactAcceleration(0, te, x_, v_, &jerk, &force, &acceleration);
   const std::optional<double> end = rule_.EndsAt(te, previous, speed, -v_(c_), a, jerk, gap_scale_);
   if (end) *t_star = *end;
   return end.has_value();
@@ -256,15 +260,15 @@ bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, Sticking
 StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
                                                       StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();
-  const LinearFlow& flow = hybrid_.StuckFlow();
+  const LinearFlow& flow = hybrid_.StuckFlow(0);
   const Eigen::VectorXd x0 = WithoutIndex(x_, c_), v0 = WithoutIndex(v_, c_);
   const Eigen::VectorXd z0 = flow.Transient(te, x0, v0);
   Eigen::VectorXd x1, v1;
   flow.State(te, z0, t_star, &x1, &v1);
   cycle->accumulation = t_star;
-  cycle->contact_force = hybrid_.ContactForce(t_star, x1, v1);
+  cycle->contact_force = hybrid_.ContactForce(0, t_star, x1, v1);
   if (!Stop::Holds(cycle->contact_force)) return StickingMapStatus::kNoSticking;
-  const Signal release = flow.Output(hybrid_.Release(), te, z0);
+  const Signal release = flow.Output(hybrid_.Release(0), te, z0);
   const std::optional<double> tr = FirstUpcrossing(
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
   if (!tr) return StickingMapStatus::kNoRelease;
@@ -277,7 +281,7 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
     ThroughFlight(flow.Transition(*tr - te), StuckField(te, x0, v0), StuckField(*tr, x1, v1),
                   release_gradient_, slope);
   }
-  x_ = EmbedAtStop(x1, c_, system.stop);
+  x_ = EmbedAtStop(x1, c_, system.stops[0].position);
   v_ = EmbedAtStop(v1, c_, 0.0);
   t_ = *tr;
   cycle->next_release = *tr;
@@ -294,7 +298,7 @@ void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const 
 
 Eigen::VectorXd StickingMap::Cycle::StuckField(double t, const Eigen::VectorXd& x_held,
                                                const Eigen::VectorXd& v_held) const {
-  const double xs = hybrid_.GetSystem().stop;
+  const double xs = hybrid_.GetSystem().stops[0].position;
   Eigen::VectorXd a =
       hybrid_.Acceleration(t, EmbedAtStop(x_held, c_, xs), EmbedAtStop(v_held, c_, 0.0));
   a -= constraint_direction_ * a(c_);
@@ -376,21 +380,23 @@ Eigen::MatrixXd StickingMap::FiniteDifferenceJacobian(const Eigen::VectorXd& s, 
 }
 
 HybridState StickingMap::ToState(const Eigen::VectorXd& s) const {
-  const int held = GetSystem().Dof() - 1, c = GetSystem().contact_dof;
+  const int held = GetSystem().Dof() - 1, c = GetSystem().stops[0].dof;
   HybridState state;
   state.t = s(TimeIndex());
-  state.x = EmbedAtStop(s.head(held), c, GetSystem().stop);
+  state.x = EmbedAtStop(s.head(held), c, GetSystem().stops[0].position);
   state.v = EmbedAtStop(s.segment(held, held), c, 0.0);
   return state;
 }
 
 double StickingMap::ContactForce(const Eigen::VectorXd& s) const {
   const int held = GetSystem().Dof() - 1;
-  return hybrid_->ContactForce(s(TimeIndex()), s.head(held), s.segment(held, held));
+  return hybrid_->ContactForce(0, s(TimeIndex()), s.head(held), s.segment(held, held));
 }
 
 Eigen::RowVectorXd StickingMap::ContactForceGradient(const Eigen::VectorXd& s) const {
-  const LinearOutput force = hybrid_->GetStop().ContactForce(GetSystem());
+  const Mode& held = hybrid_->Holding(StopBit(0));
+  const LinearOutput force =
+      hybrid_->GetStop(0).ContactForce(GetSystem(), held.Moving(), held.HeldPositions());
   const double omega = GetSystem().omega;
   Eigen::RowVectorXd gradient(Size());
   gradient << force.wx, force.wv, -force.cos_amplitude * omega * std::sin(omega * s(TimeIndex()));

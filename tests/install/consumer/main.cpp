@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     const System paper = PaperSystem();
     if (system.mass != paper.mass || system.damping != paper.damping ||
         system.stiffness != paper.stiffness || system.forcing != paper.forcing ||
-        system.stop != paper.stop || system.restitution != paper.restitution) {
+        system.stops != paper.stops) {
       std::fprintf(stderr, "%s is not the paper's system:\n%s\n", argv[1],
                    SystemToJson(system).c_str());
       return EXIT_FAILURE;

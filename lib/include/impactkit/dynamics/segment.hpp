@@ -5,26 +5,28 @@
 /// sample it, take stroboscopic points or find extrema exactly.
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "impactkit/dynamics/flow.hpp"
 
 namespace impactkit {
 
-/// What the contact mass does during a segment.
+/// What the masses at the stops do during a segment.
 enum class SegmentMode {
   kFree,     ///< flight: the free flow of all N coordinates
   kChatter,  ///< the tail of a chatter sequence, from its last simulated impact to the
-             ///< accumulation point: the contact mass is modelled at the stop (the other
+             ///< accumulation point: the mass is modelled at the stop (the other
              ///< masses follow the stuck subsystem) but not yet sticking
-  kStuck,    ///< sticking: held at the stop while the contact force presses it there
+  kStuck,    ///< sticking: a mass held at its stop while the contact force presses it there
 };
 
 class Segment {
  public:
-  /// `flow` is the free flow (n = N) for kFree, otherwise the stuck
-  /// subsystem (n = N - 1, the contact DOF removed and held at `stop`).
+  /// `flow` moves the DOFs `moving` (all N in free flight); the others are
+  /// held at rest at `held_positions` (size N, read where a DOF is held).
+  /// The vectors must outlive the segment.
   Segment(const LinearFlow& flow, double t0, const Eigen::VectorXd& z0, double begin, double end,
-          SegmentMode mode, int contact_dof, double stop);
+          SegmentMode mode, const std::vector<int>& moving, const Eigen::VectorXd& held_positions);
 
   double Begin() const { return begin_; }
   double End() const { return end_; }
@@ -44,8 +46,8 @@ class Segment {
   double begin_;
   double end_;
   SegmentMode mode_;
-  int contact_dof_;
-  double stop_;
+  const std::vector<int>* moving_;
+  const Eigen::VectorXd* held_positions_;
 };
 
 }  // namespace impactkit

@@ -1,15 +1,24 @@
 #pragma once
 /// \file hybrid_system.hpp
-/// A system with its stop, decomposed once per parameter value: the exact
-/// flow of each mode — free (N coordinates) and held at the stop (the N − 1
-/// of the stuck subsystem) — the stop's witnesses prepared on them, and the
-/// free vector field. The simulator and the impact map are built on one;
-/// share it (std::shared_ptr) to decompose a parameter value's flows once.
+/// A system with its stops, decomposed once per parameter value: the stops
+/// (stop.hpp), and the modes of the motion (mode.hpp) — free flight, and
+/// each set of stops holding their masses — with their exact flows and the
+/// stops' witnesses prepared on them. The simulator and the impact map are
+/// built on one; share it (std::shared_ptr) to decompose a parameter
+/// value's flows once.
+///
+/// The free mode and the modes of one held stop are decomposed at
+/// construction; a mode of several held stops (stops on several masses,
+/// all sticking at once) when a motion first reaches it, thread-safely.
 
 #include <Eigen/Dense>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <vector>
 
 #include "impactkit/dynamics/flow.hpp"
+#include "impactkit/hybrid/mode.hpp"
 #include "impactkit/hybrid/stop.hpp"
 #include "impactkit/model/system.hpp"
 
@@ -21,15 +30,25 @@ class HybridSystem {
   /// mode has no bounded steady response (an undamped mode forced at its
   /// frequency).
   explicit HybridSystem(const System& system);
+  HybridSystem(const HybridSystem&) = delete;
+  HybridSystem& operator=(const HybridSystem&) = delete;
 
   const System& GetSystem() const { return system_; }
-  const Stop& GetStop() const { return stop_; }
-  const LinearFlow& FreeFlow() const { return free_flow_; }
-  const LinearFlow& StuckFlow() const { return stuck_flow_; }
-  /// The stop's witnesses, prepared: the gap on the free flow, −Fs on the
-  /// stuck flow.
-  const PreparedOutput& Gap() const { return gap_; }
-  const PreparedOutput& Release() const { return release_; }
+  int StopCount() const { return static_cast<int>(stops_.size()); }
+  const Stop& GetStop(int stop) const { return stops_[stop]; }
+
+  /// Free flight: every mass moves.
+  const Mode& Free() const { return *free_; }
+  /// The mode in which the stops in `held` hold their masses. Throws
+  /// InvalidInput if its moving masses have no bounded steady response.
+  const Mode& Holding(StopSet held) const;
+
+  const LinearFlow& FreeFlow() const { return free_->Flow(); }
+  /// Stop `stop`'s gap on the free flow.
+  const PreparedOutput& Gap(int stop) const { return *free_->Witness(stop); }
+  /// The flow while stop `stop` alone holds its mass, and −Fs on it.
+  const LinearFlow& StuckFlow(int stop) const { return held_[stop]->Flow(); }
+  const PreparedOutput& Release(int stop) const { return *held_[stop]->Witness(stop); }
   /// The shortest time scale of the free motion (event search, chatter).
   double TimeScale() const { return time_scale_; }
 
@@ -37,29 +56,34 @@ class HybridSystem {
   Eigen::VectorXd Acceleration(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
   /// f(t, y) = (v, a) of the free mode, y = (x, v).
   Eigen::VectorXd VectorField(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
-  /// a_c and, in *rate, da_c/dt of the free mode, using `force` and
-  /// `acceleration` (size N) as scratch: no allocation per call.
-  double ContactAcceleration(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+  /// The acceleration of stop `stop`'s mass in free flight and, in *rate,
+  /// its time derivative, using `force` and `acceleration` (size N) as
+  /// scratch: no allocation per call.
+  double ContactAcceleration(int stop, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                              double* rate, Eigen::VectorXd* force,
-                             Eigen::VectorXd* acceleration) const;
-  /// Fs of the held mode at t, from the stuck subsystem's state.
-  double ContactForce(double t, const Eigen::VectorXd& x_held, const Eigen::VectorXd& v_held) const;
+                             Eigen::VectorXd* acceleration) const {
+    return free_->Acceleration(stop, t, x, v, rate, force, acceleration);
+  }
+  /// Fs of stop `stop` holding its mass alone, from the moving masses' state.
+  double ContactForce(int stop, double t, const Eigen::VectorXd& x_held,
+                      const Eigen::VectorXd& v_held) const {
+    return held_[stop]->ContactForce(stop, t, x_held, v_held);
+  }
 
-  /// The held mode's coordinates of a full vector (the contact DOF removed),
-  /// and back (`value` at the contact DOF).
-  Eigen::VectorXd Held(const Eigen::VectorXd& full) const;
-  Eigen::VectorXd Full(const Eigen::VectorXd& held, double value) const;
+  /// The coordinates that move while stop `stop` holds its mass alone (its
+  /// DOF removed), and back (`value` at its DOF).
+  Eigen::VectorXd Held(int stop, const Eigen::VectorXd& full) const;
+  Eigen::VectorXd Full(int stop, const Eigen::VectorXd& held, double value) const;
 
  private:
   System system_;
-  Stop stop_;
-  LinearFlow free_flow_;
-  LinearFlow stuck_flow_;
-  PreparedOutput gap_;
-  PreparedOutput release_;
-  LinearOutput contact_force_;
+  std::vector<Stop> stops_;
+  std::unique_ptr<const Mode> free_;
+  std::vector<std::unique_ptr<const Mode>> held_;  ///< per stop: that stop alone holding
+  /// Modes of several held stops, built on first use.
+  mutable std::map<StopSet, std::unique_ptr<const Mode>> combined_;
+  mutable std::mutex combined_mutex_;
   Eigen::MatrixXd inverse_mass_;
-  Eigen::RowVectorXd inverse_mass_row_;  ///< e_cᵀ M⁻¹
   double time_scale_ = 1.0;
 };
 

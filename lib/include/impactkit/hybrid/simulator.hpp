@@ -4,15 +4,21 @@
 ///
 /// Between events the motion is linear and harmonically forced, so it is
 /// known in closed form (flow.hpp); the simulator only has to find events.
-/// One step of Simulate(), with y = (x, v) and c the contact DOF:
+/// The state's mode is the set of stops holding their masses (none: free
+/// flight; hybrid/mode.hpp); every stop watches its witness on the mode's
+/// flow, its gap g = s (x_c - xs) while its mass moves (s = +1 above,
+/// -1 below), -Fs while it holds the mass. One step of Simulate(), with
+/// y = (x, v) and c the DOF of the stop whose event comes first:
 ///
-///     if free:
-///       F  <- closed-form flight from (t, y)
-///       te <- first time in (t, t_end] where g = x_c - xs reaches 0 from
-///             below (events.hpp: a bound on |g''| makes a skipped pair of
-///             crossings impossible; te refined to ~1e-13)
+///       F  <- closed-form flow of the mode from (t, y)
+///       te <- first time in (t, t_end] where any stop's witness reaches 0
+///             from below (events.hpp: a bound on |w''| makes a skipped pair
+///             of crossings impossible; te refined to ~1e-13; each stop
+///             searched only up to the earliest time found so far)
 ///       observer.OnSegment(F on [t, min(te, t_end)])
 ///       no te: t <- t_end, stop
+///       a release: the stop lets go, observer.OnRelease(tr); next step
+///     at an arrival (c moving, at its stop):
 ///       y- <- F(te)
 ///       an arrival whose bounce height is unresolved is a landing: v_c <- 0,
 ///           no impact (docs/theory.md §4); then as after chatter, below
@@ -26,12 +32,12 @@
 ///         jump: the other masses follow the stuck subsystem to t* (a
 ///               chatter segment, not sticking),
 ///               x_c = xs, v_c = 0; observer.OnChatter(te, t*)
-///       if v_c = 0 at the stop: stuck if the contact force Fs > 0 there
-///     if stuck:
-///       S  <- closed-form stuck subsystem from (t, y without c)
-///       tr <- first time where Fs reaches 0 from above
-///       observer.OnSegment(S on [t, min(tr, t_end)])
-///       no tr: t <- t_end, stop;  else free, observer.OnRelease(tr)
+///       if v_c = 0 at the stop: held (the stop joins the mode) if its
+///           contact force Fs > 0 there
+///
+/// A mass past a stop at the start of a step (an event at another stop
+/// came first by less than the time tolerance) meets it at once, so that
+/// near-simultaneous events at two stops are both taken, in order.
 ///
 /// On return the state is the hybrid state at t_end (or where the run
 /// stopped, with the reason in the summary).
@@ -115,11 +121,12 @@ struct SimulationSummary {
   std::string BriefReport() const;
 };
 
-/// An impact of the contact mass with the stop.
+/// An impact of a mass with one of the stops.
 struct Impact {
   double t = 0.0;
+  int stop = 0;        ///< which: an index into System::stops
   double phase = 0.0;  ///< t mod 2π/Ω, in [0, T)
-  /// v_c(t−) > 0, the speed just before impact; a mass reaching the stop
+  /// s v_c(t−) > 0, the speed towards the stop just before impact; a mass reaching the stop
   /// at zero speed (or from below the bounce height resolution) lands and is
   /// not an impact.
   double velocity = 0.0;

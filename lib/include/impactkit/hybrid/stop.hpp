@@ -1,26 +1,32 @@
 #pragma once
 /// \file stop.hpp
-/// A rigid stop limiting one degree of freedom c at x_c = xs, as a component
-/// of its own: what ends a flight or a held phase (its witnesses), what an
-/// impact does (its reset map and the reset's Jacobian) and when the mass
-/// stays held (its sticking rule). The simulator and the impact map take all
-/// of these from here (Drake's split of witness functions and reset maps).
+/// A rigid stop limiting one degree of freedom c at x_c = xs from one side,
+/// as a component of its own: what ends a flight or a held phase (its
+/// witnesses), what an impact does (its reset map and the reset's Jacobian)
+/// and when the mass stays held (its sticking rule). The simulator and the
+/// impact map take all of these from here (Drake's split of witness
+/// functions and reset maps). With s = +1 for an upper stop (x_c <= xs) and
+/// s = −1 for a lower one (x_c >= xs):
 ///
-///     free       while g = x_c − xs < 0; an impact when g reaches 0 upwards
+///     free       while g = s (x_c − xs) < 0; an impact when g reaches 0
+///                upwards
 ///     impact     v(t+) = v(t−) + λ M⁻¹ e_c, the stop's impulse λ such that
 ///                v_c(t+) = −r v_c(t−): λ = −(1 + r) v_c(t−) / (M⁻¹)_cc.
 ///                With a diagonal M only v_c changes (the paper's law); with
 ///                masses coupled through M the impulse moves the others too,
 ///                and kinetic energy drops by (1 − r²) v_c² / (2 (M⁻¹)_cc)
-///                (changing v_c alone could create energy there).
+///                (changing v_c alone could create energy there). While
+///                other stops hold their masses, M is that of the masses
+///                that move.
 ///     held       x_c = xs, v_c = 0 while Fs > 0, Fs the force pressing the
-///                mass into the stop (the stop's reaction: the c-th row of
-///                M x'' = A cos Ωt − C v − K x − Fs e_c with the held mass's
-///                acceleration zero); released when Fs falls through 0, i.e.
-///                when −Fs crosses 0 upwards.
+///                mass into the stop (s times the c-th row of
+///                M x'' = A cos Ωt − C v − K x with the held masses'
+///                accelerations zero: the stop's reaction); released when Fs
+///                falls through 0, i.e. when −Fs crosses 0 upwards.
 
 #include <Eigen/Dense>
 #include <string_view>
+#include <vector>
 
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/flow.hpp"
@@ -37,26 +43,50 @@ struct Witness {
 
 class Stop {
  public:
-  /// The stop of `system`: its contact DOF, position xs and restitution r.
-  explicit Stop(const System& system);
+  /// Stop `index` of `system`: its DOF, side, position xs and restitution r.
+  Stop(const System& system, int index);
 
   int Dof() const { return dof_; }
   double Position() const { return position_; }
   double Restitution() const { return restitution_; }
+  /// +1 for an upper stop, −1 for a lower one.
+  double Sign() const { return sign_; }
+  /// The speed towards the stop of a mass moving with velocity v_c.
+  double SpeedTowards(double v_c) const { return sign_ * v_c; }
 
-  /// The witness of the free mode (N coordinates): g = x_c − xs.
-  Witness Gap(int dofs) const;
-  /// The witness of the held mode (the N − 1 coordinates of the stuck
-  /// subsystem, x_c = xs and v_c = a_c = 0 implied): −Fs.
-  Witness Release(const System& system) const;
-  /// Fs itself, the held mode's contact force (positive: pushed into the stop).
-  LinearOutput ContactForce(const System& system) const;
+  /// The witness over the coordinates `moving` (the free mode's N, or those
+  /// of the masses that move while other stops hold theirs; this stop's DOF
+  /// among them): g = s (x_c − xs).
+  Witness Gap(const std::vector<int>& moving) const;
+  /// The witness of a held mode (the coordinates `moving`, this stop among
+  /// the holding ones: x_c = xs and v_c = a_c = 0 implied): −Fs.
+  Witness Release(const System& system, const std::vector<int>& moving,
+                  const Eigen::VectorXd& held_positions) const;
+  /// Fs itself (positive: pushed into the stop), over the coordinates of
+  /// the masses `moving`; the others are held at their stops' positions,
+  /// given in `held_positions` (size N, zero where a mass moves).
+  LinearOutput ContactForce(const System& system, const std::vector<int>& moving,
+                            const Eigen::VectorXd& held_positions) const;
 
-  /// The impact law on the velocities just before impact (v_c > 0).
-  void Reset(Eigen::VectorXd& v) const { Reset(v, restitution_); }
+  /// The impact law on the velocities just before impact (moving towards
+  /// the stop), all masses free.
+  void Reset(Eigen::VectorXd& v) const { Reset(v, impulse_direction_, restitution_); }
+  /// The same while other stops hold their masses: `direction` is the
+  /// impulse's (ImpulseDirection of the masses that move).
+  void Reset(Eigen::VectorXd& v, const Eigen::VectorXd& direction) const {
+    Reset(v, direction, restitution_);
+  }
   /// A landing: the impact law with r = 0 (v_c becomes 0, the others move
   /// with the impulse, so a full M loses energy rather than gaining it).
-  void Absorb(Eigen::VectorXd& v) const { Reset(v, 0.0); }
+  void Absorb(Eigen::VectorXd& v) const { Reset(v, impulse_direction_, 0.0); }
+  void Absorb(Eigen::VectorXd& v, const Eigen::VectorXd& direction) const {
+    Reset(v, direction, 0.0);
+  }
+  /// M_F⁻¹ e_c / (M_F⁻¹)_cc over all N velocities, zero outside the masses
+  /// `moving` (F): how each velocity moves per unit change of v_c.
+  Eigen::VectorXd ImpulseDirection(const Eigen::MatrixXd& mass,
+                                   const std::vector<int>& moving) const;
+  const Eigen::VectorXd& ImpulseDirection() const { return impulse_direction_; }
   /// ∂(x, v)(t+) / ∂(x, v)(t−), 2N x 2N: the identity except the column of
   /// v_c, which is −(1 + r) M⁻¹e_c / (M⁻¹)_cc + e_c (−r at v_c itself).
   Eigen::MatrixXd ResetJacobian(int dofs) const { return ResetJacobian(dofs, restitution_); }
@@ -79,13 +109,14 @@ class Stop {
 
  private:
   int dof_;
+  double sign_;
   double position_;
   double restitution_;
   /// M⁻¹ e_c / (M⁻¹)_cc: how the impulse moves each velocity per unit
-  /// change of v_c (exactly e_c for a diagonal M).
+  /// change of v_c (exactly e_c for a diagonal M), all masses free.
   Eigen::VectorXd impulse_direction_;
 
-  void Reset(Eigen::VectorXd& v, double restitution) const;
+  void Reset(Eigen::VectorXd& v, const Eigen::VectorXd& direction, double restitution) const;
   Eigen::MatrixXd ResetJacobian(int dofs, double restitution) const;
 };
 

@@ -27,11 +27,13 @@ struct ParameterSpec {
 /// omega, xs, r, A, m, k, c, n: the order of ParameterNames.
 std::span<const ParameterSpec> ParameterTable();
 
-/// The entry for a name (A1 … AN map to "A"); null if the system lacks it.
+/// The entry for a name (A1 … AN map to "A", xs2 … to "xs", r2 … to "r");
+/// null if the system lacks it.
 const ParameterSpec* FindParameter(const System& system, std::string_view name);
 
 /// Names accepted by GetParameter / SetParameter for this system:
-/// omega, xs, r, A1..AN, and for chains m, k, c, n.
+/// omega, xs, r (of the first stop), xs2, r2, ... (of each further stop),
+/// A1..AN, and for chains m, k, c, n.
 std::vector<std::string> ParameterNames(const System& system);
 
 /// Value of a named scalar parameter; throws InvalidInput for unknown names.

@@ -1,19 +1,23 @@
 #pragma once
 /// \file system.hpp
-/// The impact oscillator: N masses with linear coupling, one of which (the
-/// contact DOF, by default the last) is limited by a rigid stop.
+/// The impact oscillator: N masses with linear coupling, limited by rigid
+/// stops. Each stop limits one mass i from above (x_i <= xs) or from below
+/// (x_i >= xs); one mass may have a stop on each side (a clearance), and
+/// several masses stops of their own.
 ///
-///     M x'' + C x' + K x = A cos(Ω t)      while x_c < xs     (free flight)
-///     v_c(t+) = -r v_c(t-)                 when x_c reaches xs with v_c > 0
+///     M x'' + C x' + K x = A cos(Ω t)      while every mass is inside its stops
+///     v_i(t+) = -r v_i(t-)                 when x_i reaches a stop moving towards it
 ///
 /// (by an impulse through M: the other velocities move too when M couples
-/// the masses; hybrid/stop.hpp)
+/// the masses; hybrid/stop.hpp). The seed's model, one upper stop on the
+/// last mass, is the case of one stop.
 ///
 /// The paper's case (Wagg & Bishop 2001) is the uniform chain M = m I,
 /// C = c E, K = k E with E tridiagonal (E_ii = 2 for i < N, E_NN = 1,
 /// off-diagonals -1). PaperSystem() is the default of every command.
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -35,6 +39,34 @@ struct ChainParameters {
 /// and each event O(N²) (docs/performance.md gives the costs).
 inline constexpr int kMaxDegreesOfFreedom = 1000;
 
+/// Which way a stop limits its mass.
+enum class StopSide {
+  kUpper,  ///< x_i <= position: met moving up (v_i > 0)
+  kLower,  ///< x_i >= position: met moving down (v_i < 0)
+};
+
+/// One rigid stop: the mass it limits, from which side, where, and the
+/// coefficient of restitution of its impacts.
+struct StopParameters {
+  int dof = 1;                       ///< the mass it limits (0-based)
+  StopSide side = StopSide::kUpper;  ///< which way
+  double position = 0.1;             ///< xs
+  double restitution = 0.7;          ///< r in [0, 1]
+  /// +1 for an upper stop, -1 for a lower one: Sign() (x_i - position) is
+  /// the gap (< 0 inside) and Sign() v_i the speed towards the stop.
+  double Sign() const { return side == StopSide::kUpper ? 1.0 : -1.0; }
+  bool operator==(const StopParameters&) const = default;
+};
+
+/// The most stops a system may have: a set of stops holding their masses
+/// is a bit set (StopSet).
+inline constexpr int kMaxStops = 64;
+
+/// A set of stops by index, bit k for stop k: the stops holding their
+/// masses (sticking) in a hybrid state.
+using StopSet = std::uint64_t;
+inline constexpr StopSet StopBit(int stop) { return StopSet{1} << stop; }
+
 /// A complete impact oscillator. Matrices are N x N, symmetric; M and K
 /// positive definite, C positive semi-definite.
 struct System {
@@ -43,9 +75,9 @@ struct System {
   Eigen::MatrixXd stiffness;  ///< K
   Eigen::VectorXd forcing;    ///< A, force amplitudes: f(t) = A cos(Ω t)
   double omega = 1.0;         ///< Ω, forcing frequency (> 0)
-  double stop = 0.1;          ///< xs, position of the stop for the contact DOF
-  double restitution = 0.7;   ///< r in [0, 1]
-  int contact_dof = 1;        ///< index (0-based) of the mass that meets the stop
+  /// The stops, at least one; stop 1 of the files and the command line is
+  /// stops[0] (parameters xs and r), stop k is stops[k - 1] (xs<k>, r<k>).
+  std::vector<StopParameters> stops = {StopParameters{}};
   /// Set when the system is a uniform chain: then m, k, c and n can be
   /// changed by name and the matrices are rebuilt.
   std::optional<ChainParameters> chain;
@@ -55,12 +87,22 @@ struct System {
   double ForcingPeriod() const;
   /// The forcing phase of time t: t mod T, in [0, T).
   double Phase(double t) const;
+  int StopCount() const { return static_cast<int>(stops.size()); }
+  /// The one stop of a system that has one. Throws InvalidInput naming
+  /// `what` (a computation written for one stop so far) when it has
+  /// several: a clear error rather than a second stop silently ignored.
+  const StopParameters& SoleStop(std::string_view what) const;
 };
+
+/// The name of a stop's parameter as files and the command line write it:
+/// `base` for the first stop (xs, r), base<k> for stop k >= 2 (xs2, r2).
+std::string StopParameterName(std::string_view base, int stop);
 
 /// The coupling matrix E of the uniform chain (N x N).
 Eigen::MatrixXd ChainCouplingMatrix(int dof);
 
-/// The uniform chain with the given forcing (length N), Ω, xs and r.
+/// The uniform chain with the given forcing (length N), Ω, and one upper
+/// stop at xs on the last mass with restitution r.
 System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
                     double stop, double restitution);
 
@@ -68,9 +110,10 @@ System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing
 /// r = 0.7, Ω = 1 unless given.
 System PaperSystem(double omega = 1.0);
 
-/// A general system. `contact_dof` is the index of the mass that meets the
-/// stop, 0-based as everywhere in the library (the system file's key
-/// `contact_dof` is 1-based, as users count masses); default the last.
+/// A general system with one upper stop. `contact_dof` is the index of the
+/// mass that meets the stop, 0-based as everywhere in the library (the
+/// system file's key `contact_dof` is 1-based, as users count masses);
+/// default the last.
 System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping,
                      const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& forcing, double omega,
                      double stop, double restitution,
@@ -89,21 +132,26 @@ void Validate(const System& system);
 /// whose flows reject a resonance themselves).
 void ValidateParameters(const System& system);
 
-/// The hybrid state: time, positions, velocities, and whether the contact
-/// mass is held at the stop (sticking).
+/// The hybrid state: time, positions, velocities, and the stops that hold
+/// their masses (sticking).
 struct HybridState {
   double t = 0.0;
   Eigen::VectorXd x;
   Eigen::VectorXd v;
-  bool stuck = false;
+  StopSet held = 0;  ///< bit k: stop k holds its mass at its position
+  bool Stuck() const { return held != 0; }
 };
 
 /// Rest at t = 0: x = v = 0, free.
 HybridState RestState(const System& system);
 
+/// The stops whose masses are at them at rest (x_i = xs, v_i = 0): the set
+/// a state may hold.
+StopSet StopsAtRest(const System& system, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+
 /// Throws InvalidInput if the state has the wrong size, a non-finite entry,
-/// or the contact mass beyond the stop (x_c > xs), or stuck without
-/// x_c = xs, v_c = 0.
+/// a mass beyond one of its stops, or a held stop whose mass is not at it
+/// at rest (x_i = xs, v_i = 0).
 void ValidateState(const System& system, const HybridState& state);
 
 }  // namespace impactkit
