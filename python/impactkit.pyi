@@ -155,6 +155,8 @@ class Orbit:
     @property
     def impact_velocities(self) -> FloatArray: ...
     @property
+    def impact_stops(self) -> IntArray: ...
+    @property
     def clearance(self) -> Optional[float]: ...
 
 def find_orbit(
@@ -163,6 +165,7 @@ def find_orbit(
     p: Optional[int] = None,
     q: Optional[int] = None,
     seed: Optional[npt.ArrayLike] = None,
+    stop: int = 0,
     jacobian: Literal["analytic", "finite_difference"] = "analytic",
     residual_tolerance: float = 1e-11,
     max_iterations: int = 50,
@@ -171,7 +174,8 @@ def find_orbit(
 ) -> Orbit: ...
 
 SpecialPointType = Literal[
-    "fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point"
+    "fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point",
+    "pitchfork"
 ]
 BranchEnd = Literal[
     "parameter_bound", "grazing", "sticking", "branch_point", "max_points", "corrector_failed"

@@ -3,6 +3,7 @@
 // stop, a closed form of the symmetric orbit of a clearance, and the mirror
 // image of the seed's one-stop model.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
@@ -10,12 +11,16 @@
 #include <optional>
 
 #include "cvode_impacts.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/hybrid/stop.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
@@ -99,6 +104,33 @@ std::optional<SymmetricOrbit> SymmetricClosedForm(double omega, double d, double
     if (admissible(t0)) return SymmetricOrbit{t0, speed(t0)};
   }
   return std::nullopt;
+}
+
+/// The eigenvalues of S·DH for the symmetric orbit: H the half map from
+/// the impact at +d to the one at -d, S the reflection (τ, v) -> (τ - T/2,
+/// -v) that maps the latter onto the former. P(2,1) = (S∘H)², so its
+/// multipliers are the squares; a multiplier -1 of S·DH is the
+/// symmetry-breaking pitchfork (+1 of P(2,1)). DH by the implicit function
+/// theorem on the closed-form flight: ∂y/∂τ = -Φ f(τ, y+), ∂y/∂v = Φ (0, -r),
+/// then dτ' = -e_xᵀ G / v' and dv' = e_vᵀ G + a' dτ'.
+Eigen::Vector2cd HalfMapMultipliers(double omega, double d, double r, const SymmetricOrbit& orbit) {
+  const double a = 0.05, wd = std::sqrt(1.0 - a * a), tau = std::numbers::pi / omega;
+  const double decay = std::exp(-a * tau), c = std::cos(wd * tau), s = std::sin(wd * tau);
+  Eigen::Matrix2d phi;
+  phi << decay * (c + a / wd * s), decay * s / wd, -decay * s / wd, decay * (c - a / wd * s);
+  const double v = orbit.speed, t0 = orbit.phase;
+  const Eigen::Vector2d f0(-r * v, std::cos(omega * t0) - 0.1 * (-r * v) - d);
+  Eigen::Matrix2d g;
+  g.col(0) = -phi * f0;
+  g.col(1) = phi * Eigen::Vector2d(0.0, -r);
+  const double v_arrival = -v;
+  const double a_arrival = std::cos(omega * (t0 + tau)) - 0.1 * v_arrival + d;
+  const Eigen::RowVector2d dt = -g.row(0) / v_arrival;
+  Eigen::Matrix2d dh;
+  dh.row(0) = dt;
+  dh.row(1) = g.row(1) + a_arrival * dt;
+  const Eigen::Matrix2d reflected = Eigen::Vector2d(1.0, -1.0).asDiagonal() * dh;
+  return reflected.eigenvalues();
 }
 
 /// The largest excursion of each stop's mass past that stop over every
@@ -279,8 +311,176 @@ TEST_CASE("stops: validation and their parameters", "[stops]") {
   CHECK_THROWS_WITH(ValidateState(s, state), Contains("needs x2 = xs"));
 }
 
-TEST_CASE("the impact map says it handles one stop so far", "[stops]") {
-  CHECK_THROWS_WITH(
-      ImpactMap(Clearance(1.0, 0.5, 0.8)),
-      Contains("the impact map handles systems with one stop so far; this one has 2"));
+TEST_CASE("a clearance's symmetric P(2,1): multipliers and the pitchfork against closed forms",
+          "[stops]") {
+  const double d = 0.5, r = 0.8;
+  auto symmetric_orbit = [&](double omega) {
+    const std::optional<SymmetricOrbit> exact = SymmetricClosedForm(omega, d, r);
+    REQUIRE(exact);
+    const System s = Clearance(omega, d, r);
+    OrbitOptions options;
+    options.p = 2;
+    options.q = 1;
+    HybridState state = RestState(s);
+    state.t = exact->phase;
+    state.x(0) = d;
+    state.v(0) = exact->speed * (1 + 1e-3);  // a nearby guess
+    PeriodicOrbit orbit;
+    REQUIRE(
+        FindOrbit(s, ImpactMap(s).ToEta(state.t, state.x, state.v), options, &orbit).termination ==
+        Termination::kConverged);
+    return std::pair{*exact, orbit};
+  };
+  for (double omega : {0.9, 1.0, 1.2, 2.0}) {
+    INFO("omega = " << omega);
+    const auto [exact, orbit] = symmetric_orbit(omega);
+    // Two impacts, one at each stop, with the closed form's speed.
+    REQUIRE(orbit.impacts.size() == 2);
+    CHECK(orbit.impacts[0].stop == 0);
+    CHECK(orbit.impacts[1].stop == 1);
+    for (const OrbitImpact& impact : orbit.impacts) {
+      CHECK_THAT(impact.velocity, WithinAbs(exact.speed, 1e-10));
+    }
+    const Eigen::Vector2cd half = HalfMapMultipliers(omega, d, r, exact);
+    std::vector<double> expected = {std::abs(half(0) * half(0)), std::abs(half(1) * half(1))};
+    std::sort(expected.rbegin(), expected.rend());
+    CHECK_THAT(std::abs(orbit.multipliers(0)), WithinAbs(expected[0], 1e-8));
+    CHECK_THAT(std::abs(orbit.multipliers(1)), WithinAbs(expected[1], 1e-8));
+  }
+  // The pitchfork: S·DH has the multiplier -1. Bisection on the closed form.
+  auto flip = [&](double omega) {
+    const std::optional<SymmetricOrbit> exact = SymmetricClosedForm(omega, d, r);
+    const Eigen::Vector2cd half = HalfMapMultipliers(omega, d, r, *exact);
+    return ((half(0) + 1.0) * (half(1) + 1.0)).real();
+  };
+  double lo = 1.0, hi = 1.1;
+  REQUIRE(flip(lo) * flip(hi) < 0);
+  while (hi - lo > 1e-13) ((flip(lo) * flip(0.5 * (lo + hi)) <= 0) ? hi : lo) = 0.5 * (lo + hi);
+  const double pitchfork = 0.5 * (lo + hi);
+
+  const auto [exact, start] = symmetric_orbit(1.0);
+  ContinuationOptions options;
+  options.orbit.p = 2;
+  options.orbit.q = 1;
+  options.lower = 0.9;
+  options.upper = 1.2;
+  const Branch branch = ContinueBranch({Clearance(1.0, d, r), start, {}}, options);
+  const auto found =
+      std::find_if(branch.special_points.begin(), branch.special_points.end(),
+                   [](const SpecialPoint& p) { return p.type == SpecialPointType::kPitchfork; });
+  REQUIRE(found != branch.special_points.end());
+  CHECK_THAT(found->parameter, WithinAbs(pitchfork, 1e-8));
+  // Not a fold: the branch goes on past it.
+  CHECK(branch.points.back().parameter == 1.2);
+  // The crossing branch: asymmetric orbits, one on each half. The halves
+  // are mirror images, so the asymmetry v_upper − v_lower changes sign
+  // across the pitchfork; the located point may sit a little way along the
+  // crossing branch (the corrector slides where the branches meet), so the
+  // two starts lie on either side of its asymmetry.
+  auto asymmetry = [](const PeriodicOrbit& orbit) {
+    const std::vector<OrbitImpact>& impacts = orbit.impacts;
+    const double sign = impacts[0].stop == 0 ? 1.0 : -1.0;
+    return sign * (impacts[0].velocity - impacts[1].velocity);
+  };
+  const double at_pitchfork = asymmetry(found->point.orbit);
+  std::vector<double> sides;
+  for (double offset : {1e-3, -1e-3}) {
+    const std::optional<BranchStart> crossing =
+        PitchforkBranchStart(Clearance(1.0, d, r), branch, *found, options, offset);
+    REQUIRE(crossing);
+    CHECK_THAT(crossing->system.omega, WithinAbs(found->parameter, 1e-6));
+    CHECK(std::abs(asymmetry(crossing->orbit)) > 1e-4);
+    sides.push_back(asymmetry(crossing->orbit) - at_pitchfork);
+  }
+  CHECK(sides[0] * sides[1] < 0);
+}
+
+TEST_CASE("impact map with two stops: the analytic Jacobian against finite differences",
+          "[stops]") {
+  // Six impacts on from a settled impact, through both stops: the
+  // clearance's asymmetric orbit and a chain with stops on two masses.
+  System chain = PaperSystem(0.8);
+  chain.stops = {{1, StopSide::kUpper, 0.1, 0.7}, {0, StopSide::kLower, -0.4, 0.6}};
+  for (const System& s : {Clearance(1.5, 0.5, 0.8), chain}) {
+    HybridState state = RestState(s);
+    ImpactRecorder recorder;
+    Simulator(s).Run(state, 200 * s.ForcingPeriod(), recorder);
+    const Impact& last = recorder.Impacts().back();
+    ImpactMapOptions section;
+    section.stop = last.stop;
+    const ImpactMap map(s, section);
+    const Eigen::VectorXd eta = map.ToEta(last.t, last.x, last.v);
+    const MapResult image = map.Follow(eta, last.stop, 6, true);
+    REQUIRE(image.status == MapStatus::kOk);
+    CHECK(std::find(image.stops.begin(), image.stops.end(), 1 - last.stop) != image.stops.end());
+    Eigen::MatrixXd fd(eta.size(), eta.size());
+    for (Eigen::Index j = 0; j < eta.size(); ++j) {
+      const double h = 1e-6 * (j == map.TimeIndex() ? s.ForcingPeriod() : 1.0);
+      Eigen::VectorXd plus = eta, minus = eta;
+      plus(j) += h;
+      minus(j) -= h;
+      const MapResult a = map.Follow(plus, last.stop, 6, false),
+                      b = map.Follow(minus, last.stop, 6, false);
+      REQUIRE(a.status == MapStatus::kOk);
+      REQUIRE(b.status == MapStatus::kOk);
+      REQUIRE(a.stops == image.stops);
+      fd.col(j) = (a.eta - b.eta) / (2 * h);
+    }
+    const double scale = std::max(1.0, image.jacobian.cwiseAbs().maxCoeff());
+    CHECK((image.jacobian - fd).cwiseAbs().maxCoeff() < 1e-5 * scale);
+  }
+}
+
+TEST_CASE(
+    "a clearance's asymmetric P(2,1) grazes a stop: the new contact located, checked by CVODE",
+    "[stops]") {
+  // The asymmetric orbits of Ω ≈ 1.3 to 1.53 end where a flight's turning
+  // point reaches a stop (a new contact; the branch shows it at both ends).
+  const System s = Clearance(1.5, 0.5, 0.8);
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(s);
+  REQUIRE(seed);
+  OrbitOptions orbit_options;
+  orbit_options.p = 2;
+  orbit_options.q = 1;
+  orbit_options.map.stop = seed->stop;
+  PeriodicOrbit start;
+  REQUIRE(FindOrbit(s, seed->eta, orbit_options, &start).termination == Termination::kConverged);
+  ContinuationOptions options;
+  options.orbit = orbit_options;
+  options.lower = 1.2;
+  options.upper = 1.6;
+  options.direction = ContinuationDirection::kBoth;
+  const Branch branch = ContinueBranch({s, start, {}}, options);
+  // Each new contact, recomputed with CVODE along the flight that holds it
+  // from the impact that starts it.
+  std::vector<int> touched_stops;
+  for (const SpecialPoint& graze : branch.special_points) {
+    if (graze.type != SpecialPointType::kGrazing || graze.vanishing_impact >= 0) continue;
+    const PeriodicOrbit& orbit = graze.point.orbit;
+    const OrbitContacts& contacts = orbit.contacts;
+    REQUIRE(contacts.clearance);
+    System at = s;
+    at.omega = graze.point.parameter;
+    ImpactMapOptions section;
+    section.stop = orbit.stop;
+    const ImpactMap map(at, section);
+    const MapResult path = map.Apply(orbit.eta, 2, false);
+    REQUIRE(path.status == MapStatus::kOk);
+    const int k = contacts.clearance_flight;
+    const Eigen::VectorXd& from = k == 0 ? orbit.eta : path.path[k - 1];
+    const int from_stop = k == 0 ? orbit.stop : path.stops[k - 1];
+    HybridState before = map.ToState(from, from_stop);
+    Stop(at, from_stop).Reset(before.v);
+    Eigen::VectorXd x = before.x, v = before.v;
+    reference::CvodeLinearFlow(at.mass, at.damping, at.stiffness, at.forcing,
+                               Eigen::VectorXd::Zero(1), at.omega, before.t, x, v,
+                               contacts.clearance_time);
+    const StopParameters& touched = at.stops[contacts.clearance_stop];
+    CHECK_THAT(x(0), WithinAbs(touched.position, 1e-9));
+    CHECK_THAT(v(0), WithinAbs(0.0, 1e-8));
+    touched_stops.push_back(contacts.clearance_stop);
+  }
+  // The branch's two ends are mirror images: one touches each stop.
+  std::sort(touched_stops.begin(), touched_stops.end());
+  CHECK(touched_stops == std::vector<int>{0, 1});
 }

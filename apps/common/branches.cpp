@@ -71,6 +71,7 @@ std::vector<TracedBranch> LabelBranches(const Diagram& diagram) {
       const SpecialPointType at = diagram.nodes[b.parent].special;
       const char* kind = at == SpecialPointType::kPeriodDoubling ? "pd"
                          : at == SpecialPointType::kBranchPoint  ? "bp"
+                         : at == SpecialPointType::kPitchfork    ? "pf"
                                                                  : "graze";
       label = fmt::format("{}{}", kind, k);
     }
@@ -162,7 +163,8 @@ Curve SpecialPointMarks(SpecialPointType type) {
       {SpecialPointType::kNeimarkSacker, {"Neimark-Sacker", 13}},
       {SpecialPointType::kGrazing, {"grazing", 9}},
       {SpecialPointType::kSticking, {"sticking onset", 11}},
-      {SpecialPointType::kBranchPoint, {"branch point", 3}}};
+      {SpecialPointType::kBranchPoint, {"branch point", 3}},
+      {SpecialPointType::kPitchfork, {"pitchfork", 15}}};
   const auto& [title, point_type] = kStyles.at(type);
   Curve marks;
   marks.title = title;

@@ -30,6 +30,13 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
       ->delimiter(',')
       ->group(group);
   command
+      .add_option("--stop", options.stop,
+                  "With --guess and several stops: the stop (1, 2, ... as in the system file) "
+                  "the guess's impact is at; its mass is the one left out of eta (default 1)")
+      ->type_name("K")
+      ->check(CLI::PositiveNumber)
+      ->group(group);
+  command
       .add_option("--transient", options.transient,
                   "Forcing periods simulated from rest before seeding from the motion")
       ->type_name("N")
@@ -56,10 +63,19 @@ OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
   if (request.p.has_value() != request.q.has_value()) {
     throw InvalidInput("--p and --q go together: give both, or neither to detect them");
   }
+  if (request.stop && request.guess.empty()) {
+    throw InvalidInput("--stop goes with --guess (a seed from simulation knows its stop)");
+  }
   if (!request.guess.empty()) {
     if (!request.p) throw InvalidInput("--guess needs --p and --q");
     *eta = Eigen::Map<const Eigen::VectorXd>(request.guess.data(),
                                              static_cast<Eigen::Index>(request.guess.size()));
+    const int stop = request.stop.value_or(1);
+    if (stop > system.StopCount()) {
+      throw InvalidInput(fmt::format("--stop {}: the system has {} stop{}", stop,
+                                     system.StopCount(), system.StopCount() == 1 ? "" : "s"));
+    }
+    options.map.stop = stop - 1;
   } else {
     const std::optional<OrbitSeed> seed = SeedFromSimulation(system, request.transient);
     if (!seed) throw std::runtime_error("the simulated motion has no impacts: no orbit to refine");
@@ -70,6 +86,7 @@ OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
                                 : seed->motion.ToString()));
     }
     *eta = seed->eta;
+    options.map.stop = seed->stop;
     options.p = static_cast<int>(seed->motion.p);
     options.q = seed->motion.q;
   }

@@ -18,12 +18,13 @@ namespace impactkit::cli {
 struct OrbitSeedOptions {
   std::optional<int> p, q;
   std::vector<double> guess;
+  std::optional<int> stop;  ///< 1-based: the stop the guess's impact is at
   int transient = 500;
   std::string jacobian = "analytic";
   bool no_fallback = false;
 };
 
-/// Adds --p, --q, --guess, --transient, --jacobian, --no-fallback in `group`.
+/// Adds --p, --q, --guess, --stop, --transient, --jacobian, --no-fallback in `group`.
 void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std::string& group);
 
 /// The orbit options and the seed η: the user's guess, or the last impact

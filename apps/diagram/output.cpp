@@ -95,7 +95,8 @@ void PrintDiagram(const Diagram& diagram) {
     std::string what = fmt::format("{} at {} = {:.10g} on P({},{})", n.Name(), diagram.parameter,
                                    n.parameter, n.p, n.q);
     if (n.special == SpecialPointType::kFold || n.special == SpecialPointType::kPeriodDoubling ||
-        n.special == SpecialPointType::kNeimarkSacker) {
+        n.special == SpecialPointType::kNeimarkSacker ||
+        n.special == SpecialPointType::kPitchfork) {
       what += fmt::format(" (multiplier {:.6f}{:+.6f}i)", n.multiplier.real(), n.multiplier.imag());
     } else if (n.special != SpecialPointType::kBranchPoint) {
       what += n.vanishing_impact < 0 ? " (a new contact)"

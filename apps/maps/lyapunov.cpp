@@ -60,9 +60,10 @@ void RunLyapunov(const LyapunovRequest& request) {
     result.message = "no impact in the transient run: the motion does not impact";
   } else {
     const Impact& last = recorder.Impacts().back();
-    const Eigen::VectorXd eta =
-        ImpactMap(system, request.options.map).ToEta(last.t, last.x, last.v);
-    result = ImpactMapLyapunov(system, eta, request.options);
+    LyapunovOptions options = request.options;
+    options.map.stop = last.stop;
+    const Eigen::VectorXd eta = ImpactMap(system, options.map).ToEta(last.t, last.x, last.v);
+    result = ImpactMapLyapunov(system, eta, options);
   }
   if (result.valid) {
     fmt::print("impacts:     {} counted after {} transient, over time {:.6g} ({:.6g} per impact)\n",

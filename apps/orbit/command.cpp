@@ -37,10 +37,21 @@ void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary&
   fmt::print("system:      {}\n", DescribeSystem(system));
   fmt::print("orbit:       P({},{}) at omega = {}, {}\n", orbit.p, orbit.q, orbit.omega,
              orbit.stable ? "stable" : "unstable");
-  fmt::print("impacts:     phase (t mod T, T = {:.6g})   velocity v{}(t-)\n",
-             system.ForcingPeriod(), system.SoleStop("impactkit orbit").dof + 1);
-  for (const OrbitImpact& i : orbit.impacts) {
-    fmt::print("             {:<28.12f} {:.12f}\n", i.phase, i.velocity);
+  if (system.StopCount() == 1) {
+    fmt::print("impacts:     phase (t mod T, T = {:.6g})   velocity v{}(t-)\n",
+               system.ForcingPeriod(), system.stops[0].dof + 1);
+    for (const OrbitImpact& i : orbit.impacts) {
+      fmt::print("             {:<28.12f} {:.12f}\n", i.phase, i.velocity);
+    }
+  } else {
+    fmt::print("impacts:     phase (t mod T, T = {:.6g})   speed            stop\n",
+               system.ForcingPeriod());
+    for (const OrbitImpact& i : orbit.impacts) {
+      const StopParameters& stop = system.stops[i.stop];
+      fmt::print("             {:<28.12f} {:<16.12f} {} (x{} {} {:.6g})\n", i.phase, i.velocity,
+                 i.stop + 1, stop.dof + 1,
+                 stop.side == StopSide::kUpper ? "<=" : ">=", stop.position);
+    }
   }
   fmt::print("multipliers: real                 imag                 modulus\n");
   for (const std::complex<double>& m : orbit.multipliers) {
@@ -63,7 +74,8 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
   j["least_squares_fallback"] = summary.used_fallback;
   j["impacts"] = nlohmann::json::array();
   for (const OrbitImpact& i : orbit.impacts) {
-    j["impacts"].push_back({{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}});
+    j["impacts"].push_back(
+        {{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}, {"stop", i.stop + 1}});
   }
   j["multipliers"] = nlohmann::json::array();
   for (const std::complex<double>& m : orbit.multipliers) {

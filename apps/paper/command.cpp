@@ -144,6 +144,7 @@ nlohmann::json OrbitStage(const System& paper, const Resolution& resolution) {
       OrbitOptions options;
       options.p = static_cast<int>(seed->motion.p);
       options.q = seed->motion.q;
+      options.map.stop = seed->stop;
       PeriodicOrbit orbit;
       if (FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged) {
         std::vector<double> v;

@@ -22,9 +22,9 @@ JacobianMethod JacobianFromName(const std::string& name) {
 }
 
 PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optional<int> q,
-                          std::optional<Eigen::VectorXd> seed, const std::string& jacobian,
-                          double residual_tolerance, int max_iterations,
-                          bool least_squares_fallback, int transient) {
+                          std::optional<Eigen::VectorXd> seed, int stop,
+                          const std::string& jacobian, double residual_tolerance,
+                          int max_iterations, bool least_squares_fallback, int transient) {
   OrbitOptions options;
   options.jacobian = JacobianFromName(jacobian);
   options.newton.residual_tolerance = residual_tolerance;
@@ -35,6 +35,10 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
     Eigen::VectorXd guess;
     if (seed) {
       guess = *seed;
+      Require(stop >= 0 && stop < system.StopCount(),
+              "stop must be in [0, " + std::to_string(system.StopCount() - 1) +
+                  "] (0-based), got " + std::to_string(stop));
+      options.map.stop = stop;
       options.p = p.value_or(1);
       options.q = q.value_or(1);
     } else {
@@ -45,6 +49,7 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
               "no p and q given, and the simulation from rest shows " + found->motion.ToString() +
                   "; give p and q");
       guess = found->eta;
+      options.map.stop = found->stop;
       options.p = p.value_or(static_cast<int>(found->motion.p));
       options.q = q.value_or(found->motion.q);
     }
@@ -96,7 +101,15 @@ void BindOrbit(py::module_& module) {
             for (const OrbitImpact& i : o.impacts) v.push_back(i.velocity);
             return MoveToArray(std::move(v));
           },
-          "Impact speeds v_c(t-) of the p impacts.")
+          "Impact speeds (towards the stop) of the p impacts.")
+      .def_property_readonly(
+          "impact_stops",
+          [](const PeriodicOrbit& o) {
+            std::vector<int> stops;
+            for (const OrbitImpact& i : o.impacts) stops.push_back(i.stop);
+            return MoveToArray(std::move(stops));
+          },
+          "The stop (0-based, System.stops) each of the p impacts is at; eta is at the first.")
       .def_property_readonly(
           "clearance", [](const PeriodicOrbit& o) { return o.contacts.clearance; },
           "xs minus the largest interior maximum of x_c in a flight (None if no flight has "
@@ -109,15 +122,17 @@ void BindOrbit(py::module_& module) {
 
   module.def("find_orbit", &FindOrbitPy, py::arg("system"), py::kw_only(),
              py::arg("p") = py::none(), py::arg("q") = py::none(), py::arg("seed") = py::none(),
-             py::arg("jacobian") = "analytic", py::arg("residual_tolerance") = 1e-11,
-             py::arg("max_iterations") = 50, py::arg("least_squares_fallback") = true,
-             py::arg("transient") = 500,
+             py::arg("stop") = 0, py::arg("jacobian") = "analytic",
+             py::arg("residual_tolerance") = 1e-11, py::arg("max_iterations") = 50,
+             py::arg("least_squares_fallback") = true, py::arg("transient") = 500,
              R"(The periodic orbit P(p, q) of `system` by Newton (KINSOL), with a
 Levenberg-Marquardt fallback.
 
-seed: an impact state eta (size 2N, v_c > 0); p and q default to 1. Without
-a seed, the last impact of a simulation from rest (transient forcing periods,
-then a window) is the seed, and p and q default to the period it shows.
+seed: an impact state eta (size 2N, v_c > 0) at stop `stop` (0-based; its
+mass is the one left out of eta); p and q default to 1. Without a seed, the
+last impact of a simulation from rest (transient forcing periods, then a
+window) is the seed, at whichever stop it is, and p and q default to the
+period it shows.
 Raises ValueError for bad input, NumericalError when Newton does not converge.
 Releases the GIL.)");
 }

@@ -107,3 +107,21 @@ def test_stops_as_dicts_and_impacts_name_their_stop():
         clearance.with_stops([{"dof": 0, "position": 0.1}, {"dof": 0, "side": "lower", "position": 0.2}])
     with pytest.raises(ValueError, match="unknown key 'sid'"):
         clearance.with_stops([{"dof": 0, "position": 0.1, "sid": "lower"}])
+
+
+def test_orbit_of_a_clearance_names_the_stop_of_each_impact():
+    clearance = impactkit.System.chain(n=1, forcing=[1.0], omega=1.0).with_stops([
+        {"dof": 0, "side": "upper", "position": 0.5, "restitution": 0.8},
+        {"dof": 0, "side": "lower", "position": -0.5, "restitution": 0.8}])
+    orbit = impactkit.find_orbit(clearance)  # seeded by simulation, at whichever stop
+    assert (orbit.p, orbit.q) == (2, 1)
+    assert sorted(orbit.impact_stops.tolist()) == [0, 1]
+    # Symmetric: the same speed at both stops, half a period apart.
+    assert orbit.impact_velocities[0] == pytest.approx(orbit.impact_velocities[1], rel=1e-12)
+    gap = (orbit.impact_times[1] - orbit.impact_times[0]) % clearance.forcing_period
+    assert gap == pytest.approx(clearance.forcing_period / 2, rel=1e-10)
+    # A seed given by hand says its stop (0-based).
+    again = impactkit.find_orbit(clearance, p=2, q=1, seed=orbit.eta, stop=int(orbit.impact_stops[0]))
+    np.testing.assert_allclose(again.eta, orbit.eta, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match="stop must be in"):
+        impactkit.find_orbit(clearance, p=2, q=1, seed=orbit.eta, stop=2)

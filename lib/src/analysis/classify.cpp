@@ -75,9 +75,10 @@ Classification ClassifyMotion(const System& system, const std::vector<Sample>& s
     result.kind = result.period.sticking ? MotionKind::kSticking : MotionKind::kPeriodic;
   } else {
     const Impact& last = impacts.back();
-    const Eigen::VectorXd eta =
-        ImpactMap(system, options.lyapunov.map).ToEta(last.t, last.x, last.v);
-    result.lyapunov = ImpactMapLyapunov(system, eta, options.lyapunov);
+    LyapunovOptions lyapunov = options.lyapunov;
+    lyapunov.map.stop = last.stop;
+    const Eigen::VectorXd eta = ImpactMap(system, lyapunov.map).ToEta(last.t, last.x, last.v);
+    result.lyapunov = ImpactMapLyapunov(system, eta, lyapunov);
     result.lyapunov_computed = true;
     const bool chaotic = result.lyapunov.valid && result.lyapunov.largest > options.chaos_threshold;
     result.kind = chaotic ? MotionKind::kChaotic : MotionKind::kUnresolved;

@@ -58,13 +58,16 @@ LyapunovResult ImpactMapLyapunov(const System& system, const Eigen::VectorXd& et
   Eigen::MatrixXd q = Eigen::MatrixXd::Identity(n, n);
   Eigen::VectorXd log_sums = Eigen::VectorXd::Zero(n);
   double start = 0.0;
+  // With several stops each step may end at another stop, whose impacts
+  // have coordinates of their own: the Jacobians chain across them.
+  int stop = map.SectionStop();
   const int total = options.transient_impacts + options.impacts;
   for (int j = 0; j < total; ++j) {
     if (j == options.transient_impacts) {
       start = shifted + current(time_index);
       log_sums.setZero();
     }
-    const MapResult image = map.Apply(current, 1, true);
+    const MapResult image = map.Follow(current, stop, 1, true);
     if (image.status != MapStatus::kOk) return fail(image, j);
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(image.jacobian * q);
     const Eigen::VectorXd diagonal = qr.matrixQR().diagonal();
@@ -80,6 +83,7 @@ LyapunovResult ImpactMapLyapunov(const System& system, const Eigen::VectorXd& et
     }
     log_sums += diagonal.cwiseAbs().array().log().matrix();
     current = image.eta;
+    stop = image.stops.back();
     normalise_time();
   }
   const double end = shifted + current(time_index);

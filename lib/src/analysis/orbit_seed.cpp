@@ -23,8 +23,10 @@ std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient,
   simulator.Run(state, (transient + 2 * max_q + 1) * period, window);
   if (window.Impacts().empty()) return std::nullopt;
   const Impact& last = window.Impacts().back();
+  ImpactMapOptions section;
+  section.stop = last.stop;
   return OrbitSeed{window.Period(PeriodOptions{max_q, 1e-6}),
-                   ImpactMap(hybrid).ToEta(last.t, last.x, last.v)};
+                   ImpactMap(hybrid, section).ToEta(last.t, last.x, last.v), last.stop};
 }
 
 }  // namespace impactkit

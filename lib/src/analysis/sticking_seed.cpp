@@ -48,10 +48,13 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   const double period = system.ForcingPeriod();
   HybridState state = RestState(system);
   simulator.Run(state, transient * period);
-  ReleaseRecorder recorder(system.SoleStop("seeding a sticking orbit").dof);
+  ReleaseRecorder recorder(system.stops[0].dof);
   simulator.Run(state, (transient + 2 * max_q + 1) * period, recorder);
   const std::vector<Eigen::VectorXd>& releases = recorder.Releases();
   if (releases.empty()) return std::nullopt;
+  // A motion that sticks: its orbit is the release map's, written for one
+  // stop (orbits/sticking_map.hpp).
+  system.SoleStop("the sticking orbit of a motion that sticks (the release map)");
   const Eigen::VectorXd& last = releases.back();
   const Eigen::Index t = last.size() - 1;
   // Largest |entry| of the state part (none for N = 1: the section is t).

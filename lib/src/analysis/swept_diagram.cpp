@@ -51,6 +51,7 @@ std::vector<DiagramSeed> SeedsFromSweep(const System& system, const SweepOptions
       orbit.p = static_cast<int>(period.p);
       orbit.q = period.q;
       PeriodicOrbit found;
+      orbit.map.stop = last.stop;
       const Eigen::VectorXd eta = ImpactMap(at, orbit.map).ToEta(last.t, last.x, last.v);
       if (FindOrbit(at, eta, orbit, &found).termination == Termination::kConverged) {
         seeds.push_back(

@@ -69,7 +69,7 @@ std::optional<MapResult> BranchProblem::Image(const Eigen::VectorXd& x, bool wit
   const ImpactMap* map = MapAt(Mu(x));
   if (!map) return std::nullopt;
   const Eigen::VectorXd eta = Eta(x);
-  if (!(eta(map->TimeIndex() + 1 + base_.stops[0].dof) > 0)) return std::nullopt;
+  if (!(map->Speed(eta, map->SectionStop()) > 0)) return std::nullopt;
   MapResult image = map->Apply(eta, p_, with_jacobian);
   if (image.status != MapStatus::kOk) return std::nullopt;
   image.eta(map->TimeIndex()) -= q_ * map->GetSystem().ForcingPeriod();

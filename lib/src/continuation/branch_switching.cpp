@@ -1,6 +1,6 @@
 // Branch switching (continuation.hpp): onto the period-doubled branch at a
-// period doubling, and past a grazing onto the orbit with an impact more or
-// fewer.
+// period doubling, onto the crossing branch at a pitchfork, and past a
+// grazing onto the orbit with an impact more or fewer.
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +12,59 @@ namespace impactkit {
 
 using detail::BranchProblem;
 
+namespace {
+
+/// The map options of `branch`: its points' η are at its stop.
+ImpactMapOptions SectionOf(const Branch& branch, const ContinuationOptions& options) {
+  ImpactMapOptions map = options.orbit.map;
+  map.stop = branch.stop;
+  return map;
+}
+
+/// The new branch leaves the special point `at` along the eigenvector w with
+/// μ stationary: corrected on the hyperplane `offset` along (w, 0) from it.
+std::optional<Eigen::VectorXd> CorrectAlong(const BranchProblem& problem, const SpecialPoint& at,
+                                            const ContinuationOptions& options, double offset,
+                                            Eigen::VectorXd* w) {
+  const Eigen::VectorXd x_at = BranchProblem::Join(at.point.orbit.eta, at.point.parameter);
+  *w = BranchProblem::Join(at.eigenvector, 0.0).normalized();
+  NewtonOptions newton = options.orbit.newton;
+  newton.max_iterations = 4 * options.corrector_iterations;
+  int iterations = 0;
+  return problem.Correct(x_at + offset * *w, *w, w->dot(x_at) + offset, newton, &iterations);
+}
+
+/// The start at the corrected point x of `problem`'s branch, heading away
+/// from the special point (along w).
+std::optional<BranchStart> StartAt(const BranchProblem& problem, const Eigen::VectorXd& x,
+                                   const Eigen::VectorXd& w) {
+  const std::optional<Eigen::VectorXd> tangent = problem.Tangent(x, w);
+  if (!tangent) return std::nullopt;
+  BranchStart start;
+  start.system = problem.SystemAt(BranchProblem::Mu(x));
+  start.orbit = DescribeOrbit(*problem.MapAt(BranchProblem::Mu(x)), BranchProblem::Eta(x),
+                              problem.p(), problem.q());
+  start.direction = *tangent;
+  return start;
+}
+
+/// The unit chord of `branch` between its points just before and just after
+/// arclength s (the special point there excluded); empty at an end.
+Eigen::VectorXd BranchChord(const Branch& branch, double s) {
+  const BranchPoint* before = nullptr;
+  const BranchPoint* after = nullptr;
+  for (const BranchPoint& point : branch.points) {
+    if (point.arclength < s && (!before || point.arclength > before->arclength)) before = &point;
+    if (point.arclength > s && (!after || point.arclength < after->arclength)) after = &point;
+  }
+  if (!before || !after) return {};
+  return (BranchProblem::Join(after->orbit.eta, after->parameter) -
+          BranchProblem::Join(before->orbit.eta, before->parameter))
+      .normalized();
+}
+
+}  // namespace
+
 std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch& branch,
                                               const SpecialPoint& pd,
                                               const ContinuationOptions& options, double offset) {
@@ -19,31 +72,42 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
     throw InvalidInput("DoubledBranchStart needs a located period doubling point");
   }
   const int p = branch.p, q = branch.q;
-  const BranchProblem doubled(system, branch.parameter, 2 * p, 2 * q, options.orbit.map);
   // At the flip the doubled orbits leave the single one along the flip
-  // eigenvector with μ stationary (a pitchfork of P_I^{2p}): correct on
-  // the hyperplane `offset` along (w, 0).
-  const Eigen::VectorXd x_pd = BranchProblem::Join(pd.point.orbit.eta, pd.point.parameter);
-  const Eigen::VectorXd w = BranchProblem::Join(pd.eigenvector, 0.0).normalized();
-  NewtonOptions newton = options.orbit.newton;
-  newton.max_iterations = 4 * options.corrector_iterations;
-  int iterations = 0;
-  const std::optional<Eigen::VectorXd> x =
-      doubled.Correct(x_pd + offset * w, w, w.dot(x_pd) + offset, newton, &iterations);
+  // eigenvector (a pitchfork of P_I^{2p}).
+  const BranchProblem doubled(system, branch.parameter, 2 * p, 2 * q, SectionOf(branch, options));
+  Eigen::VectorXd w;
+  const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, offset, &w);
   if (!x) return std::nullopt;
   // Genuinely doubled: not a fixed point of P_I^p (the single orbit also
   // solves the doubled equations).
-  const BranchProblem single(system, branch.parameter, p, q, options.orbit.map);
+  const BranchProblem single(system, branch.parameter, p, q, SectionOf(branch, options));
   Eigen::VectorXd u;
   if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * offset) return std::nullopt;
-  const std::optional<Eigen::VectorXd> tangent = doubled.Tangent(*x, w);
-  if (!tangent) return std::nullopt;
-  BranchStart start;
-  start.system = doubled.SystemAt(BranchProblem::Mu(*x));
-  start.orbit =
-      DescribeOrbit(*doubled.MapAt(BranchProblem::Mu(*x)), BranchProblem::Eta(*x), 2 * p, 2 * q);
-  start.direction = *tangent;
-  return start;
+  return StartAt(doubled, *x, w);
+}
+
+std::optional<BranchStart> PitchforkBranchStart(const System& system, const Branch& branch,
+                                                const SpecialPoint& pitchfork,
+                                                const ContinuationOptions& options, double offset) {
+  if (pitchfork.type != SpecialPointType::kPitchfork || pitchfork.eigenvector.size() == 0) {
+    throw InvalidInput("PitchforkBranchStart needs a located pitchfork");
+  }
+  // The crossing branch leaves along the eigenvector of the multiplier +1.
+  const BranchProblem problem(system, branch.parameter, branch.p, branch.q,
+                              SectionOf(branch, options));
+  Eigen::VectorXd w;
+  const std::optional<Eigen::VectorXd> x = CorrectAlong(problem, pitchfork, options, offset, &w);
+  if (!x) return std::nullopt;
+  // Genuinely the other branch: off the line of this one (the hyperplane
+  // also cuts this branch). Its direction is the chord between the branch
+  // points around the pitchfork: the tangent computed at it is any vector
+  // of the two-dimensional null space there.
+  const Eigen::VectorXd x_at =
+      BranchProblem::Join(pitchfork.point.orbit.eta, pitchfork.point.parameter);
+  const Eigen::VectorXd t = BranchChord(branch, pitchfork.point.arclength);
+  const Eigen::VectorXd d = *x - x_at;
+  if (t.size() == 0 || (d - d.dot(t) * t).norm() < 0.5 * std::abs(offset)) return std::nullopt;
+  return StartAt(problem, *x, w);
 }
 
 std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& branch,
@@ -53,10 +117,12 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
     throw InvalidInput("SeedsAtGrazing needs a located grazing or sticking point");
   }
   const BranchPoint& point = graze.point;
-  const BranchProblem problem(system, branch.parameter, branch.p, branch.q, options.orbit.map);
+  const BranchProblem problem(system, branch.parameter, branch.p, branch.q,
+                              SectionOf(branch, options));
   const ImpactMap* map = problem.MapAt(point.parameter);
   const MapResult image = map->Apply(point.orbit.eta, branch.p, false);
   auto impact_state = [&](int k) { return k == 0 ? point.orbit.eta : image.path[k - 1]; };
+  auto impact_stop = [&](int k) { return k == 0 ? map->SectionStop() : image.stops[k - 1]; };
   OrbitOptions orbit = options.orbit;
   orbit.q = branch.q;
   Eigen::VectorXd eta;
@@ -64,15 +130,18 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
     if (branch.p == 1) return {};  // no orbit is left without impacts
     orbit.p = branch.p - 1;
     eta = impact_state((graze.vanishing_impact + 1) % branch.p);
+    orbit.map.stop = impact_stop((graze.vanishing_impact + 1) % branch.p);
   } else {
     // The new contact: the grazing point itself, as an impact whose speed
     // is what a parabola through the stop gives for a penetration of the
     // clearance's rate times `offset` (the rate from the branch's last step).
     const OrbitContacts& contacts = point.orbit.contacts;
     const Eigen::VectorXd from = impact_state(contacts.clearance_flight);
-    const HybridState at = map->FlightState(from, contacts.clearance_time);
+    const int from_stop = impact_stop(contacts.clearance_flight);
+    const StopParameters& touched = system.stops[contacts.clearance_stop];
+    const HybridState at = map->FlightState(from, contacts.clearance_time, from_stop);
     double value, slope, curvature;
-    map->FlightCoordinate(from, system.stops[0].dof)
+    map->FlightCoordinate(from, touched.dof, from_stop)
         .ValueSlopeCurvature(contacts.clearance_time, &value, &slope, &curvature);
     const auto before =
         std::find_if(branch.points.rbegin(), branch.points.rend(), [&](const BranchPoint& b) {
@@ -83,9 +152,10 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
       rate = std::abs(*before->orbit.contacts.clearance / (before->parameter - point.parameter));
     }
     Eigen::VectorXd v = at.v;
-    v(system.stops[0].dof) = std::sqrt(2.0 * std::abs(curvature) * rate * offset);
+    v(touched.dof) = touched.Sign() * std::sqrt(2.0 * std::abs(curvature) * rate * offset);
     orbit.p = branch.p + 1;
-    eta = map->ToEta(at.t, at.x, v);
+    orbit.map.stop = contacts.clearance_stop;
+    eta = map->ToEta(at.t, at.x, v, contacts.clearance_stop);
   }
   std::vector<GrazingSeed> seeds;
   for (double side : {-1.0, 1.0}) {

@@ -224,12 +224,22 @@ class BranchTracer {
     }
   }
 
-  /// The zero of test function `test` between a and b, classified.
+  /// The zero of test function `test` between a and b, classified. A
+  /// multiplier +1 is a fold where the branch turns back in μ (its
+  /// tangent's μ component changes sign), a pitchfork where it goes on:
+  /// there det(D P − I) changes sign because another branch crosses.
   std::optional<SpecialPoint> LocateZero(const BranchPoint& a, const BranchPoint& b,
                                          std::size_t test) const {
-    return Classify(
+    std::optional<SpecialPoint> special = Classify(
         IllinoisZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; }),
         test);
+    const Eigen::Index mu = a.tangent.size() - 1;
+    if (special && special->type == SpecialPointType::kFold &&
+        (a.tangent(mu) > 0) == (b.tangent(mu) > 0)) {
+      special->type = SpecialPointType::kPitchfork;
+      special->eigenvector = RealEigenvector(special->point.orbit.jacobian, 1.0);
+    }
+    return special;
   }
 
   /// The Illinois method on s for the zero of `value` between a (s = 0)
@@ -366,17 +376,19 @@ class BranchTracer {
     special.multiplier = lambda(nearest);
     if (function.distance(special.multiplier) > function.max_distance) return std::nullopt;
     if (function.type == SpecialPointType::kPeriodDoubling) {
-      special.eigenvector = FlipEigenvector(point.orbit.jacobian);
+      special.eigenvector = RealEigenvector(point.orbit.jacobian, -1.0);
     }
     return special;
   }
 
-  /// The real eigenvector of D P for its eigenvalue nearest -1, unit length.
-  static Eigen::VectorXd FlipEigenvector(const Eigen::MatrixXd& jacobian) {
+  /// The real eigenvector of D P for its eigenvalue nearest `value` (-1 at
+  /// a period doubling, +1 at a pitchfork), unit length.
+  static Eigen::VectorXd RealEigenvector(const Eigen::MatrixXd& jacobian, double value) {
     const Eigen::EigenSolver<Eigen::MatrixXd> solver(jacobian);
     Eigen::Index best = 0;
     for (Eigen::Index i = 1; i < solver.eigenvalues().size(); ++i) {
-      if (std::abs(solver.eigenvalues()(i) + 1.0) < std::abs(solver.eigenvalues()(best) + 1.0)) {
+      if (std::abs(solver.eigenvalues()(i) - value) <
+          std::abs(solver.eigenvalues()(best) - value)) {
         best = i;
       }
     }
@@ -561,6 +573,12 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
   const auto clock_start = std::chrono::steady_clock::now();
   std::string error;
   Require(options.IsValid(&error), error);
+  // The branch's section is the start orbit's: its η is at that stop.
+  if (start.orbit.stop != options.orbit.map.stop) {
+    ContinuationOptions at_start = options;
+    at_start.orbit.map.stop = start.orbit.stop;
+    return ContinueBranch(start, at_start, progress);
+  }
   const BranchProblem problem(start.system, options.parameter, options.orbit.p, options.orbit.q,
                               options.orbit.map);
   const double mu = GetParameter(start.system, options.parameter);
@@ -598,6 +616,7 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
   BranchTracer tracer(problem, options, progress);
   Branch branch;
   branch.parameter = options.parameter;
+  branch.stop = options.orbit.map.stop;
   branch.p = options.orbit.p;
   branch.q = options.orbit.q;
   const bool both = options.direction == ContinuationDirection::kBoth;

@@ -538,6 +538,7 @@ std::optional<CurveStart> ReducedGrazingStart(const System& system, const Branch
   OrbitOptions reduced = options.orbit;
   reduced.p = branch.p - 1;
   reduced.q = branch.q;
+  reduced.map.stop = path.stops[static_cast<std::size_t>(graze.vanishing_impact)];
   const Eigen::VectorXd& seed = path.path[static_cast<std::size_t>(graze.vanishing_impact)];
   // The grazing itself (clearance 0 within rounding), or just beside it on
   // the side where the reduced orbit clears the stop.

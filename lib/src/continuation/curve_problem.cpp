@@ -37,6 +37,7 @@ CurveProblem::CurveProblem(const System& base, const CurveOptions& options, Spec
       response_(response),
       eta_size_(response ? 0 : 2 * base.Dof()),
       size_(response ? 2 : 2 * base.Dof() + 2 + (type == SpecialPointType::kGrazing ? 1 : 0)) {
+  base_.SoleStop("two-parameter curves");
   GetParameter(base_, options_.parameter);  // throws for an unknown name
   GetParameter(base_, options_.parameter2);
 }

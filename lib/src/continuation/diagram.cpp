@@ -102,6 +102,7 @@ class NetworkTracer {
       OrbitOptions orbit = options_.continuation.orbit;
       orbit.p = seeds[k].orbit.p;
       orbit.q = seeds[k].orbit.q;
+      orbit.map.stop = seeds[k].orbit.stop;
       generation.push_back(
           {{seeds[k].system, seeds[k].orbit, {}},
            seeds[k].direction,
@@ -248,6 +249,7 @@ class NetworkTracer {
         OrbitOptions orbit = options_.continuation.orbit;
         orbit.p = p;
         orbit.q = q;
+        orbit.map.stop = start.orbit.stop;
         born.push_back(
             {std::move(start), direction, orbit, how + where, traced.depth + 1, nodes[k]});
       };
@@ -260,6 +262,21 @@ class NetworkTracer {
               "doubled at the ");
         } else {
           ++diagram_.failed_starts;
+        }
+      }
+      if (s.type == SpecialPointType::kPitchfork && options_.switch_pitchforks) {
+        ContinuationOptions options = options_.continuation;
+        options.orbit.p = branch.p;
+        options.orbit.q = branch.q;
+        // Both halves: in a symmetric system, the two mirror images.
+        for (double offset : {1e-3, -1e-3}) {
+          if (std::optional<BranchStart> start =
+                  PitchforkBranchStart(system, branch, s, options, offset)) {
+            add(std::move(*start), ContinuationDirection::kIncreasing, branch.p, branch.q,
+                "crossing at the ");
+          } else {
+            ++diagram_.failed_starts;
+          }
         }
       }
       const bool graze =

@@ -45,13 +45,14 @@ constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
      1e-4},
 }};
 
-constexpr std::array<std::pair<SpecialPointType, std::string_view>, 6> kNames = {{
+constexpr std::array<std::pair<SpecialPointType, std::string_view>, 7> kNames = {{
     {SpecialPointType::kFold, "fold"},
     {SpecialPointType::kPeriodDoubling, "period_doubling"},
     {SpecialPointType::kNeimarkSacker, "neimark_sacker"},
     {SpecialPointType::kGrazing, "grazing"},
     {SpecialPointType::kSticking, "sticking"},
     {SpecialPointType::kBranchPoint, "branch_point"},
+    {SpecialPointType::kPitchfork, "pitchfork"},
 }};
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <complex>
 #include <functional>
+#include <limits>
 
 namespace impactkit::detail {
 namespace {
@@ -53,8 +54,13 @@ double NonImpactingClearance(const System& s) {
   const Eigen::MatrixXcd dynamic = s.stiffness.cast<Complex>() - w * w * s.mass.cast<Complex>() +
                                    Complex(0.0, w) * s.damping.cast<Complex>();
   const Eigen::VectorXcd x = dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
-  const StopParameters& stop = s.SoleStop("the non-impacting clearance");
-  return stop.position - std::abs(x(stop.dof));
+  // Each stop's distance from the mass's rest position, less the
+  // amplitude: the least of them.
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const StopParameters& stop : s.stops) {
+    clearance = std::min(clearance, stop.Sign() * stop.position - std::abs(x(stop.dof)));
+  }
+  return clearance;
 }
 
 std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& problem,
@@ -71,6 +77,7 @@ std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& p
   OrbitOptions reduced = orbit_options;
   reduced.p = problem.p() - 1;
   reduced.q = problem.q();
+  reduced.map.stop = path.stops[static_cast<std::size_t>(impact)];
   // The impact after the vanishing one starts the reduced orbit: its state
   // barely changes as v_k → 0 (the vanishing impact changes v_c by (1 + r) v_k).
   const Eigen::VectorXd seed = path.path[static_cast<std::size_t>(impact)];

@@ -19,6 +19,8 @@ std::string ToString(MapStatus status) {
       return "grazing impact (speed ~ 0)";
     case MapStatus::kChatter:
       return "chatter (impacts accumulate at the stop)";
+    case MapStatus::kOtherStop:
+      return "the last impact is at another stop than the first";
   }
   return "unknown";
 }
@@ -33,6 +35,10 @@ bool ImpactMapOptions::IsValid(std::string* error) const {
     if (error) *error = fmt::format("min_speed must be finite and >= 0, got {}", min_speed);
     return false;
   }
+  if (stop < 0) {
+    if (error) *error = fmt::format("the map's section stop must be >= 0, got {}", stop);
+    return false;
+  }
   return true;
 }
 
@@ -41,120 +47,149 @@ ImpactMap::ImpactMap(const System& system, const ImpactMapOptions& options)
 
 ImpactMap::ImpactMap(std::shared_ptr<const HybridSystem> hybrid, const ImpactMapOptions& options)
     : hybrid_(std::move(hybrid)), options_(options) {
-  hybrid_->GetSystem().SoleStop("the impact map");
   std::string error;
   if (!options_.IsValid(&error)) throw InvalidInput(error);
+  const int stops = hybrid_->StopCount();
+  if (options_.stop >= stops) {
+    throw InvalidInput(fmt::format("the map's section is stop {}, but the system has {} stop{}",
+                                   options_.stop + 1, stops, stops == 1 ? "" : "s"));
+  }
 }
 
-Eigen::VectorXd ImpactMap::ToEta(double t, const Eigen::VectorXd& x,
-                                 const Eigen::VectorXd& v) const {
+Eigen::VectorXd ImpactMap::ToEta(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                 int stop) const {
   const int n = GetSystem().Dof();
   Eigen::VectorXd eta(2 * n);
-  eta << WithoutIndex(x, GetSystem().stops[0].dof), t, v;
+  eta << WithoutIndex(x, hybrid_->GetStop(stop).Dof()), t, v;
   return eta;
 }
 
-HybridState ImpactMap::ToState(const Eigen::VectorXd& eta) const {
+HybridState ImpactMap::ToState(const Eigen::VectorXd& eta, int stop) const {
   const int n = GetSystem().Dof();
+  const Stop& at = hybrid_->GetStop(stop);
   HybridState state;
   state.t = eta(n - 1);
-  state.x = EmbedAtStop(eta.head(n - 1), GetSystem().stops[0].dof, GetSystem().stops[0].position);
+  state.x = EmbedAtStop(eta.head(n - 1), at.Dof(), at.Position());
   state.v = eta.tail(n);
   return state;
 }
 
-void ImpactMap::ValidateEta(const Eigen::VectorXd& eta) const {
+double ImpactMap::Speed(const Eigen::VectorXd& eta, int stop) const {
+  const Stop& at = hybrid_->GetStop(stop);
+  return at.SpeedTowards(eta(GetSystem().Dof() + at.Dof()));
+}
+
+void ImpactMap::ValidateEta(const Eigen::VectorXd& eta, int stop) const {
   const int n = GetSystem().Dof();
+  const int c = hybrid_->GetStop(stop).Dof();
   if (eta.size() != 2 * n) {
     throw InvalidInput(
         fmt::format("an impact state eta = (x without x{}, t, v1..v{}) has {} entries, got {}",
-                    GetSystem().stops[0].dof + 1, n, 2 * n, eta.size()));
+                    c + 1, n, 2 * n, eta.size()));
   }
   if (!eta.allFinite()) throw InvalidInput("the impact state has a NaN or infinite entry");
-  const double speed = eta(n + GetSystem().stops[0].dof);
-  if (!(speed > 0)) {
-    throw InvalidInput(fmt::format(
-        "not an impact state: v{} = {} must be > 0 (the speed towards the stop just before impact)",
-        GetSystem().stops[0].dof + 1, speed));
+  if (!(Speed(eta, stop) > 0)) {
+    const bool upper = hybrid_->GetStop(stop).Sign() > 0;
+    throw InvalidInput(
+        fmt::format("not an impact state: v{} = {} must be {} 0 (the speed {} just "
+                    "before impact)",
+                    c + 1, eta(n + c), upper ? ">" : "<",
+                    upper ? "towards the stop" : "down onto the lower stop"));
   }
 }
 
-Eigen::MatrixXd ImpactMap::ResetInEta() const {
-  const int n = GetSystem().Dof(), c = GetSystem().stops[0].dof;
+Eigen::MatrixXd ImpactMap::ResetInEta(int stop) const {
+  const int n = GetSystem().Dof(), c = hybrid_->GetStop(stop).Dof();
   Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n, 2 * n);  // ∂y(τ−)/∂η
   for (int j = 0, k = 0; j < n; ++j) {
     if (j != c) embedding(j, k++) = 1.0;
   }
   embedding.bottomRightCorner(n, n).setIdentity();
-  return hybrid_->GetStop(0).ResetJacobian(n) * embedding;
+  return hybrid_->GetStop(stop).ResetJacobian(n) * embedding;
 }
 
-Eigen::VectorXd ImpactMap::FlightTransient(const Eigen::VectorXd& eta) const {
-  ValidateEta(eta);
-  const HybridState before = ToState(eta);
+Eigen::VectorXd ImpactMap::FlightTransient(const Eigen::VectorXd& eta, int stop) const {
+  ValidateEta(eta, stop);
+  const HybridState before = ToState(eta, stop);
   Eigen::VectorXd v_after = before.v;
-  hybrid_->GetStop(0).Reset(v_after);
+  hybrid_->GetStop(stop).Reset(v_after);
   return hybrid_->FreeFlow().Transient(before.t, before.x, v_after);
 }
 
-HybridState ImpactMap::FlightState(const Eigen::VectorXd& eta, double t) const {
-  const Eigen::VectorXd z0 = FlightTransient(eta);
+HybridState ImpactMap::FlightState(const Eigen::VectorXd& eta, double t, int stop) const {
+  const Eigen::VectorXd z0 = FlightTransient(eta, stop);
   HybridState state;
   state.t = t;
   hybrid_->FreeFlow().State(eta(TimeIndex()), z0, t, &state.x, &state.v);
   return state;
 }
 
-Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof) const {
+Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof, int stop) const {
   const int n = GetSystem().Dof();
   if (dof < 0 || dof >= n) {
     throw InvalidInput(fmt::format("coordinate index {} out of range 0..{}", dof, n - 1));
   }
-  const Eigen::VectorXd z0 = FlightTransient(eta);
+  const Eigen::VectorXd z0 = FlightTransient(eta, stop);
   const LinearFlow& flow = hybrid_->FreeFlow();
   const PreparedOutput coordinate =
       flow.Prepare({Eigen::RowVectorXd::Unit(n, dof), Eigen::RowVectorXd::Zero(n), 0.0, 0.0});
   return flow.Output(coordinate, eta(TimeIndex()), z0);
 }
 
-bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::MatrixXd* jacobian,
-                     MapStatus* status) const {
+std::optional<double> ImpactMap::NextImpact(const Eigen::VectorXd& z0, double t, double t_end,
+                                            int* stop) const {
+  const LinearFlow& flow = hybrid_->FreeFlow();
+  const EventOptions events{1e-13, hybrid_->TimeScale()};
+  std::optional<double> first;
+  for (int k = 0; k < hybrid_->StopCount(); ++k) {
+    const Signal gap = flow.Output(hybrid_->Gap(k), t, z0);
+    const std::optional<double> te = FirstUpcrossing(gap, t, first.value_or(t_end), events);
+    if (!te || (first && *te >= *first)) continue;
+    first = te;
+    *stop = k;
+  }
+  return first;
+}
+
+bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
+                     Eigen::MatrixXd* jacobian, MapStatus* status) const {
   const System& system = GetSystem();
   const LinearFlow& flow = hybrid_->FreeFlow();
-  const int n = system.Dof(), c = system.stops[0].dof;
-  const HybridState before = ToState(eta);
+  const int n = system.Dof();
+  const HybridState before = ToState(eta, stop);
   const double t = before.t;
   Eigen::VectorXd v_after = before.v;
-  hybrid_->GetStop(0).Reset(v_after);
+  hybrid_->GetStop(stop).Reset(v_after);
 
   const Eigen::VectorXd z0 = flow.Transient(t, before.x, v_after);
-  const Signal gap = flow.Output(hybrid_->Gap(0), t, z0);
-  const EventOptions events{1e-13, hybrid_->TimeScale()};
   const auto te =
-      FirstUpcrossing(gap, t, t + options_.max_flight_periods * system.ForcingPeriod(), events);
+      NextImpact(z0, t, t + options_.max_flight_periods * system.ForcingPeriod(), next_stop);
   if (!te) {
     *status = MapStatus::kNoImpact;
     return false;
   }
+  const Stop& arrival = hybrid_->GetStop(*next_stop);
+  const int c = arrival.Dof();
   Eigen::VectorXd x, v;
   flow.State(t, z0, *te, &x, &v);
-  x(c) = system.stops[0].position;
-  const double speed = v(c);
+  x(c) = arrival.Position();
+  const double speed = arrival.SpeedTowards(v(c));
   if (!(speed > options_.min_speed)) {
     const Eigen::VectorXd f = hybrid_->VectorField(*te, x, v);
-    *status = f(n + c) > 0 ? MapStatus::kChatter : MapStatus::kGrazing;
+    *status = arrival.SpeedTowards(f(n + c)) > 0 ? MapStatus::kChatter : MapStatus::kGrazing;
     return false;
   }
-  *next = ToEta(*te, x, v);
+  *next = ToEta(*te, x, v, *next_stop);
   if (!jacobian) return true;
 
   // G = ∂y(t')/∂η at fixed t': the reset, then the flow from (y+, τ).
   const Eigen::MatrixXd transition = flow.Transition(*te - t);
-  Eigen::MatrixXd g = transition * ResetInEta();
+  Eigen::MatrixXd g = transition * ResetInEta(stop);
   g.col(n - 1) = -transition * hybrid_->VectorField(t, before.x, v_after);
-  // Saltation at the next impact.
+  // Saltation at the next impact (x_c(t') = xs: the sign of the stop's
+  // side cancels).
   const Eigen::VectorXd f_arrival = hybrid_->VectorField(*te, x, v);
-  const Eigen::RowVectorXd dte = -g.row(c) / speed;
+  const Eigen::RowVectorXd dte = -g.row(c) / v(c);
   const Eigen::MatrixXd dy = g + f_arrival * dte;
   jacobian->resize(2 * n, 2 * n);
   jacobian->topRows(n - 1) = WithoutRow(dy.topRows(n), c);
@@ -164,22 +199,39 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::M
 }
 
 MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian) const {
+  MapResult result = Follow(eta, SectionStop(), p, with_jacobian);
+  if (result.status == MapStatus::kOk && result.stops.back() != SectionStop()) {
+    result.status = MapStatus::kOtherStop;
+    result.jacobian.resize(0, 0);
+  }
+  return result;
+}
+
+MapResult ImpactMap::Follow(const Eigen::VectorXd& eta, int stop, int p, bool with_jacobian) const {
   if (p < 1) throw InvalidInput(fmt::format("p (impacts per period) must be >= 1, got {}", p));
-  ValidateEta(eta);
+  if (stop < 0 || stop >= hybrid_->StopCount()) {
+    throw InvalidInput(
+        fmt::format("stop index {} out of range 0..{}", stop, hybrid_->StopCount() - 1));
+  }
+  ValidateEta(eta, stop);
   MapResult result;
   result.eta = eta;
   if (with_jacobian) result.jacobian = Eigen::MatrixXd::Identity(eta.size(), eta.size());
   Eigen::VectorXd next;
   Eigen::MatrixXd step_jacobian;
-  for (int k = 0; k < p; ++k) {
-    if (!Step(result.eta, &next, with_jacobian ? &step_jacobian : nullptr, &result.status)) {
+  for (int k = 0, at = stop; k < p; ++k) {
+    int next_stop = at;
+    if (!Step(result.eta, at, &next, &next_stop, with_jacobian ? &step_jacobian : nullptr,
+              &result.status)) {
       result.jacobian.resize(0, 0);
       return result;
     }
     result.eta = next;
     if (with_jacobian) result.jacobian = step_jacobian * result.jacobian;
     result.path.push_back(next);
+    result.stops.push_back(next_stop);
     ++result.impacts_done;
+    at = next_stop;
   }
   return result;
 }
@@ -187,26 +239,31 @@ MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian
 Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p,
                                                const ImpactMap& below, const ImpactMap& above,
                                                double delta) const {
-  const int n = GetSystem().Dof(), c = GetSystem().stops[0].dof;
-  const double stop_rate =
-      (above.GetSystem().stops[0].position - below.GetSystem().stops[0].position) / delta;
+  const int n = GetSystem().Dof();
   Eigen::VectorXd derivative = Eigen::VectorXd::Zero(2 * n);
   Eigen::VectorXd at = eta;
+  int stop = SectionStop();
   for (int k = 0; k < p; ++k) {
-    const MapResult step = Apply(at, 1, true);
+    const MapResult step = Follow(at, stop, 1, true);
     if (step.status != MapStatus::kOk) return {};
+    const int next_stop = step.stops.back(), c = hybrid_->GetStop(next_stop).Dof();
+    const double stop_rate = (above.hybrid_->GetStop(next_stop).Position() -
+                              below.hybrid_->GetStop(next_stop).Position()) /
+                             delta;
     const double t = step.eta(TimeIndex());
-    const HybridState high = above.FlightState(at, t), low = below.FlightState(at, t);
+    const HybridState high = above.FlightState(at, t, stop), low = below.FlightState(at, t, stop);
     Eigen::VectorXd rate(2 * n);  // ∂y(t)/∂μ at fixed t
     rate << (high.x - low.x) / delta, (high.v - low.v) / delta;
-    const HybridState arrival = ToState(step.eta);
+    const HybridState arrival = ToState(step.eta, next_stop);
     const double dt = -(rate(c) - stop_rate) / arrival.v(c);
     const Eigen::VectorXd dy = rate + hybrid_->VectorField(t, arrival.x, arrival.v) * dt;
     Eigen::VectorXd partial(2 * n);
     partial << WithoutIndex(Eigen::VectorXd(dy.head(n)), c), dt, dy.tail(n);
     derivative = step.jacobian * derivative + partial;
     at = step.eta;
+    stop = next_stop;
   }
+  if (stop != SectionStop()) return {};
   return derivative;
 }
 

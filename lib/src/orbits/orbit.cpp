@@ -57,8 +57,7 @@ class FixedPointProblem {
 
  private:
   std::optional<MapResult> Map(const Eigen::VectorXd& eta, bool with_jacobian) const {
-    const int speed_index = map_.TimeIndex() + 1 + map_.GetSystem().stops[0].dof;
-    if (!eta.allFinite() || !(eta(speed_index) > 0)) return std::nullopt;
+    if (!eta.allFinite() || !(map_.Speed(eta, map_.SectionStop()) > 0)) return std::nullopt;
     MapResult image = map_.Apply(eta, options_.p, with_jacobian);
     if (image.status != MapStatus::kOk) return std::nullopt;
     return image;
@@ -83,6 +82,7 @@ OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, in
   const double period = map.GetSystem().ForcingPeriod();
   for (int part = 1; part < p; ++part) {  // the shortest repeating part first
     if (p % part != 0 || q % (p / part) != 0) continue;
+    if (image.stops[part - 1] != map.SectionStop()) continue;
     Eigen::VectorXd gap = image.path[part - 1] - eta;
     gap(map.TimeIndex()) -= (q / (p / part)) * period;
     if (gap.cwiseAbs().maxCoeff() <= tolerance * scale) return {part, q / (p / part)};
@@ -134,17 +134,18 @@ PeriodicOrbit DescribeOrbit(const ImpactMap& map, const Eigen::VectorXd& eta, in
   orbit.q = q;
   orbit.omega = system.omega;
   orbit.eta = eta;
+  orbit.stop = map.SectionStop();
   orbit.jacobian = method == JacobianMethod::kAnalytic
                        ? image.jacobian
                        : FiniteDifferenceJacobianOrThrow(map, eta, p);
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(eta.size());
   shift(map.TimeIndex()) = q * system.ForcingPeriod();
   orbit.residual = (image.eta - eta - shift).cwiseAbs().maxCoeff();
-  const int n = system.Dof(), c = system.stops[0].dof;
   for (int k = 0; k < p; ++k) {
     const Eigen::VectorXd& at = k == 0 ? eta : image.path[k - 1];
+    const int stop = k == 0 ? map.SectionStop() : image.stops[k - 1];
     const double t = at(map.TimeIndex());
-    orbit.impacts.push_back({t, system.Phase(t), at(n + c)});
+    orbit.impacts.push_back({t, system.Phase(t), map.Speed(at, stop), stop});
   }
   Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(orbit.jacobian).eigenvalues();
   std::sort(lambda.begin(), lambda.end(),
@@ -214,6 +215,7 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
     *orbit = DescribeOrbit(map, eta, options.p, options.q, options.jacobian);
   } else {
     orbit->eta = eta;
+    orbit->stop = map.SectionStop();
   }
   orbit->residual = solve.residual_norm;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

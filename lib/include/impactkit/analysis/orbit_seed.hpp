@@ -14,6 +14,7 @@ namespace impactkit {
 struct OrbitSeed {
   MotionPeriod motion;  ///< what the recorded window showed (periodic? P(p, q)? sticking?)
   Eigen::VectorXd eta;  ///< the last impact of the recorded window
+  int stop = 0;         ///< the stop it is at: the section of its orbit (ImpactMapOptions::stop)
 };
 
 /// Simulates `transient` periods from rest, then 2 max_q + 1 more, and

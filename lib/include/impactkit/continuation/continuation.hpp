@@ -80,7 +80,8 @@ struct SpecialPoint {
   /// orbit's defining equation, its flight maximum at the stop.
   double parameter = 0.0;
   /// The critical multiplier (fold, period doubling, Neimark–Sacker), and
-  /// for a period doubling the real eigenvector of D P for it.
+  /// for a period doubling the real eigenvector of D P for it (for a
+  /// pitchfork, for +1).
   std::complex<double> multiplier{0.0, 0.0};
   Eigen::VectorXd eigenvector;
   /// The monitor at the located point: the test function, or for grazing
@@ -109,6 +110,9 @@ struct Branch {
   std::string parameter;
   int p = 0;
   int q = 0;
+  /// The stop whose impacts the points' η describe (ImpactMapOptions::stop):
+  /// the start orbit's first impact's.
+  int stop = 0;
   /// In order along the branch; with kBoth, from the decreasing end to the
   /// increasing end.
   std::vector<BranchPoint> points;
@@ -150,6 +154,16 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
                                               const SpecialPoint& pd,
                                               const ContinuationOptions& options,
                                               double offset = 1e-3);
+
+/// A first point on the branch that crosses `branch` at its pitchfork
+/// `pitchfork` (the same P(p, q): in a symmetric system an asymmetric
+/// orbit), displaced by `offset` along the eigenvector of the multiplier
+/// +1; the other sign of `offset` gives the other half (the mirror image).
+/// Empty if the corrector does not converge off `branch`.
+std::optional<BranchStart> PitchforkBranchStart(const System& system, const Branch& branch,
+                                                const SpecialPoint& pitchfork,
+                                                const ContinuationOptions& options,
+                                                double offset = 1e-3);
 
 /// Seeds at the grazing (or sticking) point `graze` of `branch` for the
 /// orbit with one impact more (a new contact) or one fewer (a vanishing

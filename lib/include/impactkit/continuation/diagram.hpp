@@ -9,6 +9,9 @@
 ///                       both sides of the point (SeedsAtGrazing)
 ///     branch point      the shorter orbit the branch becomes (a doubled
 ///                       branch's pitchfork back onto its parent)
+///     pitchfork         both halves of the P(p, q) branch that crosses
+///                       (PitchforkBranchStart: in a symmetric system the
+///                       pair of asymmetric orbits)
 ///
 /// A start is reduced to its primitive period (a P(2,2) that is P(1,1)
 /// twice is P(1,1)) and traced only if its orbit lies on no branch traced
@@ -38,6 +41,7 @@ struct DiagramOptions {
   bool switch_period_doubling = true;  ///< start the doubled branch at each period doubling
   bool switch_grazing = true;          ///< start the orbit with one impact more or fewer
   bool switch_branch_points = true;    ///< start the shorter orbit at a branch point
+  bool switch_pitchforks = true;       ///< start both halves of the crossing branch at a pitchfork
   /// Switches from a seed's branch at most (0: the seeds' branches only).
   int max_depth = 8;
   int max_branches = 200;  ///< branches traced at most

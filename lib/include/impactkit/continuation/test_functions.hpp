@@ -30,10 +30,16 @@ enum class SpecialPointType {
   /// that is P(1,1) twice): the branch meets the branch of that shorter
   /// orbit at its period doubling.
   kBranchPoint,
+  /// A multiplier +1 where the branch does not turn (μ keeps its
+  /// direction): another branch of the same P(p, q) crosses it — in a
+  /// system with a symmetry (a symmetric clearance), the pitchfork where
+  /// the symmetric orbit gives birth to a pair of asymmetric ones.
+  kPitchfork,
 };
 
 /// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking",
-/// "branch_point": the name that outputs (CSV, JSON) use for the type.
+/// "branch_point", "pitchfork": the name that outputs (CSV, JSON) use for
+/// the type.
 std::string ToString(SpecialPointType type);
 /// The type of a name of ToString; empty for any other name.
 std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name);

@@ -5,19 +5,28 @@
 ///
 ///     η = (x_j for j != c, τ, v_1 … v_N)        (size 2N)
 ///
-/// with x_c = xs implied, τ the absolute impact time and v_c > 0 the impact
-/// speed v_c(τ-). One application: v_c <- -r v_c, exact free flight, the
-/// next impact found by the certified event search (events.hpp).
+/// with c the DOF of the stop hit, x_c = xs implied, τ the absolute impact
+/// time and s v_c > 0 the impact speed (s = +1 at an upper stop, -1 at a
+/// lower one). One application: v_c <- -r v_c, exact free flight, the next
+/// impact at any stop found by the certified event search (events.hpp),
+/// each stop's gap searched up to the earliest crossing found so far.
+///
+/// With several stops an impact state belongs to the stop it is at: the
+/// map's section is one stop's impacts (ImpactMapOptions::stop), and
+/// P_I^p goes from the section back to it through impacts at any stops
+/// (MapResult::stops names them); Follow() goes from an impact at any stop.
 ///
 /// The analytic Jacobian chains, per impact, the restitution (a diagonal
 /// map), the flow's state transition e^{S(t'-τ)} with the derivative of the
 /// flight's start time (-e^{S(t'-τ)} f(y+, τ)), and the saltation at the
 /// next impact: with G = ∂y(t')/∂η at fixed t', the implicit function
 /// theorem on x_c(t') = xs gives dt' = -e_cᵀ G dη / v_c(t'-) and
-/// dy(t'-) = (I - f(y(t'-), t') e_cᵀ / v_c(t'-)) G dη.
+/// dy(t'-) = (I - f(y(t'-), t') e_cᵀ / v_c(t'-)) G dη, c the DOF of the
+/// stop the next impact is at.
 
 #include <Eigen/Dense>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,10 +38,11 @@ namespace impactkit {
 
 /// What happened when the map was applied.
 enum class MapStatus {
-  kOk,        ///< p impacts followed, result valid
-  kNoImpact,  ///< no further impact within max_flight_periods: an impact was lost
-  kGrazing,   ///< an impact with speed below min_speed, the mass moving away after it
-  kChatter,   ///< an impact with speed below min_speed pressed into the stop: chatter/sticking
+  kOk,         ///< p impacts followed, result valid
+  kNoImpact,   ///< no further impact within max_flight_periods: an impact was lost
+  kGrazing,    ///< an impact with speed below min_speed, the mass moving away after it
+  kChatter,    ///< an impact with speed below min_speed pressed into the stop: chatter/sticking
+  kOtherStop,  ///< the p-th impact is at another stop than the section's
 };
 
 std::string ToString(MapStatus status);
@@ -42,6 +52,9 @@ struct ImpactMapOptions {
   double max_flight_periods = 64.0;
   /// Impacts slower than this (velocity units) end the map (grazing or chatter).
   double min_speed = 1e-8;
+  /// The section: the stop (an index into System::stops) whose impacts η
+  /// describes, where P_I^p starts and must end.
+  int stop = 0;
   bool IsValid(std::string* error) const;
 };
 
@@ -52,6 +65,7 @@ struct MapResult {
   Eigen::VectorXd eta;                ///< P_I^p(η) (valid when kOk)
   Eigen::MatrixXd jacobian;           ///< D(P_I^p)(η), when asked and kOk
   std::vector<Eigen::VectorXd> path;  ///< η after each impact (size p when kOk)
+  std::vector<int> stops;             ///< the stop of each of them (its η's coordinates)
 };
 
 class ImpactMap {
@@ -63,10 +77,13 @@ class ImpactMap {
   explicit ImpactMap(std::shared_ptr<const HybridSystem> hybrid,
                      const ImpactMapOptions& options = {});
 
-  /// P_I^p(η) and, if `with_jacobian`, its analytic Jacobian.
-  /// Throws InvalidInput if η is not an impact state (wrong size, non-finite,
-  /// v_c <= 0) or p < 1.
+  /// P_I^p(η) and, if `with_jacobian`, its analytic Jacobian, from an
+  /// impact at the section's stop; kOtherStop if the p-th impact is at
+  /// another. Throws InvalidInput if η is not an impact state (wrong size,
+  /// non-finite, moving away from the stop) or p < 1.
   MapResult Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian) const;
+  /// p impacts on from an impact at stop `stop`, wherever they fall.
+  MapResult Follow(const Eigen::VectorXd& eta, int stop, int p, bool with_jacobian) const;
 
   /// The Jacobian of P_I^p by central differences (the paper's method,
   /// Foale & Thompson): 2N map applications per side. Empty if a perturbed
@@ -86,33 +103,54 @@ class ImpactMap {
   Eigen::VectorXd ParameterDerivative(const Eigen::VectorXd& eta, int p, const ImpactMap& below,
                                       const ImpactMap& above, double delta) const;
 
-  /// η of the state just before an impact at time t.
-  Eigen::VectorXd ToEta(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
-  /// The hybrid state just before the impact described by η.
-  HybridState ToState(const Eigen::VectorXd& eta) const;
-  /// x_i(t) in the free flight that follows the impact η (restitution
-  /// applied at τ), as a Signal valid from τ up to the next impact. It
-  /// refers to this map's flow: use it while the map lives.
-  Signal FlightCoordinate(const Eigen::VectorXd& eta, int dof) const;
-  /// The state at time t (>= τ) of the free flight after the impact η,
-  /// ignoring the stop.
-  HybridState FlightState(const Eigen::VectorXd& eta, double t) const;
+  /// η of the state just before an impact at time t at stop `stop` (the
+  /// section's by default).
+  Eigen::VectorXd ToEta(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const {
+    return ToEta(t, x, v, SectionStop());
+  }
+  Eigen::VectorXd ToEta(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                        int stop) const;
+  /// The hybrid state just before the impact described by η at `stop`.
+  HybridState ToState(const Eigen::VectorXd& eta) const { return ToState(eta, SectionStop()); }
+  HybridState ToState(const Eigen::VectorXd& eta, int stop) const;
+  /// x_i(t) in the free flight that follows the impact η at `stop`
+  /// (restitution applied at τ), as a Signal valid from τ up to the next
+  /// impact. It refers to this map's flow: use it while the map lives.
+  Signal FlightCoordinate(const Eigen::VectorXd& eta, int dof) const {
+    return FlightCoordinate(eta, dof, SectionStop());
+  }
+  Signal FlightCoordinate(const Eigen::VectorXd& eta, int dof, int stop) const;
+  /// The state at time t (>= τ) of the free flight after the impact η at
+  /// `stop`, ignoring the stops.
+  HybridState FlightState(const Eigen::VectorXd& eta, double t) const {
+    return FlightState(eta, t, SectionStop());
+  }
+  HybridState FlightState(const Eigen::VectorXd& eta, double t, int stop) const;
   /// Index of τ in η (N - 1).
   int TimeIndex() const { return GetSystem().Dof() - 1; }
+  /// The impact speed s v_c of η at `stop` (> 0 for an impact state).
+  double Speed(const Eigen::VectorXd& eta, int stop) const;
+  int SectionStop() const { return options_.stop; }
   const System& GetSystem() const { return hybrid_->GetSystem(); }
 
-  /// Throws InvalidInput naming the problem if η is not an impact state.
-  void ValidateEta(const Eigen::VectorXd& eta) const;
+  /// Throws InvalidInput naming the problem if η is not an impact state at
+  /// `stop` (the section's by default).
+  void ValidateEta(const Eigen::VectorXd& eta) const { ValidateEta(eta, SectionStop()); }
+  void ValidateEta(const Eigen::VectorXd& eta, int stop) const;
 
  private:
-  /// One impact and flight; false with `status` set when it fails.
-  bool Step(const Eigen::VectorXd& eta, Eigen::VectorXd* next, Eigen::MatrixXd* jacobian,
-            MapStatus* status) const;
-  /// The flow's transient coordinates just after the impact η.
-  Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta) const;
-  /// ∂y(τ+)/∂η: the embedding of η into y(τ−) (x_c = xs fixed, τ no part
-  /// of y), then the stop's reset.
-  Eigen::MatrixXd ResetInEta() const;
+  /// One impact at `stop` and the flight to the next impact, at *next_stop;
+  /// false with `status` set when it fails.
+  bool Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
+            Eigen::MatrixXd* jacobian, MapStatus* status) const;
+  /// The first impact at any stop in (t, t_end] of the flight from z0, and its stop.
+  std::optional<double> NextImpact(const Eigen::VectorXd& z0, double t, double t_end,
+                                   int* stop) const;
+  /// The flow's transient coordinates just after the impact η at `stop`.
+  Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta, int stop) const;
+  /// ∂y(τ+)/∂η: the embedding of η at `stop` into y(τ−) (x_c = xs fixed, τ
+  /// no part of y), then the stop's reset.
+  Eigen::MatrixXd ResetInEta(int stop) const;
 
   std::shared_ptr<const HybridSystem> hybrid_;
   ImpactMapOptions options_;

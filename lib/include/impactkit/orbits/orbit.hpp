@@ -47,7 +47,8 @@ struct OrbitOptions {
 struct OrbitImpact {
   double t = 0.0;
   double phase = 0.0;     ///< t mod T, in [0, T)
-  double velocity = 0.0;  ///< impact speed v_c(t-)
+  double velocity = 0.0;  ///< impact speed s v_c(t-) towards the stop
+  int stop = 0;           ///< which stop (an index into System::stops)
 };
 
 struct PeriodicOrbit {
@@ -55,6 +56,7 @@ struct PeriodicOrbit {
   int q = 0;
   double omega = 0.0;
   Eigen::VectorXd eta;               ///< the fixed point, τ in [0, T)
+  int stop = 0;                      ///< the stop η is at: its map's section
   std::vector<OrbitImpact> impacts;  ///< the p impacts from eta on, in time order
   Eigen::MatrixXd jacobian;          ///< D P_I^p at eta
   Eigen::VectorXcd multipliers;      ///< eigenvalues of `jacobian`, by decreasing modulus

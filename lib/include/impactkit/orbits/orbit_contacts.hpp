@@ -7,7 +7,9 @@
 /// Two events end a P(p, q) branch, each watched by a quantity that is
 /// positive on the branch, smooth along it and zero at the event:
 ///  - a new contact: the highest interior maximum of x_c in a free flight
-///    rises to the stop; its clearance xs - max is the monitor;
+///    rises to the stop; its clearance xs - max is the monitor (with
+///    several stops, the least clearance of any mass's interior extremum
+///    towards any of its stops: a lower stop's minima);
 ///  - a vanishing impact: the slowest impact's speed v goes to 0. Its
 ///    monitor is the depth v² / (2|a|), a = x_c'' on arrival — how far the
 ///    parabola through the impact would reach past the stop. v itself goes
@@ -25,13 +27,14 @@
 namespace impactkit {
 
 struct OrbitContacts {
-  double contact_min = 0.0;  ///< least x_c over the orbit
-  double contact_max = 0.0;  ///< greatest x_c over the orbit (xs: the impacts)
+  double contact_min = 0.0;  ///< least x_c over the orbit (c: the section stop's mass)
+  double contact_max = 0.0;  ///< greatest x_c over the orbit
   /// xs - the highest interior maximum of x_c over the flights; empty when
   /// no flight has an interior maximum.
   std::optional<double> clearance;
   double clearance_time = 0.0;  ///< when the highest interior maximum occurs
   int clearance_flight = 0;     ///< the impact (index) whose flight holds it
+  int clearance_stop = 0;       ///< the stop it approaches
   /// v² / (2|a|) of the slowest impact (the one with the least depth).
   double slowest_depth = 0.0;
   int slowest_impact = 0;        ///< its index among the orbit's p impacts
