@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "cpu_time.hpp"
 #include "cvode_impacts.hpp"
+#include "impact_timing.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "odeint_peer.hpp"
@@ -31,35 +31,11 @@ namespace {
 
 using namespace impactkit;
 
-using bench::CpuSeconds;
-
-using ImpactTimes = std::function<std::vector<double>(double t_end)>;
+using bench::Measure;
+using bench::Timed;
+using ImpactTimes = bench::ImpactTimes;
 /// A peer's impact times at a tolerance, up to t_end.
 using PeerAt = std::function<std::vector<double>(double tolerance, double t_end)>;
-
-struct Timed {
-  std::size_t impacts = 0;
-  double seconds = 0.0;  ///< CPU seconds per run
-  double MicrosecondsPerImpact() const { return 1e6 * seconds / impacts; }
-};
-
-/// CPU time of one run of `run` to t_end: the median of three measurements,
-/// each repeating the run until 0.5 s of CPU time.
-Timed Measure(const ImpactTimes& run, double t_end) {
-  std::array<Timed, 3> samples;
-  for (Timed& sample : samples) {
-    int repeats = 0;
-    const double start = CpuSeconds();
-    do {
-      sample.impacts = run(t_end).size();
-      ++repeats;
-    } while (CpuSeconds() - start < 0.5);
-    sample.seconds = (CpuSeconds() - start) / repeats;
-  }
-  std::sort(samples.begin(), samples.end(),
-            [](const Timed& a, const Timed& b) { return a.seconds < b.seconds; });
-  return samples[1];
-}
 
 std::vector<double> OurImpacts(const System& s, double t_end) {
   ImpactRecorder recorder;

@@ -29,6 +29,9 @@ struct PendingStart {
   std::string origin;
   int depth = 0;
   int parent = -1;
+  /// A pitchfork's start: the branch it crosses, which its orbit lies within
+  /// the same-branch tolerance of so near the crossing (not compared with).
+  int crosses = -1;
 };
 
 /// The orbit's impact speeds, sorted: what identifies it on a branch
@@ -128,10 +131,14 @@ class NetworkTracer {
     const OrbitPeriod period = StartPeriod(pending);
     const double mu = GetParameter(pending.start.system, diagram_.parameter);
     const std::vector<double> speeds = SortedSpeeds(pending.start.orbit.impacts, period.p);
-    return std::any_of(
-        diagram_.branches.begin(), diagram_.branches.end(), [&](const DiagramBranch& b) {
-          return OnBranch(b.branch, period, mu, speeds, options_.same_branch_tolerance);
-        });
+    for (std::size_t k = 0; k < diagram_.branches.size(); ++k) {
+      if (static_cast<int>(k) == pending.crosses) continue;
+      if (OnBranch(diagram_.branches[k].branch, period, mu, speeds,
+                   options_.same_branch_tolerance)) {
+        return true;
+      }
+    }
+    return false;
   }
 
   /// The starts not on a traced branch.
@@ -272,8 +279,10 @@ class NetworkTracer {
         for (double offset : {1e-3, -1e-3}) {
           if (std::optional<BranchStart> start =
                   PitchforkBranchStart(system, branch, s, options, offset)) {
+            const std::size_t before = born.size();
             add(std::move(*start), ContinuationDirection::kIncreasing, branch.p, branch.q,
                 "crossing at the ");
+            if (born.size() > before) born.back().crosses = index;
           } else {
             ++diagram_.failed_starts;
           }

@@ -9,6 +9,10 @@ namespace impactkit {
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// How far below 0 (relative to the signal's scale) a bound on w must stay
+/// for the whole future to be settled at once: well above the bound's own
+/// rounding.
+constexpr double kUnreachableMargin = 1e-12;
 
 /// w, w' and w'' at one time.
 struct Point {
@@ -211,6 +215,12 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
   double bounds[5];
   w.DerivativeBounds(t_begin, 4, bounds);
   if (bounds[0] == 0) return std::nullopt;  // w = 0 throughout
+  // w <= R + (bound of the rest) < 0 for every t >= t_begin: a stop far
+  // beyond the motion's reach is settled without a step.
+  const double constant = w.Constant();
+  if (constant + (bounds[0] - std::abs(constant)) < -kUnreachableMargin * w.Scale()) {
+    return std::nullopt;
+  }
   const double b2 = bounds[2], b3 = bounds[3];
   Point p = Evaluate(w, t_begin);
   if (const double exit = SurfaceExitStep(w, p, bounds, options); exit > 0) {

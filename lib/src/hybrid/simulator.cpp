@@ -156,6 +156,7 @@ class HybridRun {
   static constexpr int kMaxStalledPhases = 1000;
   static constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
   int stalled_phases_ = 0;
+  int last_event_stop_ = 0;         ///< the stop of the last event (FirstEvent's order)
   double window_begin_ = 0.0;       ///< start of the work bound's current window
   std::int64_t window_events_ = 0;  ///< Events() at window_begin_
 };
@@ -222,12 +223,16 @@ void HybridRun::Phase() {
 
 /// The earliest event of the stops' witnesses on the mode's flow from z0:
 /// each searched up to the earliest found so far (a crossing later than
-/// that cannot end the phase), the first stop in order on a tie.
+/// that cannot end the phase), the first searched on a tie. The stop after
+/// the last event's is searched first: in a clearance the mass crosses to
+/// the other side, and the search of the stop it left then ends there.
 std::optional<HybridRun::Event> HybridRun::FirstEvent(const Mode& mode, const Eigen::VectorXd& z0) {
   const double t0 = state_.t;
   std::optional<Event> first;
   double end = SliceEnd();
-  for (int k = 0; k < hybrid_.StopCount(); ++k) {
+  const int stops = hybrid_.StopCount();
+  for (int i = 1; i <= stops; ++i) {
+    const int k = (last_event_stop_ + i) % stops;
     const PreparedOutput* witness = mode.Witness(k);
     if (!witness) continue;
     mode.Flow().Output(*witness, t0, z0, &witnesses_[k]);
@@ -237,6 +242,7 @@ std::optional<HybridRun::Event> HybridRun::FirstEvent(const Mode& mode, const Ei
     end = *te;
     if (end == t0) break;  // nothing comes earlier
   }
+  if (first) last_event_stop_ = first->stop;
   return first;
 }
 

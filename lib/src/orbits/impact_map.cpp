@@ -141,7 +141,11 @@ std::optional<double> ImpactMap::NextImpact(const Eigen::VectorXd& z0, double t,
   const LinearFlow& flow = hybrid_->FreeFlow();
   const EventOptions events{1e-13, hybrid_->TimeScale()};
   std::optional<double> first;
-  for (int k = 0; k < hybrid_->StopCount(); ++k) {
+  // The other stops first (a clearance's next impact is on its other side):
+  // the search of the stop just left then ends at their crossing.
+  const int stops = hybrid_->StopCount(), from = *stop;
+  for (int i = 1; i <= stops; ++i) {
+    const int k = (from + i) % stops;
     const Signal gap = flow.Output(hybrid_->Gap(k), t, z0);
     const std::optional<double> te = FirstUpcrossing(gap, t, first.value_or(t_end), events);
     if (!te || (first && *te >= *first)) continue;

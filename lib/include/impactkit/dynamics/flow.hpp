@@ -86,6 +86,8 @@ class Signal {
   /// The sum of the coefficients' magnitudes: a cheap scale for rounding
   /// noise in w (no transcendental calls).
   double Scale() const;
+  /// R, the constant term.
+  double Constant() const { return constant_; }
   double Omega() const { return omega_; }
 
  private:

@@ -143,7 +143,8 @@ class ImpactMap {
   /// false with `status` set when it fails.
   bool Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
             Eigen::MatrixXd* jacobian, MapStatus* status) const;
-  /// The first impact at any stop in (t, t_end] of the flight from z0, and its stop.
+  /// The first impact at any stop in (t, t_end] of the flight from z0; *stop
+  /// is the stop the flight leaves on entry, the one it reaches on return.
   std::optional<double> NextImpact(const Eigen::VectorXd& z0, double t, double t_end,
                                    int* stop) const;
   /// The flow's transient coordinates just after the impact η at `stop`.
