@@ -484,3 +484,41 @@ TEST_CASE(
   std::sort(touched_stops.begin(), touched_stops.end());
   CHECK(touched_stops == std::vector<int>{0, 1});
 }
+
+TEST_CASE("stops on both masses hold them at once, released where a closed-form force vanishes",
+          "[stops]") {
+  // Slowly forced, both masses of the paper's chain are pressed into stops
+  // of their own and held together. Then nothing moves, and each stop's
+  // force is row c of A cos Ωt - K x at the held positions: with K = [[2,
+  // -1], [-1, 1]], Fs1 = 0.5 cos Ωt - 2 (0.05) + 0.1, Fs2 = 0.3 cos Ωt +
+  // 0.05 - 0.1. Each phase held together ends where one of them falls to 0.
+  System s = PaperSystem(0.1);
+  s.forcing = Eigen::Vector2d(0.5, 0.3);
+  s.stops = {{0, StopSide::kUpper, 0.05, 0.6}, {1, StopSide::kUpper, 0.1, 0.7}};
+  Validate(s);
+  const double t_end = 20 * s.ForcingPeriod();
+  struct HeldTogether : Observer {
+    std::vector<std::pair<double, double>> phases;
+    void OnSegment(const Segment& segment) override {
+      if (segment.Mode() != SegmentMode::kStuck || !(segment.End() > segment.Begin())) return;
+      Eigen::VectorXd x0, v0, x1, v1;
+      segment.StateAt(segment.Begin(), &x0, &v0);
+      segment.StateAt(segment.End(), &x1, &v1);
+      if (x0 == x1 && x0 == Eigen::Vector2d(0.05, 0.1)) {
+        phases.emplace_back(segment.Begin(), segment.End());
+      }
+    }
+  } held;
+  HybridState state = RestState(s);
+  Simulator(s).Run(state, t_end, held);
+  REQUIRE(held.phases.size() >= 20);
+  auto fs1 = [&](double t) { return 0.5 * std::cos(0.1 * t); };
+  auto fs2 = [&](double t) { return 0.3 * std::cos(0.1 * t) - 0.05; };
+  for (const auto& [begin, end] : held.phases) {
+    INFO("held together over [" << begin << ", " << end << "]");
+    const double middle = 0.5 * (begin + end);
+    CHECK(fs1(middle) > 0);
+    CHECK(fs2(middle) > 0);
+    if (end < t_end) CHECK_THAT(std::min(fs1(end), fs2(end)), WithinAbs(0.0, 1e-12));
+  }
+}

@@ -147,7 +147,7 @@ void RunSweepCommand(const SweepRequest& request) {
   CsvWriter* out = nullptr;
   if (!request.out.empty()) {
     out = &outputs.AddCsv(request.out, provenance,
-                          std::vector<std::string>{"param", "t", "phase", "v"});
+                          std::vector<std::string>{"param", "t", "phase", "v", "stop"});
   }
   AtomicOutputFile* summary = AddIfAsked(outputs, request.summary);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
@@ -170,7 +170,8 @@ void RunSweepCommand(const SweepRequest& request) {
   if (out) {
     for (const SweepPoint& point : result.points) {
       for (const SweepImpact& i : point.impacts) {
-        const double row[] = {point.value, i.t, i.phase, i.velocity};
+        // Stops count from 1 in files, as in the system file.
+        const double row[] = {point.value, i.t, i.phase, i.velocity, i.stop + 1.0};
         out->WriteRow(row);
       }
     }
@@ -212,7 +213,7 @@ void AddSweepCommand(CLI::App& app) {
   const std::string output = "Output (each written only if asked for, and only whole)";
   command
       ->add_option("--out", request->out,
-                   "Every recorded impact: columns param,t,phase,v (t from the start of "
+                   "Every recorded impact: columns param,t,phase,v,stop (t from the start of "
                    "that value's run, phase = t mod T, v the impact speed)")
       ->type_name("FILE.csv")
       ->check(OutputPath())

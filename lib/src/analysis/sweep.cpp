@@ -133,7 +133,7 @@ bool RunValue(const System& system, const SweepOptions& options, HybridState& st
   point->events = run.Events();
   const double t_record = static_cast<double>(transient) * run.Period();
   for (const Impact& i : steady.Impacts()) {
-    if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity});
+    if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity, i.stop});
   }
   if (!steady.Impacts().empty() && steady.Impacts().back().t >= t_record) {
     point->last_impact = steady.Impacts().back();

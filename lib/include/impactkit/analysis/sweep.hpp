@@ -86,7 +86,8 @@ struct SweepOptions {
 struct SweepImpact {
   double t = 0.0;         ///< time since the start of this value's run
   double phase = 0.0;     ///< t mod T, in [0, T)
-  double velocity = 0.0;  ///< impact speed v_c(t-)
+  double velocity = 0.0;  ///< impact speed towards the stop
+  int stop = 0;           ///< which stop (an index into System::stops)
 };
 
 /// What was found at one parameter value.
