@@ -522,3 +522,39 @@ TEST_CASE("stops on both masses hold them at once, released where a closed-form 
     if (end < t_end) CHECK_THAT(std::min(fs1(end), fs2(end)), WithinAbs(0.0, 1e-12));
   }
 }
+
+TEST_CASE("simultaneous and near-simultaneous impacts at two stops are both taken, in order",
+          "[stops]") {
+  // Two identical uncoupled masses, each below a stop of its own: each must
+  // move as the one-mass system does, whether their impacts coincide
+  // exactly or stop 2 sits 1e-9 higher (its impacts a hair later).
+  const Eigen::Matrix2d identity = Eigen::Matrix2d::Identity();
+  const System one =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 1.0), 1.3, 0.5, 0.8);
+  const std::vector<Impact> alone = ImpactsOf(one, 60 * one.ForcingPeriod());
+  REQUIRE(alone.size() > 40);
+  for (double shift : {0.0, 1e-9}) {
+    INFO("stop 2 higher by " << shift);
+    System twin = GeneralSystem(identity, 0.1 * identity, identity, Eigen::Vector2d(1.0, 1.0), 1.3,
+                                0.5, 0.8, 0);
+    twin.stops.push_back({1, StopSide::kUpper, 0.5 + shift, 0.8});
+    Validate(twin);
+    const std::vector<Impact> both = ImpactsOf(twin, 60 * twin.ForcingPeriod());
+    std::vector<const Impact*> at[2];
+    for (const Impact& impact : both) at[impact.stop].push_back(&impact);
+    REQUIRE(at[0].size() == alone.size());
+    REQUIRE(at[1].size() == alone.size());
+    for (std::size_t k = 0; k < alone.size(); ++k) {
+      CHECK_THAT(at[0][k]->t, WithinAbs(alone[k].t, 1e-9));
+      CHECK_THAT(at[1][k]->t, WithinAbs(alone[k].t, 1e-6));
+      CHECK_THAT(at[0][k]->velocity, WithinAbs(alone[k].velocity, 1e-9));
+      CHECK_THAT(at[1][k]->velocity, WithinAbs(alone[k].velocity, 1e-6));
+    }
+    // From rest the two masses move alike up to the first impacts: the
+    // higher stop's comes a hair later (later impacts differ by the
+    // rebounds' own small difference, either way).
+    if (shift > 0) CHECK(at[1][0]->t > at[0][0]->t);
+    // In time order, as recorded.
+    for (std::size_t k = 1; k < both.size(); ++k) CHECK(both[k].t >= both[k - 1].t);
+  }
+}
