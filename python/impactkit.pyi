@@ -415,6 +415,7 @@ def trace_diagram(
     switch_period_doubling: bool = True,
     switch_grazing: bool = True,
     switch_branch_points: bool = True,
+    switch_pitchforks: bool = True,
 ) -> Diagram: ...
 
 def parameter_map(

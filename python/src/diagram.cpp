@@ -19,7 +19,7 @@ struct DiagramArguments {
   std::string parameter;
   double lower, upper, initial_step, max_step;
   int max_points, max_depth, max_branches, threads;
-  bool switch_period_doubling, switch_grazing, switch_branch_points;
+  bool switch_period_doubling, switch_grazing, switch_branch_points, switch_pitchforks;
 };
 
 DiagramOptions MakeOptions(const DiagramArguments& a) {
@@ -36,13 +36,15 @@ DiagramOptions MakeOptions(const DiagramArguments& a) {
   options.switch_period_doubling = a.switch_period_doubling;
   options.switch_grazing = a.switch_grazing;
   options.switch_branch_points = a.switch_branch_points;
+  options.switch_pitchforks = a.switch_pitchforks;
   return options;
 }
 
 Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
               const std::string& parameter, double lower, double upper, double initial_step,
               double max_step, int max_points, int max_depth, int max_branches, int threads,
-              bool switch_period_doubling, bool switch_grazing, bool switch_branch_points) {
+              bool switch_period_doubling, bool switch_grazing, bool switch_branch_points,
+              bool switch_pitchforks) {
   std::vector<DiagramSeed> seeds;
   for (std::size_t i = 0; i < starts.size(); ++i) {
     seeds.push_back({starts[i].first, starts[i].second, "seed " + std::to_string(i + 1),
@@ -50,7 +52,7 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
   }
   const DiagramOptions options = MakeOptions(
       {parameter, lower, upper, initial_step, max_step, max_points, max_depth, max_branches,
-       threads, switch_period_doubling, switch_grazing, switch_branch_points});
+       threads, switch_period_doubling, switch_grazing, switch_branch_points, switch_pitchforks});
   return WithoutGil([&] {
     return TraceDiagram(seeds, options, [](int, const BranchPoint&) { CheckInterrupt(); });
   });
@@ -148,10 +150,11 @@ void BindDiagram(py::module_& module) {
              py::arg("max_points") = 10000, py::arg("max_depth") = 8, py::arg("max_branches") = 200,
              py::arg("threads") = 1, py::arg("switch_period_doubling") = true,
              py::arg("switch_grazing") = true, py::arg("switch_branch_points") = true,
+             py::arg("switch_pitchforks") = true,
              R"(Traces the connected bifurcation diagram through `seeds`, a list of
 (system, orbit) pairs: each seed's branch is followed both ways in the named
-parameter within [lower, upper], and at every period doubling, grazing and
-branch point the branch that starts there, each branch once (the library's
+parameter within [lower, upper], and at every period doubling, grazing,
+branch point and pitchfork the branch that starts there, each branch once (the library's
 TraceDiagram, as `impactkit diagram --start` does). Returns a Diagram.
 threads: branches of one generation traced at once; the result does not
 depend on it. Raises ValueError for bad input. Releases the GIL; Ctrl-C

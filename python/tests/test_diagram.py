@@ -49,3 +49,21 @@ def test_period_doublings_resolved_independently(diagram):
         system = impactkit.System.paper(node.parameter)
         orbit = impactkit.find_orbit(system, p=node.p, q=node.q, seed=node.eta)
         assert np.min(np.abs(orbit.multipliers + 1)) < 1e-6
+
+
+def test_pitchfork_of_a_symmetric_clearance_starts_the_asymmetric_branch():
+    """One mass between two stops (docs/several-stops.md): the symmetric
+    P(2,1)'s pitchfork at Omega = 1.0376 and the asymmetric P(2,1) it starts,
+    whose two impacts have different speeds."""
+    clearance = impactkit.System.chain(n=1, forcing=[1.0], omega=1.0).with_stops([
+        {"dof": 0, "side": "upper", "position": 0.5, "restitution": 0.8},
+        {"dof": 0, "side": "lower", "position": -0.5, "restitution": 0.8}])
+    orbit = impactkit.find_orbit(clearance)
+    diagram = impactkit.trace_diagram([(clearance, orbit)], lower=0.9, upper=1.2, max_depth=1)
+    pitchforks = [node for node in diagram.nodes if node.type == "pitchfork"]
+    assert len(pitchforks) == 1
+    assert pitchforks[0].parameter == pytest.approx(1.037642583, abs=1e-8)
+    born = [b for b in diagram.branches if b.parent >= 0 and b.branch.p == 2]
+    assert born, [b.origin for b in diagram.branches]
+    speeds = born[0].branch.orbits[-1].impact_velocities
+    assert abs(speeds[0] - speeds[1]) > 1e-4
