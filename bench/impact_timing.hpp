@@ -1,8 +1,9 @@
 #pragma once
 /// \file impact_timing.hpp
 /// CPU time per impact of a run that returns its impact times: the median
-/// of three measurements, each repeating the run until 0.5 s of CPU time.
-/// Shared by the simulator benchmarks.
+/// of three measurements, each repeating the run until 0.5 s of CPU time;
+/// and the impact times of our simulator and of the CVODE reference from
+/// rest. Shared by the simulator benchmarks.
 
 #include <algorithm>
 #include <array>
@@ -11,6 +12,9 @@
 #include <vector>
 
 #include "cpu_time.hpp"
+#include "cvode_impacts.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 
 namespace impactkit::bench {
 
@@ -37,6 +41,26 @@ inline Timed Measure(const ImpactTimes& run, double t_end) {
   std::sort(samples.begin(), samples.end(),
             [](const Timed& a, const Timed& b) { return a.seconds < b.seconds; });
   return samples[1];
+}
+
+/// Our impact times from rest up to t_end.
+inline std::vector<double> OurImpactTimes(const System& s, double t_end) {
+  ImpactRecorder recorder;
+  HybridState state = RestState(s);
+  Simulator(s).Run(state, t_end, recorder);
+  std::vector<double> times;
+  for (const Impact& i : recorder.Impacts()) times.push_back(i.t);
+  return times;
+}
+
+/// CVODE's impact times from rest up to t_end (reference/cvode_impacts.hpp).
+inline std::vector<double> CvodeImpactTimes(const System& s, const reference::CvodeOptions& o,
+                                            double t_end) {
+  const reference::ReferenceRun run =
+      reference::CvodeImpacts(s, RestState(s).x, RestState(s).v, 0.0, t_end, o);
+  std::vector<double> times;
+  for (const auto& i : run.impacts) times.push_back(i.t);
+  return times;
 }
 
 }  // namespace impactkit::bench

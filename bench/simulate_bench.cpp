@@ -31,29 +31,13 @@ namespace {
 
 using namespace impactkit;
 
+using bench::CvodeImpactTimes;
 using bench::Measure;
+using bench::OurImpactTimes;
 using bench::Timed;
 using ImpactTimes = bench::ImpactTimes;
 /// A peer's impact times at a tolerance, up to t_end.
 using PeerAt = std::function<std::vector<double>(double tolerance, double t_end)>;
-
-std::vector<double> OurImpacts(const System& s, double t_end) {
-  ImpactRecorder recorder;
-  HybridState state = RestState(s);
-  Simulator(s).Run(state, t_end, recorder);
-  std::vector<double> times;
-  for (const Impact& i : recorder.Impacts()) times.push_back(i.t);
-  return times;
-}
-
-std::vector<double> CvodeImpactTimes(const System& s, const reference::CvodeOptions& o,
-                                     double t_end) {
-  const reference::ReferenceRun run =
-      reference::CvodeImpacts(s, RestState(s).x, RestState(s).v, 0.0, t_end, o);
-  std::vector<double> times;
-  for (const auto& i : run.impacts) times.push_back(i.t);
-  return times;
-}
 
 /// Largest |difference| over the first `count` impact times.
 double MaxDifference(const std::vector<double>& a, const std::vector<double>& b,
@@ -89,11 +73,11 @@ void CompareWithPeers(double omega, int periods) {
   const System s = PaperSystem(omega);
   const double t_end = periods * s.ForcingPeriod();
   const double t_check = 100 * s.ForcingPeriod();
-  const std::vector<double> exact = OurImpacts(s, t_check);
+  const std::vector<double> exact = OurImpactTimes(s, t_check);
   // CVODE at its most accurate (rtol 1e-13, atol 1e-15), as in the tests.
   const reference::CvodeOptions tightest{.rtol = 1e-13, .atol = 1e-15};
   const double our_error = MaxDifference(exact, CvodeImpactTimes(s, tightest, t_check), 50);
-  const Timed ours = Measure([&](double t) { return OurImpacts(s, t); }, t_end);
+  const Timed ours = Measure([&](double t) { return OurImpactTimes(s, t); }, t_end);
   const PeerAt cvode = [&](double tol, double t) {
     return CvodeImpactTimes(s, {.rtol = tol, .atol = tol}, t);
   };
@@ -138,7 +122,7 @@ void ScalingWithDof(int periods) {
     forcing(n - 1) = 0.5;  // on the contact mass, so every N impacts
     const System s = UniformChain({n, 1.0, 1.0, 0.1}, forcing, 1.4, 0.1, 0.7);
     const Timed ours =
-        Measure([&](double t) { return OurImpacts(s, t); }, periods * s.ForcingPeriod());
+        Measure([&](double t) { return OurImpactTimes(s, t); }, periods * s.ForcingPeriod());
     dofs.push_back(n);
     per_period.push_back(1e6 * ours.seconds / periods);
     per_impact.push_back(ours.MicrosecondsPerImpact());

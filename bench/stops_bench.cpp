@@ -17,32 +17,17 @@
 #include <optional>
 #include <vector>
 
-#include "cvode_impacts.hpp"
 #include "impact_timing.hpp"
-#include "impactkit/hybrid/recorders.hpp"
-#include "impactkit/hybrid/simulator.hpp"
 
 namespace {
 
 using namespace impactkit;
 using bench::Measure;
+using bench::OurImpactTimes;
 using bench::Timed;
 
-std::vector<double> OurImpacts(const System& s, double t_end) {
-  ImpactRecorder recorder;
-  HybridState state = RestState(s);
-  Simulator(s).Run(state, t_end, recorder);
-  std::vector<double> times;
-  for (const Impact& i : recorder.Impacts()) times.push_back(i.t);
-  return times;
-}
-
 std::vector<double> CvodeTimes(const System& s, double tolerance, double t_end) {
-  const reference::ReferenceRun run = reference::CvodeImpacts(
-      s, RestState(s).x, RestState(s).v, 0.0, t_end, {.rtol = tolerance, .atol = tolerance});
-  std::vector<double> times;
-  for (const auto& i : run.impacts) times.push_back(i.t);
-  return times;
+  return bench::CvodeImpactTimes(s, {.rtol = tolerance, .atol = tolerance}, t_end);
 }
 
 /// The loosest CVODE tolerance whose first 50 impact times lie within 1e-8
@@ -65,13 +50,13 @@ void CompareStops(double omega, int periods) {
   watched.stops.push_back({0, StopSide::kLower, -10.0, 0.7});
   clearance.stops.push_back({1, StopSide::kLower, -0.1, 0.7});
   const double t_end = periods * one.ForcingPeriod();
-  const Timed a = Measure([&](double t) { return OurImpacts(one, t); }, t_end);
-  const Timed b = Measure([&](double t) { return OurImpacts(watched, t); }, t_end);
-  const Timed c = Measure([&](double t) { return OurImpacts(clearance, t); }, t_end);
+  const Timed a = Measure([&](double t) { return OurImpactTimes(one, t); }, t_end);
+  const Timed b = Measure([&](double t) { return OurImpactTimes(watched, t); }, t_end);
+  const Timed c = Measure([&](double t) { return OurImpactTimes(clearance, t); }, t_end);
   const double t_check = 100 * one.ForcingPeriod();
   std::string peer = "not reached";
   if (const std::optional<double> tol =
-          CvodeTolerance(clearance, OurImpacts(clearance, t_check), t_check)) {
+          CvodeTolerance(clearance, OurImpactTimes(clearance, t_check), t_check)) {
     const Timed cvode = Measure([&](double t) { return CvodeTimes(clearance, *tol, t); }, t_end);
     peer = fmt::format("{:.3f} (tol {:.0e}, {:.1f}x)", cvode.MicrosecondsPerImpact(), *tol,
                        cvode.MicrosecondsPerImpact() / c.MicrosecondsPerImpact());
