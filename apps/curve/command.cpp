@@ -233,6 +233,9 @@ void RunCurve(const CurveRequest& request) {
   AtomicOutputFile* out = AddIfAsked(outputs, request.out);
   AtomicOutputFile* json = AddIfAsked(outputs, request.json);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
+  // Checked before the one-parameter search that finds the start point:
+  // ContinueCurve would refuse only after it (curve_problem.hpp).
+  system.SoleStop("two-parameter curves");
   CurveOptions options;
   CurveStart start;
   if (request.start_json.empty()) {

@@ -226,8 +226,8 @@ Eigen::MatrixXd ChainCouplingMatrix(int dof) {
 }
 
 const StopParameters& System::SoleStop(std::string_view what) const {
-  Require(stops.size() == 1, fmt::format("{} handles systems with one stop so far; this one has {}",
-                                         what, stops.size()));
+  Require(stops.size() == 1,
+          fmt::format("{}: written for one stop so far; this system has {}", what, stops.size()));
   return stops.front();
 }
 
