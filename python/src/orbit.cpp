@@ -8,6 +8,9 @@
 
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "bindings.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
@@ -59,6 +62,15 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
   return orbit;
 }
 
+/// One field of the orbit's impacts, as a numpy array of shape (p,).
+template <auto Field>
+auto ImpactField(const PeriodicOrbit& orbit) {
+  using Value = std::remove_cvref_t<decltype(std::declval<OrbitImpact>().*Field)>;
+  std::vector<Value> values;
+  for (const OrbitImpact& impact : orbit.impacts) values.push_back(impact.*Field);
+  return MoveToArray(std::move(values));
+}
+
 }  // namespace
 
 void BindOrbit(py::module_& module) {
@@ -78,37 +90,14 @@ void BindOrbit(py::module_& module) {
           "Eigenvalues of the Jacobian (complex), by decreasing modulus.")
       .def_readonly("stable", &PeriodicOrbit::stable, "Every |multiplier| < 1.")
       .def_readonly("residual", &PeriodicOrbit::residual, "max |U(eta)|.")
+      .def_property_readonly("impact_times", ImpactField<&OrbitImpact::t>,
+                             "Times of the p impacts from eta on.")
+      .def_property_readonly("impact_phases", ImpactField<&OrbitImpact::phase>,
+                             "Forcing phases (t mod T) of the p impacts.")
+      .def_property_readonly("impact_velocities", ImpactField<&OrbitImpact::velocity>,
+                             "Impact speeds (towards the stop) of the p impacts.")
       .def_property_readonly(
-          "impact_times",
-          [](const PeriodicOrbit& o) {
-            std::vector<double> t;
-            for (const OrbitImpact& i : o.impacts) t.push_back(i.t);
-            return MoveToArray(std::move(t));
-          },
-          "Times of the p impacts from eta on.")
-      .def_property_readonly(
-          "impact_phases",
-          [](const PeriodicOrbit& o) {
-            std::vector<double> phase;
-            for (const OrbitImpact& i : o.impacts) phase.push_back(i.phase);
-            return MoveToArray(std::move(phase));
-          },
-          "Forcing phases (t mod T) of the p impacts.")
-      .def_property_readonly(
-          "impact_velocities",
-          [](const PeriodicOrbit& o) {
-            std::vector<double> v;
-            for (const OrbitImpact& i : o.impacts) v.push_back(i.velocity);
-            return MoveToArray(std::move(v));
-          },
-          "Impact speeds (towards the stop) of the p impacts.")
-      .def_property_readonly(
-          "impact_stops",
-          [](const PeriodicOrbit& o) {
-            std::vector<int> stops;
-            for (const OrbitImpact& i : o.impacts) stops.push_back(i.stop);
-            return MoveToArray(std::move(stops));
-          },
+          "impact_stops", ImpactField<&OrbitImpact::stop>,
           "The stop (0-based, System.stops) each of the p impacts is at; eta is at the first.")
       .def_property_readonly(
           "clearance", [](const PeriodicOrbit& o) { return o.contacts.clearance; },
