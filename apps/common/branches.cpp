@@ -80,6 +80,24 @@ std::vector<TracedBranch> LabelBranches(const Diagram& diagram) {
   return labelled;
 }
 
+namespace {
+
+/// "a to b", or "a to c to b" through each value c where the parameter
+/// turns back between points first and last (a branch that goes out and
+/// returns would otherwise read "from a to a").
+std::string ParameterPath(const Branch& branch, std::size_t first, std::size_t last) {
+  std::vector<std::string> values = {fmt::format("{:.6g}", branch.points[first].parameter)};
+  for (std::size_t k = first + 1; k < last; ++k) {
+    const double before = branch.points[k].parameter - branch.points[k - 1].parameter;
+    const double after = branch.points[k + 1].parameter - branch.points[k].parameter;
+    if (before * after < 0) values.push_back(fmt::format("{:.6g}", branch.points[k].parameter));
+  }
+  values.push_back(fmt::format("{:.6g}", branch.points[last].parameter));
+  return fmt::format("{}", fmt::join(values, " to "));
+}
+
+}  // namespace
+
 std::string DescribeStability(const Branch& branch) {
   std::vector<std::string> stretches;
   std::size_t from = 0;
@@ -88,9 +106,9 @@ std::string DescribeStability(const Branch& branch) {
         branch.points[i].orbit.stable == branch.points[from].orbit.stable) {
       continue;
     }
-    stretches.push_back(fmt::format("{} {:.6g} to {:.6g}",
+    stretches.push_back(fmt::format("{} {}",
                                     branch.points[from].orbit.stable ? "stable" : "unstable",
-                                    branch.points[from].parameter, branch.points[i - 1].parameter));
+                                    ParameterPath(branch, from, i - 1)));
     from = i;
   }
   return fmt::format("P({},{}) {}", branch.p, branch.q, fmt::join(stretches, ", "));
