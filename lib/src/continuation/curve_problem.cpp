@@ -4,20 +4,13 @@
 #include <cmath>
 
 #include "continuation/arclength.hpp"
+#include "continuation/defining_function.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit::detail {
 namespace {
 
-/// Relative step of the defining rows' central differences. Each map
-/// carries event-time rounding of ~1e-12 (impact_map.hpp): this step leaves
-/// ~1e-6 of it in the gradient, ample for Newton. A step near the cube root
-/// of the rounding (1e-4 to 1e-5) would balance it against the truncation
-/// error for a map of moderate curvature, but near a slow impact (speed v)
-/// the map's curvature grows like 1/v³: on P(1,2)'s fold curve in (Ω, xs),
-/// v ≈ 0.01, 1e-5 left a 1% error in the xs column, 1e-6 leaves 1e-4.
-constexpr double kDefiningStep = 1e-6;
 /// A grazing curve is followed at this clearance, just inside the region
 /// where its orbit exists: at clearance 0 within rounding the event search
 /// sees a touch (an impact slower than min_speed, or a tiny extra impact)
@@ -82,15 +75,6 @@ const BranchProblem& CurveProblem::Along2(double mu1) const {
   return *along2_;
 }
 
-double CurveProblem::Sigma(const Eigen::MatrixXd& a) const {
-  const Eigen::Index n = a.rows();
-  Eigen::MatrixXd bordered = Eigen::MatrixXd::Zero(n + 1, n + 1);
-  bordered.topLeftCorner(n, n) = a;
-  bordered.topRightCorner(n, 1) = border_b_;
-  bordered.bottomLeftCorner(1, n) = border_c_.transpose();
-  return bordered.fullPivLu().solve(Eigen::VectorXd::Unit(n + 1, n))(n);
-}
-
 bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const {
   if (!x.allFinite()) return false;
   if (response_) {
@@ -119,12 +103,10 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const 
   }
   const MapResult image = map->Apply(eta, options_.orbit.p, true);
   if (image.status != MapStatus::kOk) return false;
-  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(eta_size_, eta_size_);
   g->resize(1);
-  if (type_ == SpecialPointType::kFold) {
-    (*g)(0) = Sigma(image.jacobian - identity);
-  } else if (type_ == SpecialPointType::kPeriodDoubling) {
-    (*g)(0) = Sigma(image.jacobian + identity);
+  if (type_ == SpecialPointType::kFold || type_ == SpecialPointType::kPeriodDoubling) {
+    (*g)(0) =
+        kMultiplierRowWeight * MultiplierFunction(image.jacobian, CriticalMultiplier(), borders_);
   } else {
     const Eigen::VectorXcd lambda = image.jacobian.eigenvalues();
     (*g)(0) = BifurcationTests()[2].value(image.jacobian, lambda);
@@ -184,22 +166,9 @@ bool CurveProblem::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian,
 
 bool CurveProblem::DefiningGradient(const Eigen::VectorXd& x, double step_scale,
                                     Eigen::MatrixXd* gradient) const {
-  // Central differences, one-sided where one side has no value.
-  Eigen::VectorXd g0;
-  if (!Defining(x, &g0)) return false;
-  gradient->resize(g0.size(), size_);
-  for (int i = 0; i < size_; ++i) {
-    const double h = kDefiningStep * step_scale * std::max(1.0, std::abs(x(i)));
-    Eigen::VectorXd plus = x, minus = x, g_plus, g_minus;
-    plus(i) += h;
-    minus(i) -= h;
-    const bool up = Defining(plus, &g_plus), down = Defining(minus, &g_minus);
-    if (!up && !down) return false;
-    const Eigen::VectorXd& high = up ? g_plus : g0;
-    const Eigen::VectorXd& low = down ? g_minus : g0;
-    gradient->col(i) = (high - low) / ((up ? h : 0.0) + (down ? h : 0.0));
-  }
-  return gradient->allFinite();
+  return CentralDifferenceGradient(
+      [this](const Eigen::VectorXd& at, Eigen::VectorXd* g) { return Defining(at, g); }, x,
+      kDefiningStep * step_scale, gradient);
 }
 
 Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
@@ -222,11 +191,7 @@ void CurveProblem::UpdateBorders(const Eigen::VectorXd& x) {
   if (!map) return;
   const MapResult image = map->Apply(Eta(x), options_.orbit.p, true);
   if (image.status != MapStatus::kOk) return;
-  const double sign = type_ == SpecialPointType::kFold ? -1.0 : 1.0;
-  const Eigen::MatrixXd a = image.jacobian + sign * Eigen::MatrixXd::Identity(eta_size_, eta_size_);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  border_b_ = svd.matrixU().col(eta_size_ - 1);
-  border_c_ = svd.matrixV().col(eta_size_ - 1);
+  borders_ = MultiplierBorders(image.jacobian, CriticalMultiplier());
 }
 
 std::optional<Eigen::VectorXd> CurveProblem::Correct(const Eigen::VectorXd& guess,

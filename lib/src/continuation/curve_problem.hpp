@@ -10,6 +10,7 @@
 #include <string>
 
 #include "continuation/branch_problem.hpp"
+#include "continuation/defining_function.hpp"
 #include "impactkit/continuation/curve.hpp"
 
 namespace impactkit::detail {
@@ -74,7 +75,8 @@ class CurveProblem {
   /// Grazing: a guess beyond the grazing (where U has no value), moved
   /// back inside; any other guess unchanged.
   Eigen::VectorXd Inside(const Eigen::VectorXd& x) const;
-  double Sigma(const Eigen::MatrixXd& a) const;
+  /// The multiplier a fold (+1) or period doubling (−1) curve holds.
+  double CriticalMultiplier() const { return type_ == SpecialPointType::kFold ? 1.0 : -1.0; }
   /// Grazing: the impact state that starts the flight holding the touch.
   std::optional<Eigen::VectorXd> GrazingFlightStart(const ImpactMap& map,
                                                     const Eigen::VectorXd& eta) const;
@@ -87,7 +89,7 @@ class CurveProblem {
   int grazing_flight_;
   bool response_;
   int eta_size_, size_;
-  Eigen::VectorXd border_b_, border_c_;
+  SigmaBorders borders_;
   mutable std::unique_ptr<BranchProblem> along1_, along2_;
   mutable double along1_mu2_ = 0.0, along2_mu1_ = 0.0;
 };

@@ -7,8 +7,8 @@
 /// The unknowns are X = (η, [t*], μ1, μ2) on the curve F(X) = 0,
 ///
 ///     U(η; μ1, μ2) = P_I^p(η) − η − q T e_τ = 0          (2N equations)
-///     fold             σ(D P − I) = 0
-///     period doubling  σ(D P + I) = 0
+///     fold             σ(D P − I) = 0      (σ relative to D P's size,
+///     period doubling  σ(D P + I) = 0       docs/continuation.md)
 ///     Neimark–Sacker   Π_{i<j} (λ_i λ_j − 1) = det(D P ⊙ D P − I) = 0
 ///     grazing          x_c(t*) = xs − δ,  v_c(t*) = 0   (t* in one flight;
 ///                      δ = 1e-10 keeps the touch on the orbit's side)
