@@ -88,14 +88,21 @@ bool BranchProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u) const
   return u->allFinite();
 }
 
-bool BranchProblem::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian) const {
-  const int n = size_ - 1;
-  jacobian->resize(n, size_);
+bool BranchProblem::MapJacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* dp) const {
   if (!(cached_x_.size() == x.size() && cached_x_ == x)) {
     Eigen::VectorXd u;
     if (!Residual(x, &u)) return false;
   }
-  jacobian->leftCols(n) = cached_map_jacobian_;
+  *dp = cached_map_jacobian_;
+  return true;
+}
+
+bool BranchProblem::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian) const {
+  const int n = size_ - 1;
+  jacobian->resize(n, size_);
+  Eigen::MatrixXd dp;
+  if (!MapJacobian(x, &dp)) return false;
+  jacobian->leftCols(n) = dp;
   jacobian->leftCols(n).diagonal().array() -= 1.0;
   // U_μ: the map's parameter derivative from maps at μ ± h (one-sided at
   // the edge of the parameter's range), accurate even near grazing.

@@ -40,6 +40,8 @@ class BranchProblem {
 
   /// U(X) (size 2N); false where the map fails.
   bool Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u) const;
+  /// D P^p at X (the map's Jacobian, U_η + I); false where the map fails.
+  bool MapJacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* dp) const;
   /// [U_η U_μ] (2N x (2N + 1)); false where the map fails on every side.
   bool Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian) const;
 

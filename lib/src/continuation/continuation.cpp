@@ -9,6 +9,7 @@
 
 #include "continuation/arclength.hpp"
 #include "continuation/branch_problem.hpp"
+#include "continuation/critical_point.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
 
@@ -24,6 +25,10 @@ constexpr int kMaxLocateIterations = 80;
 /// bracket is narrower than kGrazingBracket (arclength).
 constexpr double kGrazingTolerance = 1e-10;
 constexpr double kGrazingBracket = 1e-13;
+/// A fold or period doubling whose bracketed point has its multiplier
+/// within this of ±1 is located; otherwise it is solved directly (and
+/// reported only within the test function's max_distance).
+constexpr double kCriticalSolved = 1e-9;
 
 Eigen::VectorXd PointX(const BranchPoint& point) {
   return BranchProblem::Join(point.orbit.eta, point.parameter);
@@ -230,9 +235,14 @@ class BranchTracer {
   /// there det(D P − I) changes sign because another branch crosses.
   std::optional<SpecialPoint> LocateZero(const BranchPoint& a, const BranchPoint& b,
                                          std::size_t test) const {
-    std::optional<SpecialPoint> special = Classify(
-        IllinoisZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; }),
-        test);
+    std::optional<BranchPoint> located =
+        IllinoisZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; });
+    const SpecialPointType type = BifurcationTests()[test].type;
+    if (type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling) {
+      located = SolvedCriticalPoint(a, b, *located, type == SpecialPointType::kFold ? 1.0 : -1.0);
+    }
+    if (!located) return std::nullopt;
+    std::optional<SpecialPoint> special = Classify(*located, test);
     const Eigen::Index mu = a.tangent.size() - 1;
     if (special && special->type == SpecialPointType::kFold &&
         (a.tangent(mu) > 0) == (b.tangent(mu) > 0)) {
@@ -240,6 +250,35 @@ class BranchTracer {
       special->eigenvector = RealEigenvector(special->point.orbit.jacobian, 1.0);
     }
     return special;
+  }
+
+  /// The fold or period doubling (multiplier `lambda`) that the Illinois
+  /// method bracketed between a and b, given its best point `located`: that
+  /// point where its multiplier is within kCriticalSolved of lambda, else
+  /// the critical point solved directly from it (critical_point.hpp) — the
+  /// bracketing falls short where trials between a and b do not converge,
+  /// as on long orbits near a graze. Empty if the direct solve fails or
+  /// lands away from the stretch a–b: a sign change of det(D P ∓ I) that no
+  /// multiplier at ±1 explains (one passing through infinity) is no point.
+  std::optional<BranchPoint> SolvedCriticalPoint(const BranchPoint& a, const BranchPoint& b,
+                                                 const BranchPoint& located, double lambda) const {
+    if (CriticalDistance(located, lambda) <= kCriticalSolved) return located;
+    const std::optional<Eigen::VectorXd> x =
+        detail::SolveCriticalPoint(problem_, PointX(located), lambda, options_.orbit.newton);
+    if (!x) return std::nullopt;
+    const double stretch = (PointX(b) - PointX(a)).norm();
+    if ((*x - PointX(a)).norm() > 2.0 * stretch || (*x - PointX(b)).norm() > 2.0 * stretch) {
+      return std::nullopt;
+    }
+    std::optional<BranchPoint> point = problem_.Describe(*x, a.tangent);
+    if (!point) return std::nullopt;
+    point->arclength = a.arclength + a.tangent.dot(*x - PointX(a));
+    return point;
+  }
+
+  /// |λ_i − lambda| for the multiplier of `point` nearest lambda.
+  static double CriticalDistance(const BranchPoint& point, double lambda) {
+    return (point.orbit.multipliers.array() - lambda).abs().minCoeff();
   }
 
   /// The Illinois method on s for the zero of `value` between a (s = 0)

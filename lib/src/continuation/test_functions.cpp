@@ -30,10 +30,11 @@ constexpr double kAny = std::numeric_limits<double>::infinity();
 /// det(D P ∓ I) also changes sign where a multiplier passes through
 /// infinity rather than ±1: an impact of a long orbit slowing to a graze
 /// makes D P's saltation terms (1/v) blow up. A located zero is a fold or a
-/// period doubling only with a multiplier this close to ±1: loose, since a
-/// genuine one lands within ~1e-6 and a pole leaves the nearest multiplier
-/// anywhere; the margin keeps a poorly conditioned genuine one.
-constexpr double kRealCrossing = 0.05;
+/// period doubling only with a multiplier this close to ±1. A genuine one,
+/// bracketed or solved directly (continuation.cpp), lands within ~1e-9 (the
+/// rounding of a long orbit's D P); a pole leaves the nearest multiplier
+/// anywhere.
+constexpr double kRealCrossing = 1e-7;
 
 constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
     {SpecialPointType::kFold, FoldTest, [](std::complex<double> l) { return std::abs(l - 1.0); },
