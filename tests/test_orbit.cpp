@@ -115,6 +115,26 @@ TEST_CASE("a seed whose map fails is reported, not solved", "[orbit]") {
   CHECK_THAT(summary.message, Contains("lost impact"));
 }
 
+TEST_CASE("a solution that grazes is reported as no orbit, not as bad input", "[orbit]") {
+  // At Ω = 0.4034115801, where P(3,1)'s branch grazes (its second impact
+  // vanishes; `impactkit diagram` locates it there), Newton from this seed
+  // drives U to 1e-11 at a point whose second impact has speed ~0: the map
+  // fails there. It used to throw InvalidInput (exit 2, as for bad input)
+  // and stopped `impactkit diagram --sweep-values 2401`.
+  const System s = PaperSystem(0.40341158011017869);
+  Eigen::VectorXd eta(4);
+  eta << 0.11115101390144685, 12.939348518847417, 0.4446815793488253, 0.57420650368540982;
+  OrbitOptions options;
+  options.p = 3;
+  options.q = 1;
+  PeriodicOrbit orbit;
+  OrbitSummary summary;
+  REQUIRE_NOTHROW(summary = FindOrbit(s, eta, options, &orbit));
+  CHECK(summary.termination == Termination::kFailure);
+  CHECK_THAT(summary.message, Contains("no orbit") && Contains("grazing impact"));
+  CHECK(summary.residual < 1e-10);
+}
+
 TEST_CASE("the finite-difference Jacobian's multipliers are reported when it is asked for",
           "[orbit]") {
   OrbitSummary summary;

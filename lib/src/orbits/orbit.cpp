@@ -212,8 +212,17 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
   summary.residual = solve.residual_norm;
   eta = WithPhase(map, eta);
   if (summary.termination == Termination::kConverged) {
-    *orbit = DescribeOrbit(map, eta, options.p, options.q, options.jacobian);
-  } else {
+    try {
+      *orbit = DescribeOrbit(map, eta, options.p, options.q, options.jacobian);
+    } catch (const InvalidInput& e) {
+      // U vanishes at a point whose map fails (an impact of speed ~0: the
+      // solver met a grazing orbit); the guess was fine, the point is no
+      // orbit.
+      summary.termination = Termination::kFailure;
+      summary.message = fmt::format("converged to a point that is no orbit: {}", e.what());
+    }
+  }
+  if (summary.termination != Termination::kConverged) {
     orbit->eta = eta;
     orbit->stop = map.SectionStop();
   }

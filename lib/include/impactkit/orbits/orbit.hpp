@@ -102,7 +102,9 @@ struct OrbitSummary : Summary {
 };
 
 /// Solves U(η) = 0 from `guess` (an impact state: v_c > 0). Throws
-/// InvalidInput for bad options, system or guess.
+/// InvalidInput for bad options, system or guess. A solution where the map
+/// fails (an impact of speed ~0: a grazing orbit) is no orbit: kFailure,
+/// with the reason in the summary's message.
 OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
                        const OrbitOptions& options, PeriodicOrbit* orbit);
 
