@@ -154,9 +154,13 @@ def rows(run):
          f"periodic windows P(4,4) {run.span('P(4,4)', 1.73)} and P(2,2) "
          f"{run.span('P(2,2)', 1.745)}", "yes"),
         (16, "a small window of P(2,3)", "1.74",
-         f"P(2,2) on {run.span('P(2,2)', 1.745)} (P(4,4) at {run.span('P(4,4)', 1.73)})",
-         "window yes; its type P(2,2), not P(2,3) (the paper's \"P(2,3)\" contradicts its own "
-         "\"then P(2,2)\" two lines later)"),
+         f"P(2,2) on {run.span('P(2,2)', 1.745)} (P(4,4) at {run.span('P(4,4)', 1.73)}); two "
+         f"impacts per three periods only as P(4,6), stable from its period doubling at "
+         f"{run.point('period_doubling', 4, 6, 1.773):.6f} (P(8,12) below it) to its fold at "
+         f"{run.point('fold', 4, 6, 1.775):.6f}",
+         "window yes; at 1.74 its type is P(2,2), not P(2,3) (the paper's \"P(2,3)\" contradicts "
+         "its own \"then P(2,2)\" two lines later); the 2 : 3 motion is the P(4,6) window "
+         "near 1.774 ([continuation.md](continuation.md#the-connected-diagram))"),
         (17, "P(4,4) again", "1.725",
          f"{run.motion_at(1.725)} at 1.725" +
          (f" (λ_max = {lyap:+.3f})" if lyap is not None else "") +
