@@ -9,7 +9,10 @@
 #include <complex>
 #include <numbers>
 
+#include "cvode_impacts.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
@@ -307,4 +310,75 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   REQUIRE(seed);
   CHECK(seed->releases == 2);
   CHECK(seed->q == 1);
+}
+
+TEST_CASE(
+    "chatter orbits with many impacts: P(64,1) just above the sticking region of r = 0.9, its "
+    "impacts by CVODE and its branch between two grazings",
+    "[sticking][continuation]") {
+  // With the paper's r = 0.7 the P(n,1) windows above n ~ 36 lie within
+  // 1e-6 of the sticking family's end and their last impacts are slower
+  // than the chatter rule resolves (docs/continuation.md); with r = 0.9
+  // they are wider: the steady motion at Ω = 0.165606 is P(64,1).
+  System system = PaperSystem(0.165606);
+  system.stops[0].restitution = 0.9;
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
+  REQUIRE(seed);
+  CHECK(seed->motion.p == 64);
+  CHECK(seed->motion.q == 1);
+  OrbitOptions options;
+  options.p = 64;
+  options.q = 1;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(system, seed->eta, options, &orbit).termination == Termination::kConverged);
+  CHECK(orbit.stable);
+  // Independently, flight by flight: CVODE from the rebound of each of the
+  // 64 impacts meets the next at the same time and speed (over a whole
+  // period the chatter amplifies any difference by ~1/r per impact).
+  const ImpactMap map(system);
+  const MapResult image = map.Apply(orbit.eta, 64, false);
+  REQUIRE(image.status == MapStatus::kOk);
+  reference::CvodeOptions one_flight;
+  one_flight.max_impacts = 1;
+  for (int k = 0; k < 64; ++k) {
+    INFO("flight after impact " << k);
+    HybridState state = map.ToState(k == 0 ? orbit.eta : image.path[k - 1]);
+    state.v(1) *= -system.stops[0].restitution;
+    const OrbitImpact& next = orbit.impacts[(k + 1) % 64];
+    const double t_next = next.t + (k == 63 ? system.ForcingPeriod() : 0.0);
+    const reference::ReferenceRun cvode = reference::CvodeImpacts(
+        system, state.x, state.v, state.t, t_next + 1e-3 * (t_next - state.t), one_flight);
+    REQUIRE(cvode.impacts.size() == 1);
+    CHECK_THAT(cvode.impacts[0].t, WithinAbs(t_next, 1e-9));
+    CHECK_THAT(cvode.impacts[0].velocity, WithinAbs(next.velocity, 1e-9));
+  }
+  // Its branch, continued with the ordinary impact map, lies between the
+  // new contact that makes it P(65,1) below and the vanishing impact that
+  // makes it P(63,1) above; that end is where P(63,1)'s own branch, traced
+  // separately, meets its new contact.
+  ContinuationOptions continuation;
+  continuation.lower = 0.1655;
+  continuation.upper = 0.1658;
+  continuation.direction = ContinuationDirection::kBoth;
+  continuation.orbit = options;
+  const Branch p64 = ContinueBranch({system, orbit, {}}, continuation);
+  CHECK(p64.begin == BranchEnd::kGrazing);
+  CHECK(p64.special_points.front().vanishing_impact == -1);
+  REQUIRE(p64.end == BranchEnd::kGrazing);
+  CHECK(p64.special_points.back().vanishing_impact >= 0);
+  System above = system;
+  above.omega = p64.special_points.back().parameter + 1e-6;
+  const std::optional<OrbitSeed> seed63 = SeedFromSimulation(above, 500);
+  REQUIRE(seed63);
+  REQUIRE(seed63->motion.p == 63);
+  options.p = 63;
+  continuation.orbit = options;
+  continuation.direction = ContinuationDirection::kDecreasing;
+  PeriodicOrbit orbit63;
+  REQUIRE(FindOrbit(above, seed63->eta, options, &orbit63).termination == Termination::kConverged);
+  const Branch p63 = ContinueBranch({above, orbit63, {}}, continuation);
+  REQUIRE(p63.end == BranchEnd::kGrazing);
+  CHECK(p63.special_points.back().vanishing_impact == -1);
+  CHECK_THAT(p63.special_points.back().parameter,
+             WithinAbs(p64.special_points.back().parameter, 1e-9));
 }
