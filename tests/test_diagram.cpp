@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "closed_form_sdof.hpp"
+#include "cvode_flight_top.hpp"
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/swept_diagram.hpp"
 #include "impactkit/continuation/diagram.hpp"
@@ -73,32 +74,11 @@ double CvodeClearance(const System& system, const Eigen::VectorXd& eta, int p) {
   for (int k = 0; k < p; ++k) {
     const Eigen::VectorXd& from = k == 0 ? eta : image.path[k - 1];
     const double t0 = from(tau), duration = image.path[k](tau) - t0;
-    const HybridState before = map.ToState(from);
-    auto height = [&](double t) {
-      if (t - t0 < 1e-9) return before.x(c);  // CVODE needs an interval
-      Eigen::VectorXd x = before.x, v = before.v;
-      v(c) *= -system.stops[0].restitution;
-      reference::CvodeLinearFlow(system.mass, system.damping, system.stiffness, system.forcing,
-                                 Eigen::VectorXd::Zero(system.Dof()), system.omega, t0, x, v, t);
-      return x(c);
-    };
-    const int samples = 200;
-    int best = 1;
-    for (int i = 2; i < samples; ++i) {
-      if (height(t0 + duration * i / samples) > height(t0 + duration * best / samples)) best = i;
-    }
-    double a = t0 + duration * (best - 1) / samples, b = t0 + duration * (best + 1) / samples;
-    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-    for (int n = 0; n < 60; ++n) {
-      const double m1 = b - g * (b - a), m2 = a + g * (b - a);
-      (height(m1) > height(m2) ? b : a) = height(m1) > height(m2) ? m2 : m1;
-    }
-    const double top = 0.5 * (a + b);
-    // An interior maximum, not the impact the flight starts from (where x_c
-    // = xs trivially).
-    if (top - t0 > 1e-6 && t0 + duration - top > 1e-6) {
-      clearance = std::min(clearance, system.stops[0].position - height(top));
-    }
+    HybridState before = map.ToState(from);
+    before.v(c) *= -system.stops[0].restitution;
+    const std::optional<double> top =
+        testing::CvodeFlightTop(system, t0, before.x, before.v, t0 + duration);
+    if (top) clearance = std::min(clearance, system.stops[0].position - *top);
   }
   return clearance;
 }
