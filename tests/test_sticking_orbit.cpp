@@ -9,12 +9,14 @@
 #include <complex>
 #include <numbers>
 
+#include "cvode_flight_top.hpp"
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 
 using namespace impactkit;
@@ -310,6 +312,63 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   REQUIRE(seed);
   CHECK(seed->releases == 2);
   CHECK(seed->q == 1);
+}
+
+TEST_CASE(
+    "sticking branch in A1 ends where the flight after the release grazes the stop, "
+    "recomputed there by CVODE",
+    "[sticking][continuation]") {
+  // At Ω = 0.25 the mass released from the stop swings back towards it;
+  // as A1 grows that swing reaches the stop (a new impact) and beyond it
+  // the release map carries the extra impact on continuously. The family
+  // used to run through it and stop further on, labelled no_sticking with
+  // Fs(t*) = 0.37.
+  System system = PaperSystem(0.25);
+  SetParameter(system, "A1", 0.5);
+  const StickingOrbit start = RefinedOrbit(system);
+  StickingBranchOptions options;
+  options.parameter = "A1";
+  options.lower = 0.5;
+  options.upper = 3.0;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kNewImpact);
+  const StickingBranchPoint& end = branch.special_points.back().point;
+  CHECK(end.orbit.contact_margin > 0.3);  // the chatter still ends firmly in sticking
+  System at_end = system;
+  SetParameter(at_end, "A1", end.parameter);
+  StickingOrbit again;
+  REQUIRE(FindStickingOrbit(at_end, end.orbit.state, StickingOrbitOptions{}, &again).termination ==
+          Termination::kConverged);
+  CHECK((again.state - end.orbit.state).cwiseAbs().maxCoeff() < 1e-8);
+  // Independently: CVODE from the release over the flight to the first
+  // impact rises to the stop (to 1e-7) in between.
+  const StickingCycle& cycle = again.cycles.front();
+  const HybridState released = StickingMap(at_end).ToState(again.state);
+  const std::optional<double> top =
+      testing::CvodeFlightTop(at_end, released.t, released.x, released.v, cycle.impacts.front().t);
+  REQUIRE(top.has_value());
+  CHECK(std::abs(at_end.stops[0].position - *top) < 1e-7);
+  // Beyond it the first impact after the release is that swing's, ten
+  // times sooner.
+  System beyond = system;
+  SetParameter(beyond, "A1", end.parameter + 1e-4);
+  StickingOrbit past;
+  REQUIRE(FindStickingOrbit(beyond, end.orbit.state, StickingOrbitOptions{}, &past).termination ==
+          Termination::kConverged);
+  const double delay = cycle.impacts.front().t - cycle.release;
+  const StickingCycle& past_cycle = past.cycles.front();
+  CHECK(past_cycle.impacts.front().t - past_cycle.release < 0.2 * delay);
+  // Followed back from there, that first impact slows to a graze at the
+  // same A1: the family beyond ends where this one did. Its corrector stops
+  // with the impact at a speed of ~2e-6 (the release map's Jacobian grows
+  // like 1/v), which falls linearly with A1: ~2e-6 short of the graze.
+  StickingBranchOptions back = options;
+  back.increasing = false;
+  const StickingBranch other = ContinueStickingBranch(beyond, past, back);
+  REQUIRE(other.end == StickingBranchEnd::kVanishingImpact);
+  const StickingBranchPoint& other_end = other.special_points.back().point;
+  CHECK_THAT(other_end.parameter, WithinAbs(end.parameter, 1e-5));
+  CHECK(other_end.orbit.cycles.front().impacts.front().velocity < 1e-5);
 }
 
 TEST_CASE(

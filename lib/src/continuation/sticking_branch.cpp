@@ -21,6 +21,8 @@ std::string ToString(StickingEvent event) {
       return "new_impact";
     case StickingEvent::kEarlyRelease:
       return "early_release";
+    case StickingEvent::kVanishingImpact:
+      return "vanishing_impact";
     case StickingEvent::kFold:
       return "fold";
     case StickingEvent::kPeriodDoubling:
@@ -39,6 +41,8 @@ std::string ToString(StickingBranchEnd end) {
       return "new_impact";
     case StickingBranchEnd::kEarlyRelease:
       return "early_release";
+    case StickingBranchEnd::kVanishingImpact:
+      return "vanishing_impact";
     case StickingBranchEnd::kMaxPoints:
       return "max_points";
     case StickingBranchEnd::kCorrectorFailed:
@@ -219,6 +223,10 @@ double TestFunction(const StickingOrbit& orbit, StickingEvent type) {
   return product.real();
 }
 
+/// The relative jump of the first impact's delay after a release that
+/// marks an impact appearing or vanishing before it (ImpactChange).
+constexpr double kDelayJump = 0.25;
+
 /// Why a point cannot be on the sticking family, if it cannot.
 std::optional<StickingEvent> Violation(const StickingOrbit& orbit) {
   if (!(orbit.contact_margin > 0)) return StickingEvent::kNoSticking;
@@ -227,9 +235,38 @@ std::optional<StickingEvent> Violation(const StickingOrbit& orbit) {
   return std::nullopt;
 }
 
+/// Where the impacts before the chatter changed between two neighbouring
+/// orbits of the family: the first impact after some release jumped to an
+/// earlier time (an impact appeared before it: a flight grazed the stop)
+/// or to a later one (it vanished). Along the family that delay moves
+/// continuously; a jump of a quarter of it between two points is none of
+/// that motion.
+std::optional<StickingEvent> ImpactChange(const StickingOrbit& a, const StickingOrbit& b) {
+  if (a.cycles.size() != b.cycles.size()) return std::nullopt;
+  for (std::size_t k = 0; k < a.cycles.size(); ++k) {
+    const StickingCycle &from = a.cycles[k], &to = b.cycles[k];
+    if (from.impacts.empty() || to.impacts.empty()) continue;
+    const double before = from.impacts.front().t - from.release;
+    const double after = to.impacts.front().t - to.release;
+    if (after < (1.0 - kDelayJump) * before) return StickingEvent::kNewImpact;
+    if (after > (1.0 + kDelayJump) * before) return StickingEvent::kVanishingImpact;
+  }
+  return std::nullopt;
+}
+
+/// The speed of the slowest first impact after a release: it falls to 0
+/// where a vanishing impact ends the family (infinity without impacts).
+double FirstImpactSpeed(const StickingOrbit& orbit) {
+  double speed = std::numeric_limits<double>::infinity();
+  for (const StickingCycle& cycle : orbit.cycles) {
+    if (!cycle.impacts.empty()) speed = std::min(speed, cycle.impacts.front().velocity);
+  }
+  return speed;
+}
+
 /// The ending monitors of an orbit, in StickingEvent order.
-std::array<double, 3> Monitors(const StickingOrbit& orbit) {
-  return {orbit.contact_margin, orbit.clearance, orbit.hold_margin};
+std::array<double, 4> Monitors(const StickingOrbit& orbit) {
+  return {orbit.contact_margin, orbit.clearance, orbit.hold_margin, FirstImpactSpeed(orbit)};
 }
 
 /// The monitor that linear extrapolation from the last two points drives
@@ -238,10 +275,10 @@ std::optional<StickingEvent> NearestZero(const Eigen::VectorXd& a, const Stickin
                                          const Eigen::VectorXd& b, const StickingOrbit& orbit_b,
                                          double reach) {
   const double step = (b - a).norm();
-  const std::array<double, 3> before = Monitors(orbit_a), after = Monitors(orbit_b);
+  const std::array<double, 4> before = Monitors(orbit_a), after = Monitors(orbit_b);
   std::optional<StickingEvent> nearest;
   double best = reach;
-  for (int i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < before.size(); ++i) {
     const double fall = (before[i] - after[i]) / step;  // per unit arclength
     if (!std::isfinite(after[i]) || !(fall > 0)) continue;
     if (const double distance = after[i] / fall; distance < best) {
@@ -258,6 +295,8 @@ StickingBranchEnd EndOf(StickingEvent event) {
       return StickingBranchEnd::kNoSticking;
     case StickingEvent::kNewImpact:
       return StickingBranchEnd::kNewImpact;
+    case StickingEvent::kVanishingImpact:
+      return StickingBranchEnd::kVanishingImpact;
     default:
       return StickingBranchEnd::kEarlyRelease;
   }
@@ -279,6 +318,11 @@ class StickingMarch {
   void LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
                           const Eigen::VectorXd& b, const StickingOrbit& orbit_b);
   void End(StickingBranchEnd end, std::string message);
+  /// What ended the family at the last point, given what the failed trials
+  /// beyond it `reported`: the monitor whose extrapolated zero lies nearest,
+  /// within kExtrapolationReach (a trial's status can come from beyond the
+  /// event: past a graze a map may stop accumulating), else the report.
+  std::optional<StickingEvent> EndingEvent(std::optional<StickingEvent> reported) const;
 
   /// How far (arclength) an extrapolated monitor zero may lie from the
   /// last point for the end to be called that event.
@@ -309,6 +353,16 @@ std::optional<Eigen::VectorXd> StickingMarch::Try(double step,
   if (!corrected) return std::nullopt;
   if ((*corrected - predicted).norm() > 0.5 * step && !beyond) return std::nullopt;
   return corrected;
+}
+
+std::optional<StickingEvent> StickingMarch::EndingEvent(
+    std::optional<StickingEvent> reported) const {
+  if (previous_.size() == 0) return reported;
+  if (std::optional<StickingEvent> reached =
+          NearestZero(previous_, previous_orbit_, x_, orbit_, kExtrapolationReach)) {
+    return reached;
+  }
+  return reported;
 }
 
 void StickingMarch::End(StickingBranchEnd end, std::string message) {
@@ -361,12 +415,9 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
       }
     }
     if (step < options_.min_step) {
-      if (!blocked && previous_.size()) {
-        blocked = NearestZero(previous_, previous_orbit_, x_, orbit_, kExtrapolationReach);
-      }
-      if (blocked) {
-        branch_.special_points.push_back({*blocked, branch_.points.back()});
-        return End(EndOf(*blocked), branch_.special_points.back().Describe(options_.parameter));
+      if (const std::optional<StickingEvent> ending = EndingEvent(blocked)) {
+        branch_.special_points.push_back({*ending, branch_.points.back()});
+        return End(EndOf(*ending), branch_.special_points.back().Describe(options_.parameter));
       }
       return End(StickingBranchEnd::kCorrectorFailed,
                  fmt::format("no convergence even with step {}", step));
@@ -375,7 +426,9 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
     const std::optional<StickingBranchPoint> point =
         next ? curve_.Describe(*next) : std::optional<StickingBranchPoint>();
     if (point) {
-      if (const std::optional<StickingEvent> violation = Violation(point->orbit)) {
+      std::optional<StickingEvent> violation = Violation(point->orbit);
+      if (!violation) violation = ImpactChange(orbit_, point->orbit);
+      if (violation) {
         blocked = violation;
         step *= 0.5;
         continue;

@@ -17,7 +17,12 @@
 ///     the map finds impacts without end: kNoChatter); the located end's
 ///     Fs(t*) is then small but not 0;
 ///   - a new impact: a free flight's interior maximum of x_c reaches the stop
-///     (beyond, the orbit would pass through it);
+///     (beyond, the orbit would pass through it). Beyond, the release map
+///     has the extra impact and stays continuous, and the flight's maximum
+///     is gone rather than past the stop: the event shows as the first
+///     impact after a release jumping to an earlier time between two
+///     points (a vanishing impact, the same graze met from the other side,
+///     as a jump to a later time);
 ///   - an early release: an interior minimum of Fs in a stuck phase reaches
 ///     0 (beyond, the mass leaves the stop there and the orbit has one more
 ///     sticking phase);
@@ -61,14 +66,16 @@ struct StickingBranchOptions {
 };
 
 enum class StickingEvent {
-  kNoSticking,      ///< Fs(t*) = 0: the chatter stops ending in sticking (ends the branch)
-  kNewImpact,       ///< a free flight grazes the stop (ends the branch)
-  kEarlyRelease,    ///< Fs touches 0 inside a stuck phase (ends the branch)
-  kFold,            ///< a section multiplier through +1
-  kPeriodDoubling,  ///< a section multiplier through −1
+  kNoSticking,       ///< Fs(t*) = 0: the chatter stops ending in sticking (ends the branch)
+  kNewImpact,        ///< a free flight grazes the stop (ends the branch)
+  kEarlyRelease,     ///< Fs touches 0 inside a stuck phase (ends the branch)
+  kVanishingImpact,  ///< the first impact after a release slows to a graze (ends the branch)
+  kFold,             ///< a section multiplier through +1
+  kPeriodDoubling,   ///< a section multiplier through −1
 };
 
-/// "no_sticking", "new_impact", "early_release", "fold", "period_doubling".
+/// "no_sticking", "new_impact", "early_release", "vanishing_impact", "fold",
+/// "period_doubling".
 std::string ToString(StickingEvent event);
 
 struct StickingBranchPoint {
@@ -88,12 +95,13 @@ enum class StickingBranchEnd {
   kNoSticking,       ///< ended where the chatter stops ending in sticking
   kNewImpact,        ///< ended where a free flight grazes the stop
   kEarlyRelease,     ///< ended where Fs touches 0 inside a stuck phase
+  kVanishingImpact,  ///< ended where the first impact after a release slows to a graze
   kMaxPoints,        ///< max_points reached
   kCorrectorFailed,  ///< no convergence even with the smallest step, no monitor near 0
 };
 
-/// "parameter_bound", "no_sticking", "new_impact", "early_release", "max_points",
-/// "corrector_failed".
+/// "parameter_bound", "no_sticking", "new_impact", "early_release",
+/// "vanishing_impact", "max_points", "corrector_failed".
 std::string ToString(StickingBranchEnd end);
 
 struct StickingBranch {
