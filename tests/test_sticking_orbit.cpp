@@ -64,6 +64,31 @@ Eigen::VectorXcd SortedEigenvalues(const Eigen::MatrixXd& matrix) {
   return lambda;
 }
 
+/// The multipliers, largest first, of the simulator's stroboscopic map over
+/// the orbit's q periods, from a point in the free flight after its first
+/// release, by central differences (an independent monodromy: no release
+/// map).
+Eigen::VectorXcd SimulatorMultipliers(const System& system, const StickingOrbit& orbit) {
+  const StickingMap map(system);
+  const double flight = orbit.cycles[0].impacts[0].t - orbit.cycles[0].release;
+  const HybridState start = OnOrbit(system, map, orbit, 0.5 * flight);
+  const int n = 2 * system.Dof();
+  Eigen::VectorXd y(n);
+  y << start.x, start.v;
+  const Simulator simulator(system);
+  const double h = 1e-6, span = orbit.q * system.ForcingPeriod();
+  Eigen::MatrixXd monodromy(n, n);
+  for (int j = 0; j < n; ++j) {
+    Eigen::VectorXd plus = y, minus = y;
+    plus(j) += h;
+    minus(j) -= h;
+    monodromy.col(j) =
+        (Strobe(simulator, start.t, plus, span) - Strobe(simulator, start.t, minus, span)) /
+        (2 * h);
+  }
+  return SortedEigenvalues(monodromy);
+}
+
 }  // namespace
 
 TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long simulation",
@@ -108,25 +133,7 @@ TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator'
           "[sticking]") {
   const System system = PaperSystem(0.2);
   const StickingOrbit orbit = RefinedOrbit(system);
-  const StickingMap map(system);
-  // A point in the free flight after release, and the stroboscopic map
-  // from there by central differences of the simulator.
-  const double flight = orbit.cycles[0].impacts[0].t - orbit.cycles[0].release;
-  const HybridState start = OnOrbit(system, map, orbit, 0.5 * flight);
-  Eigen::VectorXd y(4);
-  y << start.x, start.v;
-  const Simulator simulator(system);
-  const double h = 1e-6, span = orbit.q * system.ForcingPeriod();
-  Eigen::MatrixXd monodromy(4, 4);
-  for (int j = 0; j < 4; ++j) {
-    Eigen::VectorXd plus = y, minus = y;
-    plus(j) += h;
-    minus(j) -= h;
-    monodromy.col(j) =
-        (Strobe(simulator, start.t, plus, span) - Strobe(simulator, start.t, minus, span)) /
-        (2 * h);
-  }
-  const Eigen::VectorXcd lambda = SortedEigenvalues(monodromy);
+  const Eigen::VectorXcd lambda = SimulatorMultipliers(system, orbit);
   // Sticking collapses x_2 and v_2: two zero multipliers of the strobe map.
   CHECK(std::abs(lambda(2)) < 1e-5);
   CHECK(std::abs(lambda(3)) < 1e-5);
@@ -312,6 +319,52 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   REQUIRE(seed);
   CHECK(seed->releases == 2);
   CHECK(seed->q == 1);
+}
+
+TEST_CASE(
+    "sticking branch in c at Omega = 0.27 period-doubles, confirmed by the simulator's "
+    "monodromy and its period-2 sticking beyond",
+    "[sticking][continuation]") {
+  const System system = PaperSystem(0.27);
+  const StickingOrbit start = RefinedOrbit(system);
+  StickingBranchOptions options;
+  options.parameter = "c";
+  options.lower = 0.01;
+  options.upper = 0.1;
+  options.increasing = false;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  const auto pd = std::find_if(
+      branch.special_points.begin(), branch.special_points.end(),
+      [](const StickingSpecialPoint& s) { return s.type == StickingEvent::kPeriodDoubling; });
+  REQUIRE(pd != branch.special_points.end());
+  const double c = pd->point.parameter;
+  CHECK(c > 0.03);
+  CHECK(c < 0.04);
+  // Recomputed: a fresh solve at the located c has a multiplier -1 to
+  // 1e-6, and the simulator's own monodromy there one within 1e-4.
+  System at = system;
+  SetParameter(at, "c", c);
+  StickingOrbit again;
+  REQUIRE(
+      FindStickingOrbit(at, pd->point.orbit.state, StickingOrbitOptions{}, &again).termination ==
+      Termination::kConverged);
+  double nearest = 1e300;
+  for (const std::complex<double>& m : again.multipliers)
+    nearest = std::min(nearest, std::abs(m + 1.0));
+  CHECK(nearest < 1e-6);
+  const Eigen::VectorXcd lambda = SimulatorMultipliers(at, again);
+  CHECK(std::abs(lambda(0) + 1.0) < 1e-4);
+  // From rest, the simulation sticks once per period above the doubling
+  // and once every two periods below it.
+  System above = system, below = system;
+  SetParameter(above, "c", c + 2e-3);
+  SetParameter(below, "c", c - 2e-3);
+  const std::optional<StickingSeed> once = SeedStickingFromSimulation(above, 300, 4);
+  const std::optional<StickingSeed> twice = SeedStickingFromSimulation(below, 300, 4);
+  REQUIRE(once);
+  REQUIRE(twice);
+  CHECK(once->q == 1);
+  CHECK(twice->q == 2);
 }
 
 TEST_CASE(
