@@ -421,7 +421,12 @@ TEST_CASE(
   REQUIRE(other.end == StickingBranchEnd::kVanishingImpact);
   const StickingBranchPoint& other_end = other.special_points.back().point;
   CHECK_THAT(other_end.parameter, WithinAbs(end.parameter, 1e-5));
-  CHECK(other_end.orbit.cycles.front().impacts.front().velocity < 1e-5);
+  System at_other = system;
+  SetParameter(at_other, "A1", other_end.parameter);
+  StickingOrbit resolved;
+  REQUIRE(FindStickingOrbit(at_other, other_end.orbit.state, StickingOrbitOptions{}, &resolved)
+              .termination == Termination::kConverged);
+  CHECK(resolved.cycles.front().impacts.front().velocity < 1e-5);
 }
 
 TEST_CASE(
