@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "closed_form_sdof.hpp"
+#include "cvode_flight_top.hpp"
 #include "impactkit/continuation/curve.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "seeded_orbit.hpp"
@@ -318,6 +319,42 @@ TEST_CASE(
   REQUIRE(on_flip != nullptr);
   CHECK(std::abs(on_torus->point.parameter - on_flip->point.parameter2) < 1e-8);
   CHECK(std::abs(on_torus->point.parameter2 - on_flip->point.parameter) < 1e-8);
+}
+
+TEST_CASE(
+    "curves: P(1,1)'s grazing curve in (omega, xs) ends at a double grazing, both maxima of "
+    "its flight at the stop by CVODE",
+    "[curve]") {
+  // Along the curve the flight's own touch is held at the stop; towards low
+  // omega a second maximum of the same flight rises to it. Beyond, the map
+  // takes an extra impact: the curve ends there, a located codimension-two
+  // point (it used to end with corrector_failed).
+  const System system = PaperSystem(1.0);
+  CurveOptions options = Plane("xs", -1.0, 1.0, 1, 1);
+  options.lower = 0.1;
+  const Curve curve = ContinueCurve(Start(system, SpecialPointType::kGrazing, 1, 1), options);
+  REQUIRE(!curve.codim2_points.empty());
+  const Codim2Point& corner = curve.codim2_points.back();
+  REQUIRE(corner.type == Codim2Type::kDoubleGrazing);
+  CHECK(curve.end == CurveEnd::kGrazing);
+  CHECK(corner.point.parameter == Approx(0.47956).margin(1e-4));
+  CHECK(corner.point.parameter2 == Approx(0.31957).margin(1e-4));
+  // Recomputed: a fresh orbit at the corner, and CVODE over its one flight
+  // (from the rebound to the next impact) has two interior maxima, each
+  // within 1e-8 of the stop.
+  const System at = At(At(system, "xs", corner.point.parameter2), "omega", corner.point.parameter);
+  OrbitOptions orbit_options;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(at, corner.point.orbit.eta, orbit_options, &orbit).termination ==
+          Termination::kConverged);
+  const ImpactMap map(at);
+  HybridState rebound = map.ToState(orbit.eta);
+  rebound.v(1) *= -at.stops[0].restitution;
+  const std::vector<double> tops =
+      testing::CvodeFlightTops(at, rebound.t, rebound.x, rebound.v, rebound.t + at.ForcingPeriod());
+  int at_stop = 0;
+  for (double top : tops) at_stop += std::abs(at.stops[0].position - top) < 1e-8;
+  CHECK(at_stop == 2);
 }
 
 TEST_CASE("curves: the defining rows' differenced gradient agrees with Richardson extrapolation",

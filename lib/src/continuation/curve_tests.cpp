@@ -105,9 +105,9 @@ std::optional<double> LinearMonitor(const CurvePoint& point, Monitor monitor) {
   if (point.orbit.multipliers.size() == 0) return std::nullopt;
   const OrbitContacts& c = point.orbit.contacts;
   if (monitor == Monitor::kClearance) {
-    // On a grazing curve the clearance is the curve's own touch (zero).
-    if (point.defining.size() == 2) return std::nullopt;
-    return c.clearance;
+    // On a grazing curve the least clearance is the curve's own touch
+    // (zero); the next one watches a second contact (double grazing).
+    return point.defining.size() == 2 ? c.next_clearance : c.clearance;
   }
   if (!std::isfinite(c.slowest_depth)) return std::nullopt;
   return std::sqrt(c.slowest_depth);

@@ -42,10 +42,13 @@ void MeasureFlight(const ImpactMap& map, const Eigen::VectorXd& from, int from_s
         if (!(stop.Sign() * curvature < 0)) continue;  // turning away from this stop
         const double clearance = stop.Sign() * (stop.position - value);
         if (!contacts->clearance || clearance < *contacts->clearance) {
+          contacts->next_clearance = contacts->clearance;
           contacts->clearance = clearance;
           contacts->clearance_time = t;
           contacts->clearance_flight = flight;
           contacts->clearance_stop = j;
+        } else if (!contacts->next_clearance || clearance < *contacts->next_clearance) {
+          contacts->next_clearance = clearance;
         }
       }
     }

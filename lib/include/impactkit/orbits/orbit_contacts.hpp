@@ -35,6 +35,10 @@ struct OrbitContacts {
   double clearance_time = 0.0;  ///< when the highest interior maximum occurs
   int clearance_flight = 0;     ///< the impact (index) whose flight holds it
   int clearance_stop = 0;       ///< the stop it approaches
+  /// The same for the next highest interior extremum (another one, in any
+  /// flight): on a grazing curve, whose own touch is `clearance`, the
+  /// monitor of a second contact. Empty with fewer than two.
+  std::optional<double> next_clearance;
   /// v² / (2|a|) of the slowest impact (the one with the least depth).
   double slowest_depth = 0.0;
   int slowest_impact = 0;        ///< its index among the orbit's p impacts
