@@ -4,6 +4,7 @@
 // solve, the defining rows' differenced gradient by Richardson
 // extrapolation.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
@@ -355,6 +356,36 @@ TEST_CASE(
   int at_stop = 0;
   for (double top : tops) at_stop += std::abs(at.stops[0].position - top) < 1e-8;
   CHECK(at_stop == 2);
+}
+
+TEST_CASE(
+    "curves: P(2,1)'s period-doubling curve in (omega, r) meets a fold at a fold-flip point, "
+    "recomputed by a fresh orbit solve",
+    "[curve]") {
+  const Curve flip = ContinueCurve(Start(PaperSystem(0.8), SpecialPointType::kPeriodDoubling, 2, 1),
+                                   Plane("r", 0.45, 1.0, 2, 1));
+  const auto corner =
+      std::find_if(flip.codim2_points.begin(), flip.codim2_points.end(),
+                   [](const Codim2Point& c) { return c.type == Codim2Type::kFoldFlip; });
+  REQUIRE(corner != flip.codim2_points.end());
+  CHECK(corner->point.parameter == Approx(0.87292).margin(1e-4));
+  CHECK(corner->point.parameter2 == Approx(0.48506).margin(1e-4));
+  // A fresh P(2,1) at the point has the multipliers +1 and -1 at once.
+  const System at =
+      At(At(PaperSystem(0.8), "r", corner->point.parameter2), "omega", corner->point.parameter);
+  OrbitOptions options;
+  options.p = 2;
+  options.q = 1;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(at, corner->point.orbit.eta, options, &orbit).termination ==
+          Termination::kConverged);
+  double plus = 1e300, minus = 1e300;
+  for (const std::complex<double>& l : orbit.multipliers) {
+    plus = std::min(plus, std::abs(l - 1.0));
+    minus = std::min(minus, std::abs(l + 1.0));
+  }
+  CHECK(plus < 1e-6);
+  CHECK(minus < 1e-6);
 }
 
 TEST_CASE("curves: the defining rows' differenced gradient agrees with Richardson extrapolation",
