@@ -16,21 +16,22 @@
 ///     simulator's chatter rule stops predicting an accumulation (beyond,
 ///     the map finds impacts without end: kNoChatter); the located end's
 ///     Fs(t*) is then small but not 0;
-///   - a new impact: a free flight's interior maximum of x_c reaches the stop
-///     (beyond, the orbit would pass through it). Beyond, the release map
-///     has the extra impact and stays continuous, and the flight's maximum
-///     is gone rather than past the stop: the event shows as the first
-///     impact after a release jumping to an earlier time between two
-///     points (a vanishing impact, the same graze met from the other side,
-///     as a jump to a later time);
+///   - a new impact: a free flight's interior maximum of x_c reaches the
+///     stop. Beyond, the release map has the extra impact and stays
+///     continuous, and the flight's maximum is gone rather than past the
+///     stop: the event shows as the first impact after a release jumping to
+///     an earlier time between two points;
 ///   - an early release: an interior minimum of Fs in a stuck phase reaches
 ///     0 (beyond, the mass leaves the stop there and the orbit has one more
 ///     sticking phase);
+///   - a vanishing impact: the same graze met from the side where the
+///     impact exists — the first impact after a release slows to 0, and
+///     beyond it jumps to a later time;
 /// each approached from the branch side by halving the step until it falls
-/// below min_step: the last point is the located end. Where no trial point
-/// showed which (the map only jumps there), the end is the monitor whose
-/// linear extrapolation from the last two points reaches 0 first, within
-/// 1e-3 in arclength.
+/// below min_step: the last point is the located end, named by the monitor
+/// (Fs(t*), clearance, hold margin, first impact speed) whose linear
+/// extrapolation from the last two points reaches 0 first, within 1e-3 in
+/// arclength, or else by what the failed trials beyond it showed.
 /// Fold and period doubling of the release map (a section multiplier
 /// through +1 or −1; test functions Π(λ_i − 1), Π(λ_i + 1)) are located by
 /// bisection in arclength and reported; the branch goes on through them.
