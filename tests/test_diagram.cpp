@@ -39,6 +39,19 @@ DiagramOptions Options(double lower, double upper, int max_depth) {
   return options;
 }
 
+/// A swept diagram's options: `diagram`, seeded by a sweep of `steps`
+/// values (300 transient and `recorded` recorded periods each, periods up
+/// to `max_q`).
+SweptDiagramOptions Swept(const DiagramOptions& diagram, int steps, int recorded, int max_q) {
+  SweptDiagramOptions options;
+  options.diagram = diagram;
+  options.sweep.steps = steps;
+  options.sweep.transient_periods = 300;
+  options.sweep.recorded_periods = recorded;
+  options.sweep.classify.period.max_q = max_q;
+  return options;
+}
+
 /// The multiplier nearest `target` of a fresh FindOrbit from the node's
 /// located point.
 std::complex<double> RecomputedMultiplier(const System& base, const Diagram& diagram,
@@ -325,12 +338,7 @@ TEST_CASE(
     "branch's pitchfork and the sweep's isolated P(3,2) window",
     "[diagram]") {
   const System system = PaperSystem(0.8);
-  SweptDiagramOptions options;
-  options.diagram = Options(0.8, 0.9, 3);
-  options.sweep.steps = 41;
-  options.sweep.transient_periods = 300;
-  options.sweep.recorded_periods = 20;
-  options.sweep.classify.period.max_q = 8;
+  const SweptDiagramOptions options = Swept(Options(0.8, 0.9, 3), 41, 20, 8);
   const SweptDiagram swept = TraceSweptDiagram(system, {}, options);
   const Diagram& diagram = swept.diagram;
   CheckGraph(diagram);
@@ -441,14 +449,8 @@ TEST_CASE(
   // depth 8. Before folds were solved directly where bracketing falls
   // short, P(10,4)'s fold at 1.676009 was reported with multiplier 1.0017.
   const System system = PaperSystem(1.0);
-  SweptDiagramOptions options;
-  options.diagram = Options(0.1, 2.5, 8);
-  options.diagram.threads = 2;
-  options.sweep.steps = 481;
-  options.sweep.transient_periods = 300;
-  options.sweep.recorded_periods = 40;
-  options.sweep.classify.period.max_q = 16;
-  options.sweep.threads = 2;
+  SweptDiagramOptions options = Swept(Options(0.1, 2.5, 8), 481, 40, 16);
+  options.diagram.threads = options.sweep.threads = 2;
   options.seeds.max_p = 16;
   const SweptDiagram swept = TraceSweptDiagram(system, {}, options);
   const Diagram& diagram = swept.diagram;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
 
 #include "cvode_flight_top.hpp"
 #include "cvode_impacts.hpp"
@@ -35,6 +36,13 @@ StickingOrbit RefinedOrbit(const System& system) {
   const StickingOrbitSummary summary = FindStickingOrbit(system, seed->state, options, &orbit);
   REQUIRE(summary.termination == Termination::kConverged);
   return orbit;
+}
+
+/// How the simulation from rest sticks with parameter `name` at `value`
+/// (300 transient periods, periods up to 4); nothing if it does not stick.
+std::optional<StickingSeed> SteadySticking(System system, const std::string& name, double value) {
+  SetParameter(system, name, value);
+  return SeedStickingFromSimulation(system, 300, 4);
 }
 
 /// The state a time `after` past the orbit's first release, by simulation.
@@ -313,9 +321,7 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   CHECK(again.hold_margin < 1e-3);
   // ... and the simulation 1e-3 beyond it sticks twice per period: the
   // early release and the sticking that follows it.
-  System beyond = system;
-  beyond.stops[0].position = end.parameter + 1e-3;
-  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(beyond, 300, 4);
+  const std::optional<StickingSeed> seed = SteadySticking(system, "xs", end.parameter + 1e-3);
   REQUIRE(seed);
   CHECK(seed->releases == 2);
   CHECK(seed->q == 1);
@@ -356,11 +362,8 @@ TEST_CASE(
   CHECK(std::abs(lambda(0) + 1.0) < 1e-4);
   // From rest, the simulation sticks once per period above the doubling
   // and once every two periods below it.
-  System above = system, below = system;
-  SetParameter(above, "c", c + 2e-3);
-  SetParameter(below, "c", c - 2e-3);
-  const std::optional<StickingSeed> once = SeedStickingFromSimulation(above, 300, 4);
-  const std::optional<StickingSeed> twice = SeedStickingFromSimulation(below, 300, 4);
+  const std::optional<StickingSeed> once = SteadySticking(system, "c", c + 2e-3);
+  const std::optional<StickingSeed> twice = SteadySticking(system, "c", c - 2e-3);
   REQUIRE(once);
   REQUIRE(twice);
   CHECK(once->q == 1);
