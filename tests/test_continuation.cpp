@@ -17,8 +17,10 @@
 #include "impactkit/orbits/orbit.hpp"
 #include "recomputed_special_point.hpp"
 #include "seeded_orbit.hpp"
+#include "system_at.hpp"
 
 using namespace impactkit;
+using testing::At;
 
 namespace {
 
@@ -42,11 +44,6 @@ const SpecialPoint* Find(const Branch& branch, SpecialPointType type, double lo,
     if (s.type == type && s.point.parameter > lo && s.point.parameter < hi) return &s;
   }
   return nullptr;
-}
-
-System At(System system, const std::string& name, double value) {
-  SetParameter(system, name, value);
-  return system;
 }
 
 /// The multiplier nearest `target` of the orbit FindOrbit converges to from

@@ -15,15 +15,12 @@
 #include "impactkit/continuation/curve.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "seeded_orbit.hpp"
+#include "system_at.hpp"
 
 using namespace impactkit;
+using testing::At;
 
 namespace {
-
-System At(System system, const std::string& name, double value) {
-  SetParameter(system, name, value);
-  return system;
-}
 
 CurveOptions Plane(const std::string& second, double lower2, double upper2, int p, int q) {
   CurveOptions options;

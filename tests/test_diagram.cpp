@@ -21,15 +21,12 @@
 #include "impactkit/model/parameters.hpp"
 #include "recomputed_special_point.hpp"
 #include "seeded_orbit.hpp"
+#include "system_at.hpp"
 
 using namespace impactkit;
+using testing::At;
 
 namespace {
-
-System At(System system, const std::string& name, double value) {
-  SetParameter(system, name, value);
-  return system;
-}
 
 DiagramOptions Options(double lower, double upper, int max_depth) {
   DiagramOptions options;
