@@ -149,14 +149,19 @@ struct SdofP11 {
   double u = 0.0;
 };
 
+/// d = Ψ⁻¹ (I + r Φ(T)) e2: y_p(τ) = w + u d at a P(1,1) orbit (above).
+inline Eigen::Vector2d SdofImpactDirection(const SdofParameters& p) {
+  const Eigen::Matrix2d phi = SdofTransition(p, p.Period());
+  const Eigen::Matrix2d psi = Eigen::Matrix2d::Identity() - phi;
+  return psi.partialPivLu().solve((Eigen::Matrix2d::Identity() + p.r * phi) *
+                                  Eigen::Vector2d(0, 1));
+}
+
 /// All solutions of the P(1,1) equations with u > 0 (not yet checked for
 /// extra contacts: see SdofCheckFlight).
 inline std::vector<SdofP11> SdofP11Solutions(const SdofParameters& p) {
   const double period = p.Period(), x = p.SteadyAmplitude();
-  const Eigen::Matrix2d phi = SdofTransition(p, period);
-  const Eigen::Matrix2d psi = Eigen::Matrix2d::Identity() - phi;
-  const Eigen::Vector2d d =
-      psi.partialPivLu().solve((Eigen::Matrix2d::Identity() + p.r * phi) * Eigen::Vector2d(0, 1));
+  const Eigen::Vector2d d = SdofImpactDirection(p);
   // qa u² + qb u + qc = 0.
   const double qa = d(0) * d(0) + d(1) * d(1) / (p.omega * p.omega);
   const double qb = 2.0 * p.xs * d(0);

@@ -27,6 +27,7 @@
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/modal.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/grazing_limit.hpp"
 #include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/orbit_contacts.hpp"

@@ -10,6 +10,7 @@
 #include "continuation/arclength.hpp"
 #include "continuation/curve_problem.hpp"
 #include "continuation/curve_tests.hpp"
+#include "continuation/grazing_corner.hpp"
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit {
@@ -65,6 +66,7 @@ class CurveTracer {
 
   HalfCurve Trace(const CurvePoint& start) {
     HalfCurve half;
+    corner_tried_depth_ = std::numeric_limits<double>::infinity();
     Accept(start, &half);
     if (Leaving(start)) {
       half.end = CurveEnd::kParameterBound;
@@ -99,7 +101,7 @@ class CurveTracer {
           step = std::max(step / 2.0, options_.min_step);
           continue;
         }
-        if (EndAtExistenceLimit(half)) return half;
+        if (EndAtExistenceLimit(half) || EndAtCorner(half)) return half;
         half.end = CurveEnd::kCorrectorFailed;
         half.message = fmt::format(
             "the corrector did not converge with the smallest step {:g} at {} = {:.10g}, {} = "
@@ -111,6 +113,7 @@ class CurveTracer {
       if (options_.locate_codim2) LocateCodim2(from, *next, &half);
       Accept(*next, &half);
       if (LimitAhead(half, step) && EndAtExistenceLimit(half)) return half;
+      if (EndAtCorner(half)) return half;
       if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
       if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
     }
@@ -277,6 +280,25 @@ class CurveTracer {
     return true;
   }
 
+  /// Ends the curve at the corner where its impact vanishes if the last
+  /// point is near it (grazing_corner.hpp); tried again only once the depth
+  /// has fallen tenfold, since a failed try costs a Newton solve.
+  bool EndAtCorner(HalfCurve& half) {
+    if (half.points.size() < 2) return false;
+    const CurvePoint& last = half.points.back();
+    const double depth = last.orbit.contacts.slowest_depth;
+    if (last.orbit.multipliers.size() == 0 || !(depth < 0.1 * corner_tried_depth_)) return false;
+    const std::optional<Codim2Point> corner =
+        detail::GrazingCornerAhead(problem_, type_, half.points[half.points.size() - 2], last);
+    if (depth < detail::kCornerDepth) corner_tried_depth_ = depth;
+    if (!corner) return false;
+    half.points.push_back(corner->point);
+    half.codim2.push_back(*corner);
+    half.end = CurveEnd::kGrazing;
+    half.message = corner->Describe(options_.parameter, options_.parameter2);
+    return true;
+  }
+
   /// The zero of `monitor` beyond b, approached from the side where the
   /// orbit exists by secant steps, each from the newest point along its
   /// own tangent, halved when they land where the corrector fails (as
@@ -331,6 +353,8 @@ class CurveTracer {
   const CurveOptions& options_;
   const CurveProgress& progress_;
   NewtonOptions newton_;
+  /// The depth at which EndAtCorner last tried (per direction).
+  double corner_tried_depth_ = std::numeric_limits<double>::infinity();
 };
 
 /// The start as a point on the curve: corrected at fixed μ2, its tangent
