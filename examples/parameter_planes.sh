@@ -27,9 +27,7 @@ plane() {
     --out "$data/pd11-$second.csv" --json "$data/pd11-$second.json"
   "$impactkit" curve --type grazing --p 1 --q 1 --omega 1.0 "${common[@]}" \
     --out "$data/graze11-$second.csv" --json "$data/graze11-$second.json"
-  # --max-points: past its 1:1 resonance in (Ω, xs) this curve crawls
-  # (docs/continuation.md, known limits).
-  "$impactkit" curve --type fold --p 1 --q 2 --omega 2.0 "${common[@]}" --max-points 500 \
+  "$impactkit" curve --type fold --p 1 --q 2 --omega 2.0 "${common[@]}" \
     --out "$data/fold12-$second.csv" --json "$data/fold12-$second.json"
   "$impactkit" curve --type period_doubling --p 1 --q 2 --omega 2.0 "${common[@]}" \
     --out "$data/pd12-$second.csv" --json "$data/pd12-$second.json"
@@ -43,13 +41,15 @@ plane() {
     grep -v '^#' "$data/graze11-$second.csv" | tail -n +2 | cut -d, -f1,2
     grep -v '^#' "$data/pd11-$second.csv" | tail -n +2 | cut -d, -f1,2 | tac
   } >"$data/stable11-$second.csv"
-  # The codimension-two points: rows whose last column names one.
+  # The codimension-two points: rows whose last column names one (labels
+  # alternate sides: neighbours can be close).
   local codim2=""
   cat "$data"/*11-"$second".csv "$data"/*12-"$second".csv | grep -v '^#' |
     awk -F, '$NF ~ /[a-z]/ && $1 != "omega"' >"$data/codim2-$second.csv"
   if [[ -s $data/codim2-$second.csv ]]; then
     codim2="'$data/codim2-$second.csv' using 1:2 with points pt 7 ps 1.5 lc rgb '#2ca02c' title 'codimension two', \
-      '$data/codim2-$second.csv' using 1:2:(stringcolumn(9)) with labels offset -1,1 right notitle"
+      '$data/codim2-$second.csv' every 2 using 1:2:(stringcolumn(9)) with labels offset -1,1 right notitle, \
+      '$data/codim2-$second.csv' every 2::1 using 1:2:(stringcolumn(9)) with labels offset 1,-1 left notitle"
   fi
   gnuplot <<GNUPLOT
 set terminal pngcairo size 1000,700 noenhanced

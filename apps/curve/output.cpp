@@ -15,6 +15,8 @@ int Outside(const PeriodicOrbit& orbit) {
       [](const std::complex<double>& l) { return std::abs(l) > 1.0 + kOutsideUnitCircle; }));
 }
 
+bool HasOrbit(const CurvePoint& point) { return point.orbit.multipliers.size() > 0; }
+
 /// The curve's type as outputs name it.
 std::string CurveName(const impactkit::Curve& curve) { return ToString(curve.type); }
 
@@ -29,10 +31,14 @@ nlohmann::json PointJson(const impactkit::Curve& curve, const CurvePoint& point)
   for (const std::complex<double>& l : point.orbit.multipliers) {
     multipliers.push_back({l.real(), l.imag()});
   }
+  // A point without an orbit (the response's grazing, a corner where the
+  // impact vanishes) has no multipliers to count.
+  const nlohmann::json outside =
+      HasOrbit(point) ? nlohmann::json(Outside(point.orbit)) : nlohmann::json(nullptr);
   return {{curve.parameter, point.parameter},
           {curve.parameter2, point.parameter2},
           {"multipliers", multipliers},
-          {"outside", Outside(point.orbit)}};
+          {"outside", outside}};
 }
 
 }  // namespace
@@ -74,7 +80,13 @@ nlohmann::json CurvesJson(const std::vector<impactkit::Curve>& curves,
 
 std::vector<std::string> CurveColumns(const impactkit::Curve& curve) {
   std::vector<std::string> columns = {curve.parameter, curve.parameter2, "arclength"};
-  const Eigen::Index n = curve.points.front().orbit.multipliers.size();
+  // Every orbit of the curve has the same number; its end points may have none.
+  const Eigen::Index n =
+      std::max_element(curve.points.begin(), curve.points.end(),
+                       [](const CurvePoint& a, const CurvePoint& b) {
+                         return a.orbit.multipliers.size() < b.orbit.multipliers.size();
+                       })
+          ->orbit.multipliers.size();
   for (Eigen::Index i = 1; i <= n; ++i) columns.push_back(fmt::format("mod{}", i));
   columns.push_back("outside");
   columns.push_back("codim2");
@@ -82,15 +94,21 @@ std::vector<std::string> CurveColumns(const impactkit::Curve& curve) {
 }
 
 void WriteCurveRows(CsvWriter& csv, const impactkit::Curve& curve) {
+  const std::size_t moduli = CurveColumns(curve).size() - 5;
   for (const CurvePoint& point : curve.points) {
     std::vector<double> row = {point.parameter, point.parameter2, point.arclength};
-    for (const std::complex<double>& l : point.orbit.multipliers) row.push_back(std::abs(l));
-    row.push_back(Outside(point.orbit));
+    std::vector<std::string> labels;
+    if (HasOrbit(point)) {
+      for (const std::complex<double>& l : point.orbit.multipliers) row.push_back(std::abs(l));
+      row.push_back(Outside(point.orbit));
+    } else {
+      labels.assign(moduli + 1, "");  // empty cells: no multipliers to write
+    }
     std::string label;
     for (const Codim2Point& s : curve.codim2_points) {
       if (s.point.arclength == point.arclength) label = ToString(s.type);
     }
-    const std::vector<std::string> labels = {label};
+    labels.push_back(label);
     csv.WriteRow(row, labels);
   }
 }

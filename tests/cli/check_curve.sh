@@ -6,7 +6,8 @@
 # reports its two meetings with period doubling as codim2_points keyed by
 # the parameter names; a start read from `impactkit continue --json` gives
 # the same curve as the direct start; P(1,2)'s vanishing impact is the
-# non-impacting response's grazing.
+# non-impacting response's grazing, and its fold curve begins at a corner
+# on it.
 #
 #     check_curve.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -50,4 +51,15 @@ grep -q "curve:      grazing of the non-impacting response in (omega, xs)" "$wor
   fail "not the response's grazing: $(cat "$work/stdout")"
 json=$(tr -d ' \n' <"$work/v.json")
 [[ $json == *'"multipliers":[],"omega":'* && $json == *'"p":0'* ]] || fail "response JSON: $json"
+# P(1,2)'s fold curve in (omega, xs) begins at its corner on that curve: a
+# point without an orbit (null outside, empty CSV cells).
+"$impactkit" curve --type fold --p 1 --q 2 --omega 2.0 --param2 xs --from 0.5 --to 3 \
+  --from2 0 --to2 0.3 --json "$work/f.json" --out "$work/f.csv" >"$work/stdout" ||
+  fail "fold curve: $(cat "$work/stdout")"
+grep -q "begins:   grazing (fold_grazing at omega = 2.37786842" "$work/stdout" ||
+  fail "no fold_grazing corner: $(cat "$work/stdout")"
+json=$(tr -d ' \n' <"$work/f.json")
+[[ $json == *'"multipliers":[],"omega":2.37786842'*'"outside":null'* ]] || fail "corner JSON: $json"
+grep -v "^#" "$work/f.csv" | sed -n 2p | grep -q '^2.37786842[0-9]*,0.0314465[0-9]*,[-0-9.e]*,,,,,,fold_grazing$' ||
+  fail "corner CSV row: $(grep -v "^#" "$work/f.csv" | sed -n 2p)"
 echo ok
