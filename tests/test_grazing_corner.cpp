@@ -21,31 +21,34 @@ using testing::At;
 
 namespace {
 
-/// Curves of P(1, q) in (omega, xs), omega in [0.5, 3].
-CurveOptions XsPlane(double lower2, double upper2, int q) {
+/// Curves of P(p, q) in (omega, second), omega in [0.5, 3].
+CurveOptions PlaneOf(const std::string& second, double lower2, double upper2, int p, int q) {
   CurveOptions options;
   options.parameter = "omega";
-  options.parameter2 = "xs";
+  options.parameter2 = second;
   options.lower = 0.5;
   options.upper = 3.0;
   options.lower2 = lower2;
   options.upper2 = upper2;
+  options.orbit.p = p;
   options.orbit.q = q;
   return options;
 }
 
-/// The (omega, xs) plane's curve of `type` of P(1, q) through the special
+/// The curve of `type` of P(p, q) in (omega, second) through the special
 /// point nearest `system`'s omega.
-Curve CurveInXs(const System& system, SpecialPointType type, int q, double lower2, double upper2) {
+Curve CurveIn(const std::string& second, const System& system, SpecialPointType type, int p, int q,
+              double lower2, double upper2) {
   ContinuationOptions search;
   search.lower = 0.5;
   search.upper = 3.0;
+  search.orbit.p = p;
   search.orbit.q = q;
   const std::optional<SpecialPoint> special =
-      LocateSpecialPoint({system, testing::SeededOrbit(system, 1, q), {}}, search, type);
+      LocateSpecialPoint({system, testing::SeededOrbit(system, p, q), {}}, search, type);
   REQUIRE(special.has_value());
   return ContinueCurve({At(system, "omega", special->parameter), *special},
-                       XsPlane(lower2, upper2, q));
+                       PlaneOf(second, lower2, upper2, p, q));
 }
 
 /// The curve's located corner, which must be its last point at one end.
@@ -95,52 +98,110 @@ double GrazingOmega(double xs, double omega) {
   return b;
 }
 
-/// The special point of `type` in omega nearest `omega` on the P(1, q)
-/// branch at stop position xs, through an orbit found from the seed `eta`
-/// at omega or beside it (beside a fold the orbit exists on one side only).
-double OneParameterOmega(double xs, double omega, const Eigen::VectorXd& eta, int q,
-                         SpecialPointType type) {
+/// The paper system's P(p, q) branch in omega (within 0.05 of `omega`) at
+/// `second` = value that has a special point of `type`, and that point's
+/// omega nearest `omega`; through an orbit found from the seed `eta` at
+/// omega or beside it (beside a fold the orbit exists on one side only).
+std::pair<Branch, double> BranchWith(const std::string& second, double value, double omega,
+                                     const Eigen::VectorXd& eta, int p, int q,
+                                     SpecialPointType type) {
   ContinuationOptions options;
   options.lower = omega - 0.05;
   options.upper = omega + 0.05;
   options.direction = ContinuationDirection::kBoth;
+  options.orbit.p = p;
   options.orbit.q = q;
   for (double shift : {0.0, 2e-3, -2e-3, 1e-2, -1e-2}) {
-    const System system = At(PaperSystem(omega + shift), "xs", xs);
+    const System system = At(PaperSystem(omega + shift), second, value);
     PeriodicOrbit orbit;
     if (FindOrbit(system, eta, options.orbit, &orbit).termination != Termination::kConverged) {
       continue;
     }
+    Branch branch = ContinueBranch({system, orbit, {}}, options);
     double best = 1e300;
-    for (const SpecialPoint& s : ContinueBranch({system, orbit, {}}, options).special_points) {
+    for (const SpecialPoint& s : branch.special_points) {
       if (s.type == type && std::abs(s.parameter - omega) < std::abs(best - omega)) {
         best = s.parameter;
       }
     }
-    if (best != 1e300) return best;
+    if (best != 1e300) return {std::move(branch), best};
   }
-  FAIL("no " << ToString(type) << " found at xs = " << xs);
-  return 0.0;
+  FAIL("no " << ToString(type) << " found at " << second << " = " << value);
+  return {};
+}
+
+double OneParameterOmega(const std::string& second, double value, double omega,
+                         const Eigen::VectorXd& eta, int p, int q, SpecialPointType type) {
+  return BranchWith(second, value, omega, eta, p, q, type).second;
+}
+
+/// As a branch's impact vanishes (speed v → 0) its multipliers but one
+/// tend to those of the grazing limit (grazing_limit.hpp): the distance of
+/// the one nearest `target` from it, extrapolated to v = 0 by the
+/// quadratic in √depth ∝ v through the branch's three shallowest points
+/// (of distinct depths: the branch repeats its last point).
+double LimitMultiplierGap(const Branch& branch, std::complex<double> target) {
+  std::vector<std::pair<double, std::complex<double>>> samples;  // (√depth, λ)
+  for (const BranchPoint& point : branch.points) {
+    const Eigen::VectorXcd& lambda = point.orbit.multipliers;
+    Eigen::Index k = 0;
+    (lambda.array() - target).abs().minCoeff(&k);
+    samples.emplace_back(std::sqrt(point.orbit.contacts.slowest_depth), lambda(k));
+  }
+  std::sort(samples.begin(), samples.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::pair<double, std::complex<double>>> distinct;
+  for (const auto& sample : samples) {
+    if (distinct.empty() || sample.first > 1.01 * distinct.back().first) distinct.push_back(sample);
+  }
+  REQUIRE(distinct.size() >= 3);
+  std::complex<double> at_zero = 0.0;  // Lagrange's quadratic at 0
+  for (int i = 0; i < 3; ++i) {
+    double weight = 1.0;
+    for (int j = 0; j < 3; ++j) {
+      if (j != i) weight *= distinct[j].first / (distinct[j].first - distinct[i].first);
+    }
+    at_zero += weight * distinct[i].second;
+  }
+  return std::abs(at_zero - target);
+}
+
+/// The curve's point next to its corner (the last with an orbit).
+const CurvePoint& NextToCorner(const Curve& curve) {
+  return curve.begin == CurveEnd::kGrazing ? curve.points[1]
+                                           : curve.points[curve.points.size() - 2];
 }
 
 }  // namespace
 
 TEST_CASE(
-    "grazing limit: the split monodromy M(v) of P(1,1) and P(1,2) has the impact map's "
-    "multipliers",
+    "grazing limit: the split monodromy M(v) of P(1,1), P(1,2) and P(2,1) has the impact "
+    "map's multipliers",
     "[curve][grazing-corner]") {
-  for (const auto& [omega, q] : {std::pair{1.2, 1}, std::pair{2.0, 2}}) {
-    INFO("P(1," << q << ") at omega = " << omega);
+  for (const auto& [omega, p, q] :
+       {std::tuple{1.2, 1, 1}, std::tuple{2.0, 1, 2}, std::tuple{0.8, 2, 1}}) {
+    INFO("P(" << p << "," << q << ") at omega = " << omega);
     const System system = PaperSystem(omega);
-    const PeriodicOrbit orbit = testing::SeededOrbit(system, 1, q);
-    const HybridState impact = ImpactMap(system).ToState(orbit.eta);
-    const SpeedSplitMonodromy split =
-        SingleImpactMonodromy(system, impact.t, impact.x, impact.v, q);
-    const Eigen::VectorXcd lambda = split.At(impact.v(1)).eigenvalues();
-    // Each multiplier of the map has one of M's within 1e-9.
-    for (const std::complex<double>& l : orbit.multipliers) {
-      INFO("multiplier " << l);
-      CHECK((lambda.array() - l).abs().minCoeff() < 1e-9);
+    const PeriodicOrbit orbit = testing::SeededOrbit(system, p, q);
+    const ImpactMap map(system);
+    const MapResult path = map.Apply(orbit.eta, p, false);
+    REQUIRE(path.status == MapStatus::kOk);
+    // The orbit's impacts from η on, split at each in turn.
+    for (int split = 0; split < p; ++split) {
+      std::vector<HybridState> contacts;
+      for (int k = split; k < split + p; ++k) {
+        const Eigen::VectorXd& eta = k == 0 ? orbit.eta : path.path[(k - 1) % p];
+        HybridState impact = map.ToState(eta);
+        if (k > p) impact.t += q * system.ForcingPeriod();
+        contacts.push_back(impact);
+      }
+      const SpeedSplitMonodromy m = SplitMonodromy(system, contacts, q);
+      const Eigen::VectorXcd lambda = m.At(contacts.front().v(1)).eigenvalues();
+      // Each multiplier of the map has one of M's within 1e-9.
+      for (const std::complex<double>& l : orbit.multipliers) {
+        INFO("split at impact " << split << ", multiplier " << l);
+        CHECK((lambda.array() - l).abs().minCoeff() < 1e-9);
+      }
     }
   }
 }
@@ -156,7 +217,7 @@ TEST_CASE(
   // so at Ω = 2 ω_d (T = π / ω_d).
   const System system =
       UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
-  const Curve curve = CurveInXs(system, SpecialPointType::kFold, 1, 0.0, 0.4);
+  const Curve curve = CurveIn("xs", system, SpecialPointType::kFold, 1, 1, 0.0, 0.4);
   const Codim2Point& corner = Corner(curve, Codim2Type::kFoldGrazing);
   testing::SdofParameters p{1.0, 1.0, 0.1, 0.5, 0.0, 0.8, 0.0};
   p.omega = 2.0 * p.DampedFrequency();
@@ -169,36 +230,57 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "grazing limit: the paper's P(1,1) period-doubling curve in (omega, xs) ends where "
-    "one-parameter period doublings, extrapolated, reach the vanishing impact",
+    "grazing limit: the paper's P(1,1) period-doubling curve in (omega, xs) and P(2,1)'s in "
+    "(omega, r) end where their branches' impacts vanish with a multiplier tending to -1",
     "[curve][grazing-corner]") {
-  // From xs = 0.37 up to its corner near xs = 0.386.
-  const Curve curve =
-      CurveInXs(At(PaperSystem(1.2), "xs", 0.37), SpecialPointType::kPeriodDoubling, 1, 0.0, 0.45);
-  const Codim2Point& corner = PaperCorner(curve, Codim2Type::kPeriodDoublingGrazing);
-  const double omega_c = corner.point.parameter, xs_c = corner.point.parameter2;
-  // The period doubling at xs_c − δ (speed ∝ δ) tends to the corner as
-  // δ → 0, smoothly (the curve crosses the grazing curve): the quadratic
-  // through δ = 4h, 2h, h at 0 (error ~2e-8 here: 1.1e-6 at h = 2e-4,
-  // 1.5e-7 at 1e-4, falling like h³).
-  const CurvePoint& near = curve.points[curve.points.size() - 2];
-  const double h = 5e-5;
-  std::array<double, 3> omegas{};
-  for (int k = 0; k < 3; ++k) {
-    omegas[k] = OneParameterOmega(xs_c - (4 >> k) * h, omega_c, near.orbit.eta, 1,
-                                  SpecialPointType::kPeriodDoubling);
+  // P(1,1) from xs = 0.37 up to its corner near xs = 0.386 (on the
+  // response's grazing); P(2,1) from r = 0.7 through its fold-flip point to
+  // its corner near r = 0.522 (on P(1,1)'s grazing by a new contact).
+  for (const auto& [second, omega, value, p, lower2, upper2] :
+       {std::tuple{"xs", 1.2, 0.37, 1, 0.0, 0.45}, std::tuple{"r", 0.8, 0.7, 2, 0.45, 1.0}}) {
+    INFO("P(" << p << ",1) in (omega, " << second << ")");
+    const Curve curve = CurveIn(second, At(PaperSystem(omega), second, value),
+                                SpecialPointType::kPeriodDoubling, p, 1, lower2, upper2);
+    const Codim2Point& corner = Corner(curve, Codim2Type::kPeriodDoublingGrazing);
+    const double omega_c = corner.point.parameter, value_c = corner.point.parameter2;
+    INFO("corner at omega = " << omega_c << ", " << second << " = " << value_c);
+    CHECK(corner.defining_residual < 1e-8);
+    CHECK(corner.second_residual < 1e-9);
+    const CurvePoint& near = NextToCorner(curve);
+    // The branch in omega at the corner's second value ends where its
+    // impact vanishes, located by its own (reduced-orbit) equation: there;
+    // and as it does, one of its multipliers tends to −1.
+    const auto [branch, graze] =
+        BranchWith(second, value_c, omega_c, near.orbit.eta, p, 1, SpecialPointType::kGrazing);
+    CHECK(std::abs(graze - omega_c) < 1e-8);
+    // (At the shallowest point it is 3.6e-3 from −1 for P(1,1), 1.8e-4
+    // for P(2,1); extrapolated, 4e-6 and 5e-7.)
+    CHECK(LimitMultiplierGap(branch, -1.0) < 1e-5);
+    // P(1,1): the period doubling at value_c − δ (speed ∝ δ) tends to the
+    // corner as δ → 0, smoothly (the curve crosses the grazing curve): the
+    // quadratic through δ = 4h, 2h, h at 0 (error ~2e-8: 1.1e-6 at
+    // h = 2e-4, 1.5e-7 at 1e-4, falling like h³). P(2,1)'s branches tell
+    // its period doubling from the vanishing impact beside it only for
+    // δ >= 5e-4, too far for that.
+    if (p == 2) continue;
+    const double h = 5e-5;
+    std::array<double, 3> omegas{};
+    for (int k = 0; k < 3; ++k) {
+      omegas[k] = OneParameterOmega(second, value_c - (4 >> k) * h, omega_c, near.orbit.eta, p, 1,
+                                    SpecialPointType::kPeriodDoubling);
+    }
+    const double extrapolated = (omegas[0] - 6.0 * omegas[1] + 8.0 * omegas[2]) / 3.0;
+    CHECK(std::abs(extrapolated - omega_c) < 1e-7);
   }
-  const double extrapolated = (omegas[0] - 6.0 * omegas[1] + 8.0 * omegas[2]) / 3.0;
-  CHECK(std::abs(extrapolated - omega_c) < 1e-7);
 }
 
 TEST_CASE(
-    "grazing limit: the paper's P(1,2) fold curve in (omega, xs) ends where one-parameter "
-    "folds meet the closed-form vanishing impact tangentially",
+    "grazing limit: the paper's P(1,2) fold curve in (omega, xs) ends where its branch's impact "
+    "vanishes with a multiplier tending to +1, and one-parameter folds touch it there",
     "[curve][grazing-corner]") {
   // From xs = 0.1 down to its corner near xs = 0.031.
   const Curve curve =
-      CurveInXs(At(PaperSystem(2.0), "xs", 0.1), SpecialPointType::kFold, 2, 0.0, 0.45);
+      CurveIn("xs", At(PaperSystem(2.0), "xs", 0.1), SpecialPointType::kFold, 1, 2, 0.0, 0.45);
   const Codim2Point& corner = PaperCorner(curve, Codim2Type::kFoldGrazing);
   const double omega_c = corner.point.parameter, xs_c = corner.point.parameter2;
   // At xs_c + δ the branch in omega folds at impact speed ∝ δ, so its
@@ -208,14 +290,20 @@ TEST_CASE(
   // b (δ − ε)² + … whose vertex ε = −a / (2b) is where the curves touch.
   // (Below δ ≈ 1.2e-4 the branch no longer resolves the fold from the
   // vanishing impact beside it.)
-  const CurvePoint& near = curve.points[1];
+  const CurvePoint& near = NextToCorner(curve);
+  // At xs_c the branch's impact vanishes at omega_c, a multiplier tending
+  // to +1 as it does.
+  const auto [branch, graze] =
+      BranchWith("xs", xs_c, omega_c - 0.01, near.orbit.eta, 1, 2, SpecialPointType::kGrazing);
+  CHECK(std::abs(graze - omega_c) < 1e-8);
+  CHECK(LimitMultiplierGap(branch, 1.0) < 1e-5);
   const std::array<double, 4> deltas{1.5e-4, 2e-4, 3e-4, 4e-4};
   Eigen::Matrix4d powers;
   Eigen::Vector4d gaps;
   for (int k = 0; k < 4; ++k) {
     const double d = deltas[k];
-    const double fold =
-        OneParameterOmega(xs_c + d, omega_c - 0.01, near.orbit.eta, 2, SpecialPointType::kFold);
+    const double fold = OneParameterOmega("xs", xs_c + d, omega_c - 0.01, near.orbit.eta, 1, 2,
+                                          SpecialPointType::kFold);
     powers.row(k) << d, d * d, d * d * d, d * d * d * d;
     gaps(k) = fold - GrazingOmega(xs_c + d, omega_c);
   }

@@ -9,17 +9,6 @@
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit::detail {
-namespace {
-
-/// A grazing curve is followed at this clearance, just inside the region
-/// where its orbit exists: at clearance 0 within rounding the event search
-/// sees a touch (an impact slower than min_speed, or a tiny extra impact)
-/// as often as not, and the map fails. It is the tolerance to which a
-/// branch locates a grazing (continuation.cpp), and moves the curve by
-/// 1e-10 / |∂clearance/∂μ| in μ.
-constexpr double kGrazingMargin = 1e-10;
-
-}  // namespace
 
 CurveProblem::CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
                            int grazing_flight, bool response)

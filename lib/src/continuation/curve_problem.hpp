@@ -15,6 +15,14 @@
 
 namespace impactkit::detail {
 
+/// A grazing curve is followed at this clearance, just inside the region
+/// where its orbit exists: at clearance 0 within rounding the event search
+/// sees a touch (an impact slower than min_speed, or a tiny extra impact)
+/// as often as not, and the map fails. It is the tolerance to which a
+/// branch locates a grazing (continuation.cpp), and moves the curve by
+/// 1e-10 / |∂clearance/∂μ| in μ.
+constexpr double kGrazingMargin = 1e-10;
+
 class CurveProblem {
  public:
   /// `grazing_flight`: for a grazing curve, the impact whose flight holds
@@ -38,6 +46,13 @@ class CurveProblem {
   Eigen::VectorXd Eta(const Eigen::VectorXd& x) const { return x.head(eta_size_); }
   static double Mu1(const Eigen::VectorXd& x) { return x(x.size() - 2); }
   static double Mu2(const Eigen::VectorXd& x) { return x(x.size() - 1); }
+
+  /// Grazing: t*, the time of the touch.
+  double ContactTime(const Eigen::VectorXd& x) const { return x(eta_size_); }
+  /// The system the problem was built on (at the start's parameters) and
+  /// its options.
+  const System& Base() const { return base_; }
+  const CurveOptions& Options() const { return options_; }
 
   /// The system at (μ1, μ2); throws InvalidInput if not valid.
   System SystemAt(double mu1, double mu2) const;

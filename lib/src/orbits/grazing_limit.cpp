@@ -1,11 +1,37 @@
 #include "impactkit/orbits/grazing_limit.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
 
+#include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
 
 namespace impactkit {
+namespace {
+
+/// S(ε) = regular + d0 nᵀ / ε at one contact (nothing multiplied by G yet).
+SpeedSplitMonodromy SplitSaltation(const HybridSystem& hybrid, const HybridState& contact) {
+  const Stop& stop = hybrid.GetStop(0);
+  const int n = hybrid.GetSystem().Dof(), c = stop.Dof();
+  const Eigen::MatrixXd reset = stop.ResetJacobian(n);
+  // f⁺ − R f⁻ with the mass arriving at `speed`: affine in it.
+  auto jump = [&](double speed) {
+    Eigen::VectorXd before = contact.v;
+    before(c) = stop.Sign() * speed;
+    Eigen::VectorXd after = before;
+    stop.Reset(after);
+    return Eigen::VectorXd(hybrid.VectorField(contact.t, contact.x, after) -
+                           reset * hybrid.VectorField(contact.t, contact.x, before));
+  };
+  const Eigen::VectorXd d0 = jump(0.0), d1 = jump(1.0) - d0;
+  Eigen::RowVectorXd normal = Eigen::RowVectorXd::Zero(2 * n);
+  normal(c) = stop.Sign();
+  return {reset + d1 * normal, d0, normal};
+}
+
+}  // namespace
 
 Eigen::MatrixXd SpeedSplitMonodromy::At(double speed) const {
   return regular + singular * normal / speed;
@@ -22,27 +48,27 @@ double SpeedSplitMonodromy::GrazingLimit(double lambda) const {
   return k.partialPivLu().determinant() < 0 ? -least : least;
 }
 
-SpeedSplitMonodromy SingleImpactMonodromy(const System& system, double t, const Eigen::VectorXd& x,
-                                          const Eigen::VectorXd& v, int q) {
+SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<HybridState>& contacts,
+                                   int q) {
   system.SoleStop("the grazing limit of an orbit's monodromy");
+  const double end = contacts.empty() ? 0.0 : contacts.front().t + q * system.ForcingPeriod();
+  Require(!contacts.empty() && contacts.back().t < end,
+          fmt::format("the contacts of an orbit's monodromy must lie within its {} periods", q));
   const HybridSystem hybrid(system);
-  const Stop& stop = hybrid.GetStop(0);
-  const int n = system.Dof(), c = stop.Dof();
-  const Eigen::MatrixXd reset = stop.ResetJacobian(n);
-  // f⁺ − R f⁻ with the mass arriving at `speed`: affine in it.
-  auto jump = [&](double speed) {
-    Eigen::VectorXd before = v;
-    before(c) = stop.Sign() * speed;
-    Eigen::VectorXd after = before;
-    stop.Reset(after);
-    return Eigen::VectorXd(hybrid.VectorField(t, x, after) -
-                           reset * hybrid.VectorField(t, x, before));
-  };
-  const Eigen::VectorXd d0 = jump(0.0), d1 = jump(1.0) - d0;
-  Eigen::RowVectorXd normal = Eigen::RowVectorXd::Zero(2 * n);
-  normal(c) = stop.Sign();
-  const Eigen::MatrixXd phi = hybrid.FreeFlow().Transition(q * system.ForcingPeriod());
-  return {phi * (reset + d1 * normal), phi * d0, normal};
+  const LinearFlow& flow = hybrid.FreeFlow();
+  const SpeedSplitMonodromy split = SplitSaltation(hybrid, contacts.front());
+  // G: the flights and the other impacts, from the split contact round.
+  Eigen::MatrixXd rest = Eigen::MatrixXd::Identity(2 * system.Dof(), 2 * system.Dof());
+  double t = contacts.front().t;
+  for (std::size_t k = 1; k < contacts.size(); ++k) {
+    const SpeedSplitMonodromy impact = SplitSaltation(hybrid, contacts[k]);
+    // n · f⁻ = s v_c: the position part of n on the velocities.
+    const double speed = impact.normal.head(system.Dof()).dot(contacts[k].v);
+    rest = impact.At(speed) * flow.Transition(contacts[k].t - t) * rest;
+    t = contacts[k].t;
+  }
+  rest = flow.Transition(end - t) * rest;
+  return {rest * split.regular, rest * split.singular, split.normal};
 }
 
 SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q) {
@@ -52,14 +78,31 @@ SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q) {
   // x_c(t) = a cos Ωt + b sin Ωt: the stop's side of it is largest at
   // Ωt = atan2(s b, s a).
   const double period = system.ForcingPeriod();
-  Eigen::VectorXd x, v;
-  flow.SteadyState(0.0, &x, &v);
-  const double a = stop.Sign() * x(stop.Dof());
-  flow.SteadyState(0.25 * period, &x, &v);
-  const double b = stop.Sign() * x(stop.Dof());
-  const double touch = std::atan2(b, a) / (2.0 * std::numbers::pi) * period;
-  flow.SteadyState(touch, &x, &v);
-  return SingleImpactMonodromy(system, touch, x, v, q);
+  HybridState touch;
+  flow.SteadyState(0.0, &touch.x, &touch.v);
+  const double a = stop.Sign() * touch.x(stop.Dof());
+  flow.SteadyState(0.25 * period, &touch.x, &touch.v);
+  const double b = stop.Sign() * touch.x(stop.Dof());
+  touch.t = std::atan2(b, a) / (2.0 * std::numbers::pi) * period;
+  flow.SteadyState(touch.t, &touch.x, &touch.v);
+  return SplitMonodromy(system, {touch}, q);
+}
+
+std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
+                                                  int p, int q, int flight, double t) {
+  const MapResult path = map.Apply(eta, p, false);
+  if (path.status != MapStatus::kOk) return std::nullopt;
+  const Eigen::VectorXd& start =
+      flight == 0 ? eta : path.path[static_cast<std::size_t>(flight - 1)];
+  std::vector<HybridState> contacts = {map.FlightState(start, t)};
+  // The impacts after the touch, the orbit's first ones shifted a period on.
+  const double shift = q * map.GetSystem().ForcingPeriod();
+  for (int k = flight; k < flight + p; ++k) {
+    HybridState impact = map.ToState(path.path[static_cast<std::size_t>(k % p)]);
+    if (k >= p) impact.t += shift;
+    contacts.push_back(impact);
+  }
+  return SplitMonodromy(map.GetSystem(), contacts, q);
 }
 
 }  // namespace impactkit

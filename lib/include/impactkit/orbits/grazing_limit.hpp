@@ -1,37 +1,41 @@
 #pragma once
 /// \file grazing_limit.hpp
-/// The linearisation of a P(1, q) orbit as its impact speed goes to zero,
-/// and where a fold or period-doubling curve ends on the curve along which
-/// that impact vanishes.
+/// The linearisation of a periodic orbit as one of its impacts' speed goes
+/// to zero, and where a fold or period-doubling curve ends on the curve
+/// along which that impact vanishes.
 ///
-/// From just before the impact (speed ε towards the stop) to just before the
-/// next, q forcing periods later, the orbit's monodromy is
+/// From just before that impact (speed ε towards the stop) once round the
+/// orbit, q forcing periods, the monodromy is
 ///
-///     M(ε) = Φ(qT) S(ε),   S(ε) = R + (f⁺ − R f⁻) nᵀ / ε,
+///     M(ε) = G S(ε),   S(ε) = R + (f⁺ − R f⁻) nᵀ / ε,
 ///
-/// Φ the free flow's transition matrix, R the reset's Jacobian, f∓ the
+/// G the rest of the period (flows Φ and the other impacts' saltation
+/// matrices; Φ(qT) alone for P(1, q)), R the reset's Jacobian, f∓ the
 /// vector field before and after the reset, n the gap's gradient (n · f⁻ =
 /// ε): the saltation matrix. f⁺ − R f⁻ is affine in ε (the vector field is
 /// affine in the velocities, the reset linear), d0 + ε d1, so
 ///
-///     M(ε) = Φ (R + d1 nᵀ) + Φ d0 nᵀ / ε:
+///     M(ε) = G (R + d1 nᵀ) + G d0 nᵀ / ε:
 ///
 /// a part that stays finite and a rank-one part that grows like 1/ε — why
-/// the multipliers grow like 1/v near a vanishing impact (docs/theory.md).
-/// With B = Φ (R + d1 nᵀ) − λ I and u = Φ d0, the matrix determinant lemma
-/// gives
+/// the multipliers grow like 1/v near a vanishing impact (docs/theory.md
+/// §6a). With B = G (R + d1 nᵀ) − λ I and u = G d0, the matrix determinant
+/// lemma gives
 ///
 ///     ε det(M(ε) − λ I) = ε det B − det [B u; nᵀ 0],
 ///
 /// smooth in ε. On a fold (λ = 1) or period-doubling (λ = −1) curve it is
 /// zero, so as the curve reaches the vanishing impact (ε → 0) the bordered
 /// matrix K_λ = [B u; nᵀ 0] becomes singular: det K_λ = 0 at the grazing
-/// orbit is the corner's second condition, regular where the multiplier
-/// test itself is undefined.
+/// orbit (the orbit without that impact, touching the stop) is the corner's
+/// second condition, regular where the multiplier test itself is undefined.
 
 #include <Eigen/Dense>
+#include <optional>
+#include <vector>
 
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/impact_map.hpp"
 
 namespace impactkit {
 
@@ -50,14 +54,24 @@ struct SpeedSplitMonodromy {
   double GrazingLimit(double lambda) const;
 };
 
-/// M(ε) of a P(1, q) orbit of `system` (one stop) whose impact happens at
-/// time t in state (x, v); v's component at the stop's mass is replaced by ε.
-SpeedSplitMonodromy SingleImpactMonodromy(const System& system, double t, const Eigen::VectorXd& x,
-                                          const Eigen::VectorXd& v, int q);
+/// M(ε) of an orbit of `system` (one stop) whose contacts in q forcing
+/// periods are `contacts`, in time order, each the state just before it:
+/// the first is the one split (its speed towards the stop replaced by ε;
+/// it may be a touch, speed 0), the others impacts at their own speeds.
+/// Throws InvalidInput for an empty list or one not within q periods.
+SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<HybridState>& contacts,
+                                   int q);
 
 /// The same at the non-impacting response's closest approach to the stop:
 /// on the curve where P(1, q)'s impact vanishes (the response touches the
 /// stop there), the limit of the orbit's monodromy as ε → 0.
 SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q);
+
+/// The same at time t in flight `flight` (0: the one after η) of the orbit
+/// of `map` with p impacts through η, q periods: where P(p + 1, q)'s impact
+/// vanishes (the orbit touches the stop at t), the limit of that orbit's
+/// monodromy. Empty if the map fails along the orbit.
+std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
+                                                  int p, int q, int flight, double t);
 
 }  // namespace impactkit
