@@ -26,6 +26,12 @@ constexpr int kMaxLocateIterations = 80;
 /// the map allows ten times more.
 constexpr double kGrazingTolerance = 1e-10;
 constexpr double kGrazingBracket = 1e-13;
+/// A second test's located zero must be this small relative to its values
+/// at the ends of the interval: where the Illinois method cannot close a
+/// sign change (the test jumps, as the tangent did on P(3,1)'s fold curve
+/// in (omega, A1) just before the corrector failed at a new contact) there
+/// is no zero. Smooth tests are located to ~1e-12 of their size.
+constexpr double kLocatedZero = 1e-6;
 
 /// Why a curve may stop short of its located end: "; impact 1 vanishes
 /// nearby (depth 2.2e-07, not located to 1e-10)" when a monitor is small.
@@ -197,9 +203,12 @@ class CurveTracer {
       if (!std::isfinite(fa) || !std::isfinite(fb) || (fa > 0) == (fb > 0)) continue;
       const CurvePoint located =
           IllinoisZero(a, b, [&](const CurvePoint& p) { return test.value(p, a); });
-      if (!test.accept(located)) continue;
-      found.push_back({test.type, located, located.defining.cwiseAbs().maxCoeff(),
-                       std::abs(test.value(located, a))});
+      const double residual = std::abs(test.value(located, a));
+      if (!(residual <= kLocatedZero * std::max(std::abs(fa), std::abs(fb))) ||
+          !test.accept(located)) {
+        continue;
+      }
+      found.push_back({test.type, located, located.defining.cwiseAbs().maxCoeff(), residual});
     }
     std::sort(found.begin(), found.end(), [](const Codim2Point& x, const Codim2Point& y) {
       return x.point.arclength < y.point.arclength;
