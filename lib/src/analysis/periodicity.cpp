@@ -20,10 +20,14 @@ double Scale(const std::vector<Sample>& strobe) {
   return scale;
 }
 
-/// Largest relative distance between points q periods apart.
-double Mismatch(const std::vector<Sample>& strobe, int q, double scale) {
+/// Largest relative distance between points q periods apart, or the first
+/// one found above `limit` (a q that fails is then rejected after a few
+/// comparisons instead of a pass over the whole window: over a window that
+/// is not periodic every q up to max_q failed after a full pass, 12 % of
+/// `impactkit simulate`'s instructions).
+double Mismatch(const std::vector<Sample>& strobe, int q, double scale, double limit) {
   double worst = 0.0;
-  for (std::size_t k = 0; k + q < strobe.size(); ++k) {
+  for (std::size_t k = 0; k + q < strobe.size() && worst <= limit; ++k) {
     worst = std::max(worst, Distance(strobe[k + q], strobe[k]) / scale);
   }
   return worst;
@@ -49,7 +53,7 @@ MotionPeriod DetectPeriod(const std::vector<Sample>& strobe,
   const double scale = Scale(strobe);
   result.searched_q = std::min<int>(options.max_q, static_cast<int>((strobe.size() - 1) / 2));
   for (int q = 1; q <= result.searched_q; ++q) {
-    const double mismatch = Mismatch(strobe, q, scale);
+    const double mismatch = Mismatch(strobe, q, scale, options.tolerance);
     if (mismatch > options.tolerance) continue;
     const double end = strobe.back().t, begin = strobe[strobe.size() - 1 - q].t;
     result.periodic = true;
