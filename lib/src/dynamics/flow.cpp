@@ -349,26 +349,43 @@ double LinearFlow::ShortestPeriod() const {
 
 Eigen::VectorXd LinearFlow::Transient(double t, const Eigen::VectorXd& x,
                                       const Eigen::VectorXd& v) const {
+  Eigen::VectorXd z;
+  Transient(t, x, v, &z);
+  return z;
+}
+
+// The scratch vectors below are per thread (flows are shared by the
+// threads of a sweep) and keep their storage between calls: the simulator
+// calls these once or twice per impact, where a malloc/free pair per
+// temporary was ~14 % of its instructions (docs/performance.md).
+void LinearFlow::Transient(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                           Eigen::VectorXd* z) const {
+  thread_local Eigen::VectorXd y;
   const Eigen::Index n = dof_;
-  Eigen::VectorXd y(2 * n);
+  y.resize(2 * n);
   y << x, v;
   const std::complex<double> rotor = std::polar(1.0, omega_ * t);
-  return inverse_basis_ * y - (steady_forced_ * rotor).real() - steady_constant_;
+  z->resize(2 * n);
+  z->noalias() = inverse_basis_ * y;
+  *z -= (steady_forced_ * rotor).real();
+  *z -= steady_constant_;
 }
 
 void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
                        Eigen::VectorXd* v) const {
+  thread_local Eigen::VectorXd z, y;
   const Eigen::Index n = dof_;
   const double tau = t - t0;
   const std::complex<double> rotor = std::polar(1.0, omega_ * t);
-  Eigen::VectorXd z = (steady_forced_ * rotor).real() + steady_constant_;
+  z = (steady_forced_ * rotor).real() + steady_constant_;
   for (Eigen::Index j = 0; j < n; ++j) {
     double ec, es;
     modes_[j].Evaluate(tau, &ec, &es);
     const Eigen::Vector2d zj = z0.segment<2>(2 * j);
     z.segment<2>(2 * j) += ec * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
-  const Eigen::VectorXd y = basis_ * z;
+  y.resize(2 * n);
+  y.noalias() = basis_ * z;
   *x = y.head(n);
   *v = y.tail(n);
 }

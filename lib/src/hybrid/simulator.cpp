@@ -153,6 +153,7 @@ class HybridRun {
   std::vector<double> stick_begins_;   ///< per stop
   Impact impact_;                      ///< reused: no allocation per impact
   Eigen::VectorXd force_scratch_, acceleration_scratch_;
+  Eigen::VectorXd phase_transient_;  ///< the current phase's z0 (reused storage)
   static constexpr int kMaxStalledPhases = 1000;
   static constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
   int stalled_phases_ = 0;
@@ -197,7 +198,13 @@ void HybridRun::Phase() {
   const Mode& mode = hybrid_.Holding(state_.held);
   const LinearFlow& flow = mode.Flow();
   const double t0 = state_.t;
-  const Eigen::VectorXd z0 = flow.Transient(t0, mode.Reduced(state_.x), mode.Reduced(state_.v));
+  // In free flight the state is the flow's own (no reduced copies).
+  if (mode.Held() == 0) {
+    flow.Transient(t0, state_.x, state_.v, &phase_transient_);
+  } else {
+    flow.Transient(t0, mode.Reduced(state_.x), mode.Reduced(state_.v), &phase_transient_);
+  }
+  const Eigen::VectorXd& z0 = phase_transient_;
   const std::optional<Event> event = FirstEvent(mode, z0);
   const double end = event ? event->time : SliceEnd();
   const bool stuck = state_.Stuck();

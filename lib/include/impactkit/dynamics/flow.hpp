@@ -137,7 +137,12 @@ class LinearFlow {
 
   /// Modal coordinates of the transient y(t) - y_p(t).
   Eigen::VectorXd Transient(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) const;
-  /// The state at t of the flight that had transient z0 at t0.
+  /// The same into *z (no allocation once *z has its size: once per impact
+  /// in the simulator).
+  void Transient(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                 Eigen::VectorXd* z) const;
+  /// The state at t of the flight that had transient z0 at t0 (no
+  /// allocation once *x and *v have their sizes).
   void State(double t0, const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
              Eigen::VectorXd* v) const;
   /// The steady (particular) response y_p(t).
