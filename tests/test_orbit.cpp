@@ -117,22 +117,36 @@ TEST_CASE("a seed whose map fails is reported, not solved", "[orbit]") {
 
 TEST_CASE("a solution that grazes is reported as no orbit, not as bad input", "[orbit]") {
   // At Ω = 0.4034115801, where P(3,1)'s branch grazes (its second impact
-  // vanishes; `impactkit diagram` locates it there), Newton from this seed
-  // drives U to 1e-11 at a point whose second impact has speed ~0: the map
-  // fails there. It used to throw InvalidInput (exit 2, as for bad input)
-  // and stopped `impactkit diagram --sweep-values 2401`.
+  // vanishes; `impactkit diagram` locates it there), Newton from seeds near
+  // the grazing orbit drives U to 1e-11 at a point whose impact has speed
+  // ~0: the map fails there. It used to throw InvalidInput (exit 2, as for
+  // bad input) and stopped `impactkit diagram --sweep-values 2401`. Which
+  // seeds end so depends on the last bits of the event times, so several
+  // are tried (found by perturbing the diagram's seed); none may throw.
   const System s = PaperSystem(0.40341158011017869);
-  Eigen::VectorXd eta(4);
-  eta << 0.11115101390144685, 12.939348518847417, 0.4446815793488253, 0.57420650368540982;
+  const double seeds[][4] = {
+      {0.11116051588694462, 12.939347048879592, 0.44467764673414084, 0.57420213716649104},
+      {0.11115102435710443, 12.939348527650797, 0.44468150593514083, 0.57420648321610956},
+      {0.11115091986327338, 12.939348659550143, 0.44468176875437448, 0.57420651868711392},
+      {0.11115097190755574, 12.9393483165357, 0.44468159028888005, 0.57420648577893629},
+      {0.1111510703438377, 12.939348657204999, 0.44468168792172846, 0.57420647395423863},
+      {0.11115101390144685, 12.939348518847417, 0.4446815793488253, 0.57420650368540982}};
   OrbitOptions options;
   options.p = 3;
   options.q = 1;
-  PeriodicOrbit orbit;
-  OrbitSummary summary;
-  REQUIRE_NOTHROW(summary = FindOrbit(s, eta, options, &orbit));
-  CHECK(summary.termination == Termination::kFailure);
-  CHECK_THAT(summary.message, Contains("no orbit") && Contains("grazing impact"));
-  CHECK(summary.residual < 1e-10);
+  int grazing = 0;
+  for (const auto& seed : seeds) {
+    const Eigen::VectorXd eta = Eigen::Map<const Eigen::Vector4d>(seed);
+    PeriodicOrbit orbit;
+    OrbitSummary summary;
+    REQUIRE_NOTHROW(summary = FindOrbit(s, eta, options, &orbit));
+    if (summary.termination != Termination::kFailure) continue;
+    INFO(summary.message);
+    CHECK_THAT(summary.message, Contains("no orbit") && Contains("grazing impact"));
+    CHECK(summary.residual < 1e-10);
+    ++grazing;
+  }
+  CHECK(grazing >= 1);
 }
 
 TEST_CASE("the finite-difference Jacobian's multipliers are reported when it is asked for",
