@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "closed_form_sdof.hpp"
+#include "curve_plane.hpp"
 #include "cvode_flight_top.hpp"
 #include "impactkit/continuation/curve.hpp"
 #include "impactkit/model/parameters.hpp"
@@ -19,21 +20,9 @@
 
 using namespace impactkit;
 using testing::At;
+using testing::Plane;
 
 namespace {
-
-CurveOptions Plane(const std::string& second, double lower2, double upper2, int p, int q) {
-  CurveOptions options;
-  options.parameter = "omega";
-  options.parameter2 = second;
-  options.lower = 0.5;
-  options.upper = 3.0;
-  options.lower2 = lower2;
-  options.upper2 = upper2;
-  options.orbit.p = p;
-  options.orbit.q = q;
-  return options;
-}
 
 /// The special point of `type` in omega nearest the start, from a branch
 /// through the seeded orbit of `system`.

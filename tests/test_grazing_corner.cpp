@@ -10,6 +10,7 @@
 #include <complex>
 
 #include "closed_form_sdof.hpp"
+#include "curve_plane.hpp"
 #include "impactkit/continuation/curve.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/grazing_limit.hpp"
@@ -18,22 +19,9 @@
 
 using namespace impactkit;
 using testing::At;
+using testing::Plane;
 
 namespace {
-
-/// Curves of P(p, q) in (omega, second), omega in [0.5, 3].
-CurveOptions PlaneOf(const std::string& second, double lower2, double upper2, int p, int q) {
-  CurveOptions options;
-  options.parameter = "omega";
-  options.parameter2 = second;
-  options.lower = 0.5;
-  options.upper = 3.0;
-  options.lower2 = lower2;
-  options.upper2 = upper2;
-  options.orbit.p = p;
-  options.orbit.q = q;
-  return options;
-}
 
 /// The curve of `type` of P(p, q) in (omega, second) through the special
 /// point nearest `system`'s omega.
@@ -48,7 +36,7 @@ Curve CurveIn(const std::string& second, const System& system, SpecialPointType 
       LocateSpecialPoint({system, testing::SeededOrbit(system, p, q), {}}, search, type);
   REQUIRE(special.has_value());
   return ContinueCurve({At(system, "omega", special->parameter), *special},
-                       PlaneOf(second, lower2, upper2, p, q));
+                       Plane(second, lower2, upper2, p, q));
 }
 
 /// The curve's located corner, which must be its last point at one end.
