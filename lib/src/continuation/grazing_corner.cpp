@@ -147,7 +147,7 @@ std::optional<GrazingCorner> ReducedCorner(const CurveProblem& problem, double l
       grazing.Join(orbit.eta, orbit.contacts.clearance_time, mu(0), mu(1)));
   Eigen::VectorXd g;
   if (!x || !rows(*x, &g)) return std::nullopt;
-  // The grazing rows hold the touch 1e-10 inside the stop (curve_problem.cpp).
+  // The grazing rows hold the touch kGrazingMargin inside the stop.
   const double clearance = std::abs(g(g.size() - 3) - kGrazingMargin);
   return GrazingCorner{CurveProblem::Mu1(*x), CurveProblem::Mu2(*x), clearance,
                        g(g.size() - 1) / kLimitRowWeight};
