@@ -21,22 +21,9 @@
 using namespace impactkit;
 using testing::At;
 using testing::Plane;
+using testing::Start;
 
 namespace {
-
-/// The special point of `type` in omega nearest the start, from a branch
-/// through the seeded orbit of `system`.
-CurveStart Start(const System& system, SpecialPointType type, int p, int q) {
-  ContinuationOptions options;
-  options.lower = 0.5;
-  options.upper = 3.0;
-  options.orbit.p = p;
-  options.orbit.q = q;
-  const std::optional<SpecialPoint> special =
-      LocateSpecialPoint({system, testing::SeededOrbit(system, p, q), {}}, options, type);
-  REQUIRE(special.has_value());
-  return {At(system, "omega", special->parameter), *special};
-}
 
 /// The special point of `type` that a branch in omega through the curve
 /// point finds, at the point's second parameter: its omega.

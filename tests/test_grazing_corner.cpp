@@ -27,16 +27,7 @@ namespace {
 /// point nearest `system`'s omega.
 Curve CurveIn(const std::string& second, const System& system, SpecialPointType type, int p, int q,
               double lower2, double upper2) {
-  ContinuationOptions search;
-  search.lower = 0.5;
-  search.upper = 3.0;
-  search.orbit.p = p;
-  search.orbit.q = q;
-  const std::optional<SpecialPoint> special =
-      LocateSpecialPoint({system, testing::SeededOrbit(system, p, q), {}}, search, type);
-  REQUIRE(special.has_value());
-  return ContinueCurve({At(system, "omega", special->parameter), *special},
-                       Plane(second, lower2, upper2, p, q));
+  return ContinueCurve(testing::Start(system, type, p, q), Plane(second, lower2, upper2, p, q));
 }
 
 /// The curve's located corner, which must be its last point at one end.
