@@ -291,3 +291,16 @@ TEST_CASE(
   CHECK(fit(1) > 0.0);
   CHECK(std::abs(fit(0) / (2.0 * fit(1))) < 1e-6);
 }
+
+TEST_CASE(
+    "grazing limit: a split monodromy of no contacts, or of contacts beyond q periods, is "
+    "refused with a clear error",
+    "[curve][grazing-corner]") {
+  const System system = PaperSystem(1.2);
+  CHECK_THROWS_AS(SplitMonodromy(system, {}, 1), InvalidInput);
+  HybridState first = RestState(system), late = RestState(system);
+  late.t = 1.5 * system.ForcingPeriod();
+  CHECK_THROWS_WITH(SplitMonodromy(system, {first, late}, 1),
+                    Catch::Contains("must lie within its q = 1 forcing periods"));
+  CHECK_NOTHROW(SplitMonodromy(system, {first, late}, 2));
+}

@@ -37,12 +37,7 @@ std::optional<Eigen::VectorXd> SolveCorner(
   newton.residual_tolerance = tolerance;
   newton.max_iterations = kCornerIterations;
   const SolveSummary summary = SolveNewton(
-      [&](const Eigen::VectorXd& at, Eigen::VectorXd* f) {
-        Eigen::VectorXd g;
-        if (!rows(at, &g)) return false;
-        *f = g;
-        return true;
-      },
+      rows,
       [&](const Eigen::VectorXd& at, Eigen::MatrixXd* j) {
         Eigen::MatrixXd top, bottom;
         if (leading && !leading(at, &top)) return false;

@@ -52,8 +52,10 @@ SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<Hybri
                                    int q) {
   system.SoleStop("the grazing limit of an orbit's monodromy");
   const double end = contacts.empty() ? 0.0 : contacts.front().t + q * system.ForcingPeriod();
-  Require(!contacts.empty() && contacts.back().t < end,
-          fmt::format("the contacts of an orbit's monodromy must lie within its {} periods", q));
+  Require(
+      !contacts.empty() && contacts.back().t < end,
+      fmt::format("the contacts of an orbit's monodromy must lie within its q = {} forcing periods",
+                  q));
   const HybridSystem hybrid(system);
   const LinearFlow& flow = hybrid.FreeFlow();
   const SpeedSplitMonodromy split = SplitSaltation(hybrid, contacts.front());
