@@ -285,6 +285,35 @@ TEST_CASE(
   CHECK(std::abs(other_side.parameter - graze.point.parameter) < 1e-8);
 }
 
+TEST_CASE("continuation: a period doubling on the approach to a vanishing impact is located",
+          "[continuation]") {
+  // P(4,2), born at P(2,1)'s period doubling near 0.8372, doubles again at
+  // 0.83246, 2.4e-4 before its impact 3 vanishes at 0.83222. The secant
+  // steps of the approach to a grazing are branch points too: a period
+  // doubling between them was missed.
+  const System system = PaperSystem(0.83);
+  const ContinuationOptions options = Options(0.8, 0.9, 2, 1);
+  const Branch p21 = ContinueBranch({system, Orbit(system, 2, 1), {}}, options);
+  const SpecialPoint* pd = Find(p21, SpecialPointType::kPeriodDoubling, 0.835, 0.839);
+  REQUIRE(pd != nullptr);
+  const std::optional<BranchStart> doubled = DoubledBranchStart(system, p21, *pd, options);
+  REQUIRE(doubled.has_value());
+  ContinuationOptions p42 = Options(0.8, 0.9, 4, 2);
+  p42.max_step = p42.initial_step = 0.002;
+  const Branch fine = ContinueBranch(*doubled, p42);
+  const SpecialPoint* second = Find(fine, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
+  REQUIRE(second != nullptr);
+  CHECK(std::abs(RecomputedMultiplier(system, fine, *second, -1.0) + 1.0) < 1e-6);
+
+  // With the default steps the branch sees the grazing ahead before the
+  // period doubling and approaches it in secant steps.
+  const Branch coarse = ContinueBranch(*doubled, Options(0.8, 0.9, 4, 2));
+  CHECK(coarse.end == BranchEnd::kGrazing);
+  const SpecialPoint* found = Find(coarse, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
+  REQUIRE(found != nullptr);
+  CHECK(std::abs(found->parameter - second->parameter) < 1e-8);
+}
+
 TEST_CASE("continuation: bad input is rejected with a clear error", "[continuation]") {
   const System system = PaperSystem(1.2);
   const PeriodicOrbit orbit = Orbit(system, 1, 1);

@@ -36,8 +36,10 @@ double OneParameterOmega(const System& base, const Curve& curve, const CurvePoin
   options.direction = ContinuationDirection::kBoth;
   options.orbit.p = curve.p;
   options.orbit.q = curve.q;
-  // The branch starts a little inside the orbit's side of a grazing.
-  const double side = type == SpecialPointType::kGrazing ? 0.01 : 0.0;
+  // The branch starts a little inside the orbit's side of a grazing, and
+  // off a fold (where Newton's Jacobian is singular) on either side.
+  const double side =
+      type == SpecialPointType::kGrazing || type == SpecialPointType::kFold ? 0.01 : 0.0;
   double best = 1e300;
   for (double shift : {side, -side}) {
     PeriodicOrbit orbit;

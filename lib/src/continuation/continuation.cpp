@@ -466,7 +466,14 @@ class BranchTracer {
       }
     }
     if (!best) return false;
-    for (const BranchPoint& point : best_path) Accept(point, &half);
+    // The approach is part of the branch: a fold or period doubling just
+    // before the grazing lies between its points.
+    BranchPoint previous = half.points.back();
+    for (const BranchPoint& point : best_path) {
+      if (options_.locate_bifurcations) LocateBifurcations(previous, point, &half);
+      Accept(point, &half);
+      previous = point;
+    }
     half.special_points.push_back(*best);
     const bool sticking = best->type == SpecialPointType::kSticking;
     half.end = sticking ? BranchEnd::kSticking : BranchEnd::kGrazing;
