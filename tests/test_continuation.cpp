@@ -285,33 +285,108 @@ TEST_CASE(
   CHECK(std::abs(other_side.parameter - graze.point.parameter) < 1e-8);
 }
 
-TEST_CASE("continuation: a period doubling on the approach to a vanishing impact is located",
-          "[continuation]") {
-  // P(4,2), born at P(2,1)'s period doubling near 0.8372, doubles again at
-  // 0.83246, 2.4e-4 before its impact 3 vanishes at 0.83222. The secant
-  // steps of the approach to a grazing are branch points too: a period
-  // doubling between them was missed.
-  const System system = PaperSystem(0.83);
+namespace {
+
+/// The first point of the P(4,2) branch born at the paper's P(2,1) period
+/// doubling near Ω = 0.8372.
+BranchStart P42Start(const System& system) {
   const ContinuationOptions options = Options(0.8, 0.9, 2, 1);
   const Branch p21 = ContinueBranch({system, Orbit(system, 2, 1), {}}, options);
   const SpecialPoint* pd = Find(p21, SpecialPointType::kPeriodDoubling, 0.835, 0.839);
   REQUIRE(pd != nullptr);
   const std::optional<BranchStart> doubled = DoubledBranchStart(system, p21, *pd, options);
   REQUIRE(doubled.has_value());
+  return *doubled;
+}
+
+/// P(4,2)'s branch in fine steps (max 0.002): its period doubling near
+/// 0.83246 lies between regular points.
+Branch FineP42(const System& system) {
   ContinuationOptions p42 = Options(0.8, 0.9, 4, 2);
   p42.max_step = p42.initial_step = 0.002;
-  const Branch fine = ContinueBranch(*doubled, p42);
+  return ContinueBranch(P42Start(system), p42);
+}
+
+}  // namespace
+
+TEST_CASE("continuation: a period doubling on the approach to a vanishing impact is located",
+          "[continuation]") {
+  // P(4,2) doubles again at 0.83246, 2.4e-4 before its impact 3 vanishes at
+  // 0.83222. The secant steps of the approach to a grazing are branch
+  // points too: a period doubling between them was missed.
+  const System system = PaperSystem(0.83);
+  const Branch fine = FineP42(system);
   const SpecialPoint* second = Find(fine, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
   REQUIRE(second != nullptr);
   CHECK(std::abs(RecomputedMultiplier(system, fine, *second, -1.0) + 1.0) < 1e-6);
 
   // With the default steps the branch sees the grazing ahead before the
   // period doubling and approaches it in secant steps.
-  const Branch coarse = ContinueBranch(*doubled, Options(0.8, 0.9, 4, 2));
+  const Branch coarse = ContinueBranch(P42Start(system), Options(0.8, 0.9, 4, 2));
   CHECK(coarse.end == BranchEnd::kGrazing);
   const SpecialPoint* found = Find(coarse, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
   REQUIRE(found != nullptr);
   CHECK(std::abs(found->parameter - second->parameter) < 1e-8);
+}
+
+TEST_CASE(
+    "continuation: a long orbit's vanishing impact that the corrector cannot reach is "
+    "located by its reduced orbit",
+    "[continuation]") {
+  // P(8,4), born at P(4,2)'s second period doubling, lives on 8e-6 in Ω:
+  // near its vanishing impact its multipliers reach ~1e4, and the corrector
+  // stalls at a depth of a few 1e-9, short of the 1e-10 tolerance.
+  const System system = PaperSystem(0.83);
+  const Branch p42 = ContinueBranch(P42Start(system), Options(0.8, 0.9, 4, 2));
+  const SpecialPoint* pd = Find(p42, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
+  REQUIRE(pd != nullptr);
+  const ContinuationOptions options = Options(0.8, 0.9, 8, 4);
+  const std::optional<BranchStart> doubled = DoubledBranchStart(system, p42, *pd, options);
+  REQUIRE(doubled.has_value());
+  const Branch p84 = ContinueBranch(*doubled, options);
+  CHECK(p84.end == BranchEnd::kGrazing);
+  REQUIRE(!p84.special_points.empty());
+  const SpecialPoint& end = p84.special_points.back();
+  REQUIRE(end.type == SpecialPointType::kGrazing);
+  REQUIRE(end.vanishing_impact >= 0);
+  // Independently: the square root of the depth is linear in Ω near the
+  // vanishing impact (Nordmark). Extrapolated from the last two points
+  // that still approach it (the depth falling fourfold; the stalled steps
+  // after them creep in by ~1e-8 in Ω) to within ~1e-9.
+  const std::vector<BranchPoint>& points = p84.points;
+  // What this test is about: the corrector stalled short of 1e-9.
+  CHECK(points.back().orbit.contacts.slowest_depth > 1e-9);
+  std::size_t k = points.size() - 1;
+  auto depth = [&](std::size_t i) { return points[i].orbit.contacts.slowest_depth; };
+  while (k > 1 && !(depth(k - 1) > 2 * depth(k))) --k;
+  const double m1 = std::sqrt(depth(k)), m0 = std::sqrt(depth(k - 1));
+  const double mu1 = points[k].parameter, mu0 = points[k - 1].parameter;
+  const double extrapolated = mu1 - m1 * (mu1 - mu0) / (m1 - m0);
+  CHECK(std::abs(extrapolated - end.parameter) < 1e-8);
+}
+
+TEST_CASE(
+    "continuation: P(2,1) in xs at omega = 0.6, whose corrector stalls at depth ~5e-9, ends "
+    "where P(1,1) grazes",
+    "[continuation]") {
+  const System system = At(PaperSystem(0.6), "xs", 0.1);
+  ContinuationOptions options = Options(0.1, 0.5, 2, 1);
+  options.parameter = "xs";
+  const Branch p21 = ContinueBranch({system, Orbit(system, 2, 1), {}}, options);
+  REQUIRE(p21.end == BranchEnd::kGrazing);
+  const SpecialPoint& end = p21.special_points.back();
+  CHECK(end.vanishing_impact >= 0);
+  CHECK(end.monitor > 1e-9);  // what this test is about: the stall
+  // The other side: P(1,1) from xs = 0.35 down to its new contact, located
+  // by its own clearance.
+  const System above = At(system, "xs", 0.35);
+  ContinuationOptions down = Options(0.2, 0.5, 1, 1);
+  down.parameter = "xs";
+  const Branch p11 = ContinueBranch({above, Orbit(above, 1, 1), {}}, down);
+  const SpecialPoint* contact = Find(p11, SpecialPointType::kGrazing, 0.2, 0.3);
+  REQUIRE(contact != nullptr);
+  CHECK(contact->vanishing_impact < 0);
+  CHECK(std::abs(contact->parameter - end.parameter) < 1e-8);
 }
 
 TEST_CASE("continuation: bad input is rejected with a clear error", "[continuation]") {

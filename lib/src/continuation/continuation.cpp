@@ -25,6 +25,9 @@ constexpr int kMaxLocateIterations = 80;
 /// bracket is narrower than kGrazingBracket (arclength).
 constexpr double kGrazingTolerance = 1e-10;
 constexpr double kGrazingBracket = 1e-13;
+/// A vanishing impact whose approach stalls at a depth below this (the
+/// depth of NearContact's message) is located by its reduced orbit.
+constexpr double kReducibleDepth = 1e-6;
 /// A fold or period doubling whose bracketed point has its multiplier
 /// within this of ±1 is located; otherwise it is solved directly (and
 /// reported only within the test function's max_distance).
@@ -67,7 +70,7 @@ double MonitorLength(double linear, Monitor monitor) {
 /// small, else nothing.
 std::string NearContact(const BranchPoint& point) {
   const OrbitContacts& c = point.orbit.contacts;
-  if (c.slowest_depth < 1e-6) {
+  if (c.slowest_depth < kReducibleDepth) {
     return fmt::format("; impact {} vanishes just beyond (depth {:.1e}, not located to {:.0e})",
                        c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
   }
@@ -118,7 +121,7 @@ class BranchTracer {
           step = std::max(step / 2.0, options_.min_step);
           continue;
         }
-        if (EndAtGrazing(half)) return half;
+        if (EndAtGrazing(half, /*last_resort=*/true)) return half;
         half.end = BranchEnd::kCorrectorFailed;
         half.end_message = fmt::format(
             "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}",
@@ -155,7 +158,7 @@ class BranchTracer {
       }
       if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
       Accept(*next, &half);
-      if (GrazingAhead(half, step) && EndAtGrazing(half)) return half;
+      if (GrazingAhead(half, step) && EndAtGrazing(half, /*last_resort=*/false)) return half;
       if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
       if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
     }
@@ -451,15 +454,16 @@ class BranchTracer {
 
   /// Looks for a grazing or sticking point just ahead of the last point;
   /// if one is found, ends the branch there (with the points that led to
-  /// it) and returns true.
-  bool EndAtGrazing(HalfBranch& half) const {
+  /// it) and returns true. `last_resort`: the corrector failed even with
+  /// the smallest step, so the branch ends here either way.
+  bool EndAtGrazing(HalfBranch& half, bool last_resort) const {
     if (half.points.size() < 2) return false;
     std::optional<SpecialPoint> best;
     std::vector<BranchPoint> best_path;
     for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
       std::vector<BranchPoint> path;
-      std::optional<SpecialPoint> special =
-          LocateGrazing(half.points[half.points.size() - 2], half.points.back(), monitor, &path);
+      std::optional<SpecialPoint> special = LocateGrazing(
+          half.points[half.points.size() - 2], half.points.back(), monitor, last_resort, &path);
       if (special && (!best || special->point.arclength < best->point.arclength)) {
         best = special;
         best_path = std::move(path);
@@ -487,10 +491,12 @@ class BranchTracer {
   /// the newest point along its own tangent (near a vanishing impact the
   /// branch bends fast), halved when they land where the corrector failed.
   std::optional<SpecialPoint> LocateGrazing(const BranchPoint& a, const BranchPoint& b,
-                                            Monitor monitor, std::vector<BranchPoint>* path) const {
+                                            Monitor monitor, bool last_resort,
+                                            std::vector<BranchPoint>* path) const {
     BranchPoint previous = a, best = b;
     std::optional<double> m_prev = LinearMonitor(a, monitor), m_lo = LinearMonitor(b, monitor);
     if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
+    const double m_first = *m_prev;
     auto located = [&] { return MonitorLength(*m_lo, monitor) <= kGrazingTolerance; };
     double failed = std::numeric_limits<double>::infinity();  // a step from `best` that failed
     for (int k = 0; k < kMaxLocateIterations && !located(); ++k) {
@@ -519,7 +525,13 @@ class BranchTracer {
     }
     // Rounding in the map limits how close the corrector gets (about 1e-10
     // for the clearance): a zero within ten times the tolerance counts.
-    if (!(MonitorLength(*m_lo, monitor) <= 10 * kGrazingTolerance)) return std::nullopt;
+    // A vanishing impact of a long orbit, whose rounding grows with its
+    // multipliers like 1/v, may stall farther out: when the branch cannot
+    // go on (`last_resort`), its reduced orbit still locates it (below).
+    const bool reached = MonitorLength(*m_lo, monitor) <= 10 * kGrazingTolerance;
+    const bool reducible =
+        last_resort && monitor == Monitor::kDepth && *m_lo * *m_lo <= kReducibleDepth;
+    if (!reached && !reducible) return std::nullopt;
     SpecialPoint special;
     special.point = best;
     special.monitor = MonitorLength(*m_lo, monitor);
@@ -533,7 +545,18 @@ class BranchTracer {
       // defining equation does better (vanishing_impact.hpp).
       const std::optional<detail::VanishingImpactPoint> end = detail::LocateVanishingImpact(
           problem_, previous, best, contacts.slowest_impact, options_.orbit);
-      if (end) special.parameter = end->parameter;
+      // Short of the tolerance, only a zero where the approach was heading
+      // (within ten times its linear extrapolation from a: the secant
+      // points of a stalled approach are too close to extrapolate from) is
+      // this one.
+      const double ahead = std::abs(best.parameter - a.parameter) * *m_lo / (m_first - *m_lo);
+      if (end && (reached || std::abs(end->parameter - best.parameter) <= 10 * ahead)) {
+        special.parameter = end->parameter;
+      } else if (!reached) {
+        return std::nullopt;
+      }
+    } else if (!reached) {
+      return std::nullopt;
     }
     return special;
   }
