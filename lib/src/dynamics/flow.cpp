@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -20,14 +19,6 @@ constexpr double kMaxBasisCondition = 1e6;
 /// response, 1 / (2ζ) at a damped resonance) the flow accepts: rounding
 /// grows with it, and above 1e6 the ~1e-10 accuracy is lost.
 constexpr double kMaxAmplification = 1e6;
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-/// sup over τ >= τ0 of τ e^{-aτ} (a > 0).
-double TauDecayMax(double a, double tau0) {
-  if (a <= 0) return kInfinity;
-  return tau0 >= 1.0 / a ? tau0 * std::exp(-a * tau0) : 1.0 / (a * std::numbers::e);
-}
 
 /// The 2n x 2n first-order matrix S = [[0, I], [-M⁻¹K, -M⁻¹C]].
 Eigen::MatrixXd FirstOrderMatrix(const Eigen::MatrixXd& m_inv_k, const Eigen::MatrixXd& m_inv_c) {
@@ -105,69 +96,6 @@ BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
 
 }  // namespace
 
-ModeBasis ModeBasis::Make(double decay, double beta2) {
-  return ModeBasis{decay, beta2, std::sqrt(std::abs(beta2))};
-}
-
-void ModeBasis::Evaluate(double tau, double* ec, double* es) const {
-  if (beta2 > 0) {
-    const double e = std::exp(-decay * tau);
-    double sine, cosine;
-    ::sincos(root * tau, &sine, &cosine);  // glibc: one call for both
-    *ec = e * cosine;
-    *es = e * sine / root;
-  } else if (beta2 < 0) {
-    // e^{-aτ}cosh(bτ) and e^{-aτ}sinh(bτ)/b from the two decaying
-    // exponentials, so nothing overflows for long flights.
-    const double slow = std::exp(-(decay - root) * tau);
-    const double fast = std::exp(-(decay + root) * tau);
-    *ec = 0.5 * (slow + fast);
-    *es = -slow * std::expm1(-2.0 * root * tau) / (2.0 * root);
-  } else {
-    const double e = std::exp(-decay * tau);
-    *ec = e;
-    *es = e * tau;
-  }
-}
-
-ModeBasis::Decay ModeBasis::DecayFrom(double tau_from) const {
-  // |S| <= τ e^{bτ} in every regime (b = 0 unless over-damped).
-  const double slow_decay = decay - (beta2 < 0 ? root : 0.0);
-  if (tau_from <= 0) return Decay{1.0, TauDecayMax(slow_decay, 0.0), 1.0, 1.0};
-  return Decay{std::exp(-slow_decay * tau_from), TauDecayMax(slow_decay, tau_from),
-               std::exp(-decay * tau_from), std::exp(-(decay + root) * tau_from)};
-}
-
-double ModeBasis::Envelope(double alpha, double gamma, const Decay& d) const {
-  if (alpha == 0 && gamma == 0) return 0.0;
-  const double generic =
-      std::abs(alpha) * d.slow + (gamma == 0 ? 0.0 : std::abs(gamma) * d.tau_times_slow);
-  if (beta2 > 0) {
-    const double ratio = gamma / root;
-    return std::min(generic, d.own * std::sqrt(alpha * alpha + ratio * ratio));
-  }
-  if (beta2 < 0) {
-    const double split =
-        0.5 * (std::abs(alpha + gamma / root) * d.slow + std::abs(alpha - gamma / root) * d.fast);
-    return std::min(generic, split);
-  }
-  return generic;
-}
-
-double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
-  return Envelope(alpha, gamma, DecayFrom(tau_from));
-}
-
-Signal::Signal(const std::vector<ModeBasis>* modes, double omega, double t0, Eigen::VectorXd alpha,
-               Eigen::VectorXd gamma, std::complex<double> forced, double constant)
-    : modes_(modes),
-      omega_(omega),
-      t0_(t0),
-      alpha_(std::move(alpha)),
-      gamma_(std::move(gamma)),
-      forced_(forced),
-      constant_(constant) {}
-
 double Signal::Value(double t) const {
   double value = 0.0, slope = 0.0;
   ValueAndSlope(t, &value, &slope);
@@ -182,10 +110,10 @@ void Signal::ValueAndSlope(double t, double* value, double* slope) const {
 void Signal::ValueSlopeCurvature(double t, double* value, double* slope, double* curvature) const {
   const double tau = t - t0_;
   double w = constant_, dw = 0.0, d2w = 0.0;
-  const auto& modes = *modes_;
+  const auto& modes = clock_->Modes();
   for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
     double ec, es;
-    modes[j].Evaluate(tau, &ec, &es);
+    clock_->Evaluate(static_cast<int>(j), tau, &ec, &es);
     double a = alpha_(j), g = gamma_(j);
     w += a * ec + g * es;
     modes[j].Differentiate(&a, &g);
@@ -193,7 +121,7 @@ void Signal::ValueSlopeCurvature(double t, double* value, double* slope, double*
     modes[j].Differentiate(&a, &g);
     d2w += a * ec + g * es;
   }
-  const std::complex<double> forced = forced_ * std::polar(1.0, omega_ * t);
+  const std::complex<double> forced = forced_ * clock_->Rotor(tau);
   *value = w + forced.real();
   *slope = dw - omega_ * forced.imag();
   *curvature = d2w - omega_ * omega_ * forced.real();
@@ -203,7 +131,7 @@ Signal Signal::Derivative(int order) const {
   Signal d = *this;
   for (int k = 0; k < order; ++k) {
     for (Eigen::Index j = 0; j < d.alpha_.size(); ++j) {
-      (*modes_)[j].Differentiate(&d.alpha_(j), &d.gamma_(j));
+      clock_->Modes()[j].Differentiate(&d.alpha_(j), &d.gamma_(j));
     }
     d.forced_ *= std::complex<double>(0.0, omega_);
   }
@@ -222,11 +150,11 @@ void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) cons
     throw std::out_of_range("Signal::DerivativeBounds: order must be in [0, 6]");
   }
   const double tau = t_from - t0_;
-  for (int k = 0; k <= max_order; ++k) {
-    bounds[k] = std::abs(forced_) * std::pow(omega_, k) + (k == 0 ? std::abs(constant_) : 0.0);
-  }
+  double forced = std::abs(forced_);
+  for (int k = 0; k <= max_order; ++k, forced *= omega_) bounds[k] = forced;
+  bounds[0] += std::abs(constant_);
   for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
-    const ModeBasis& mode = (*modes_)[j];
+    const ModeBasis& mode = clock_->Modes()[j];
     const ModeBasis::Decay decay = mode.DecayFrom(tau);  // shared by every order
     double a = alpha_(j), g = gamma_(j);
     for (int k = 0; k <= max_order; ++k) {
@@ -263,6 +191,7 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
     shifted_blocks_.resize(2, 0);
     steady_forced_.resize(0);
     steady_constant_.resize(0);
+    clock_ = ModeClock({}, omega);
     return;
   }
   const Eigen::LLT<Eigen::MatrixXd> mass_factor(mass);
@@ -295,6 +224,7 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
   f.tail(n) = mass_factor.solve(constant_force);
   const Eigen::VectorXd modal_b = inverse_basis_ * b, modal_f = inverse_basis_ * f;
 
+  std::vector<ModeBasis> modes;
   shifted_blocks_.resize(2, 2 * n);
   steady_forced_.resize(2 * n);
   steady_constant_.resize(2 * n);
@@ -303,7 +233,7 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
     const double a = -0.5 * block.trace();
     const double det = block.determinant();
     const double beta2 = det - a * a;
-    modes_.push_back(ModeBasis::Make(a, beta2));
+    modes.push_back(ModeBasis::Make(a, beta2));
     fastest_rate_ = std::max(fastest_rate_, std::abs(a) + std::sqrt(std::abs(beta2)));
     shifted_blocks_.block<2, 2>(0, 2 * j) = block + a * Eigen::Matrix2d::Identity();
 
@@ -340,6 +270,7 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
     }
     steady_constant_.segment<2>(2 * j) = -block.inverse() * modal_f.segment<2>(2 * j);
   }
+  clock_ = ModeClock(std::move(modes), omega);
 }
 
 double LinearFlow::ShortestPeriod() const {
@@ -380,7 +311,7 @@ void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::Ve
   z = (steady_forced_ * rotor).real() + steady_constant_;
   for (Eigen::Index j = 0; j < n; ++j) {
     double ec, es;
-    modes_[j].Evaluate(tau, &ec, &es);
+    clock_.Evaluate(static_cast<int>(j), tau, &ec, &es);
     const Eigen::Vector2d zj = z0.segment<2>(2 * j);
     z.segment<2>(2 * j) += ec * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
@@ -416,7 +347,7 @@ Signal LinearFlow::Output(const PreparedOutput& output, double t0,
 void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::VectorXd& z0,
                         Signal* signal) const {
   const Eigen::Index n = dof_;
-  signal->modes_ = &modes_;
+  signal->clock_ = &clock_;
   signal->omega_ = omega_;
   signal->t0_ = t0;
   signal->alpha_.resize(n);
@@ -427,7 +358,7 @@ void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::Ve
     signal->alpha_(j) = c.dot(zj);
     signal->gamma_(j) = c.dot(shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
-  signal->forced_ = output.forced;
+  signal->forced_ = output.forced * std::polar(1.0, omega_ * t0);
   signal->constant_ = output.constant;
 }
 
@@ -436,7 +367,7 @@ Eigen::MatrixXd LinearFlow::Transition(double tau) const {
   Eigen::MatrixXd modal = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   for (Eigen::Index j = 0; j < n; ++j) {
     double ec, es;
-    modes_[j].Evaluate(tau, &ec, &es);
+    clock_.Evaluate(static_cast<int>(j), tau, &ec, &es);
     modal.block<2, 2>(2 * j, 2 * j) =
         ec * Eigen::Matrix2d::Identity() + es * shifted_blocks_.block<2, 2>(0, 2 * j);
   }

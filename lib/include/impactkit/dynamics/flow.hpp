@@ -27,46 +27,16 @@
 #include <complex>
 #include <vector>
 
+#include "impactkit/dynamics/mode_clock.hpp"
+
 namespace impactkit {
 
-/// The time dependence of one mode: e^{-a τ} C(τ) and e^{-a τ} S(τ).
-struct ModeBasis {
-  double decay = 0.0;  ///< a >= 0
-  double beta2 = 0.0;  ///< β² (negative: over-damped)
-  double root = 0.0;   ///< sqrt(|β²|)
-
-  static ModeBasis Make(double decay, double beta2);
-
-  /// ec = e^{-aτ} C(τ), es = e^{-aτ} S(τ), computed without overflow.
-  void Evaluate(double tau, double* ec, double* es) const;
-  /// Coefficients of the derivative: d/dτ e^{-aτ}(α C + γ S) = e^{-aτ}(α' C + γ' S).
-  /// Defined here so that the evaluation loops inline it (C' = -β² S, S' = C).
-  void Differentiate(double* alpha, double* gamma) const {
-    const double a = *alpha, g = *gamma;
-    *alpha = g - decay * a;
-    *gamma = -decay * g - beta2 * a;
-  }
-  /// An upper bound of |e^{-aτ}(α C(τ) + γ S(τ))| over all τ >= tau_from >= 0.
-  double Envelope(double alpha, double gamma, double tau_from) const;
-
-  /// The decay factors Envelope needs at one τ (they do not depend on α, γ).
-  struct Decay {
-    double slow;            ///< e^{-(a - b) τ0}, b = sqrt(-β²) if over-damped, else 0
-    double tau_times_slow;  ///< sup over τ >= τ0 of τ e^{-(a - b) τ}
-    double own;             ///< e^{-a τ0}
-    double fast;            ///< e^{-(a + b) τ0}
-  };
-  Decay DecayFrom(double tau_from) const;
-  double Envelope(double alpha, double gamma, const Decay& decay) const;
-};
-
-/// w(t) = Σ_j e^{-a_j τ}(α_j C_j(τ) + γ_j S_j(τ)) + Re(P e^{iΩt}) + R,  τ = t - t0.
+/// w(t) = Σ_j e^{-a_j τ}(α_j C_j(τ) + γ_j S_j(τ)) + Re(P e^{iΩτ}) + R,  τ = t - t0
+/// (made by LinearFlow::Output).
 class Signal {
  public:
   friend class LinearFlow;
   Signal() = default;
-  Signal(const std::vector<ModeBasis>* modes, double omega, double t0, Eigen::VectorXd alpha,
-         Eigen::VectorXd gamma, std::complex<double> forced, double constant);
 
   double Value(double t) const;
   /// w(t) and w'(t) in one pass (they share the transcendental calls).
@@ -91,12 +61,12 @@ class Signal {
   double Omega() const { return omega_; }
 
  private:
-  const std::vector<ModeBasis>* modes_ = nullptr;
+  const ModeClock* clock_ = nullptr;
   double omega_ = 0.0;
   double t0_ = 0.0;
   Eigen::VectorXd alpha_;
   Eigen::VectorXd gamma_;
-  std::complex<double> forced_{0.0, 0.0};
+  std::complex<double> forced_{0.0, 0.0};  ///< P: the forced part at t0
   double constant_ = 0.0;
 };
 
@@ -130,7 +100,6 @@ class LinearFlow {
 
   int Dof() const { return dof_; }
   double Omega() const { return omega_; }
-  const std::vector<ModeBasis>& Modes() const { return modes_; }
   /// The shortest time scale of the motion: min(2π/Ω, 2π/ρ), ρ the largest
   /// |eigenvalue| of S (the fastest rate in the flow).
   double ShortestPeriod() const;
@@ -162,7 +131,7 @@ class LinearFlow {
   int dof_ = 0;
   double omega_ = 0.0;
   double fastest_rate_ = 0.0;
-  std::vector<ModeBasis> modes_;
+  ModeClock clock_;
   Eigen::MatrixXd basis_;           ///< V: y = V z, columns in pairs per mode
   Eigen::MatrixXd inverse_basis_;   ///< W = V⁻¹
   Eigen::MatrixXd shifted_blocks_;  ///< 2 x 2n: per mode, B_j + a_j I
