@@ -335,7 +335,7 @@ TEST_CASE(
     "[continuation]") {
   // P(8,4), born at P(4,2)'s second period doubling, lives on 8e-6 in Ω:
   // near its vanishing impact its multipliers reach ~1e4, and the corrector
-  // stalls at a depth of a few 1e-9, short of the 1e-10 tolerance.
+  // may stall at a depth of a few 1e-9, short of the 1e-10 tolerance.
   const System system = PaperSystem(0.83);
   const Branch p42 = ContinueBranch(P42Start(system), Options(0.8, 0.9, 4, 2));
   const SpecialPoint* pd = Find(p42, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
@@ -353,9 +353,11 @@ TEST_CASE(
   // vanishing impact (Nordmark). Extrapolated from the last two points
   // that still approach it (the depth falling fourfold; the stalled steps
   // after them creep in by ~1e-8 in Ω) to within ~1e-9.
+  // Whether the corrector stalls short of 1e-9 is rounding's choice: here
+  // it did with exp and sincos and with the flow's tables (and this test
+  // failed without the reduced-orbit fallback), and reaches 9e-10 since the
+  // event search's bracket.
   const std::vector<BranchPoint>& points = p84.points;
-  // What this test is about: the corrector stalled short of 1e-9.
-  CHECK(points.back().orbit.contacts.slowest_depth > 1e-9);
   std::size_t k = points.size() - 1;
   auto depth = [&](std::size_t i) { return points[i].orbit.contacts.slowest_depth; };
   while (k > 1 && !(depth(k - 1) > 2 * depth(k))) --k;

@@ -114,35 +114,88 @@ double OneParameterOmega(const std::string& second, double value, double omega,
   return BranchWith(second, value, omega, eta, p, q, type).second;
 }
 
-/// As a branch's impact vanishes (speed v → 0) its multipliers but one
-/// tend to those of the grazing limit (grazing_limit.hpp): the distance of
-/// the one nearest `target` from it, extrapolated to v = 0 by the
-/// quadratic in √depth ∝ v through the branch's three shallowest points
-/// (of distinct depths: the branch repeats its last point).
-double LimitMultiplierGap(const Branch& branch, std::complex<double> target) {
-  std::vector<std::pair<double, std::complex<double>>> samples;  // (√depth, λ)
-  for (const BranchPoint& point : branch.points) {
-    const Eigen::VectorXcd& lambda = point.orbit.multipliers;
-    Eigen::Index k = 0;
-    (lambda.array() - target).abs().minCoeff(&k);
-    samples.emplace_back(std::sqrt(point.orbit.contacts.slowest_depth), lambda(k));
-  }
-  std::sort(samples.begin(), samples.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<std::pair<double, std::complex<double>>> distinct;
-  for (const auto& sample : samples) {
-    if (distinct.empty() || sample.first > 1.01 * distinct.back().first) distinct.push_back(sample);
-  }
-  REQUIRE(distinct.size() >= 3);
-  std::complex<double> at_zero = 0.0;  // Lagrange's quadratic at 0
+/// Lagrange's quadratic through three (x, y) at x = 0.
+std::complex<double> QuadraticAtZero(
+    const std::array<std::pair<double, std::complex<double>>, 3>& samples) {
+  std::complex<double> at_zero = 0.0;
   for (int i = 0; i < 3; ++i) {
     double weight = 1.0;
     for (int j = 0; j < 3; ++j) {
-      if (j != i) weight *= distinct[j].first / (distinct[j].first - distinct[i].first);
+      if (j != i) weight *= samples[j].first / (samples[j].first - samples[i].first);
     }
-    at_zero += weight * distinct[i].second;
+    at_zero += weight * samples[i].second;
   }
-  return std::abs(at_zero - target);
+  return at_zero;
+}
+
+/// The multiplier of `orbit` nearest `target`.
+std::complex<double> Nearest(const PeriodicOrbit& orbit, std::complex<double> target) {
+  Eigen::Index k = 0;
+  (orbit.multipliers.array() - target).abs().minCoeff(&k);
+  return orbit.multipliers(k);
+}
+
+/// As a branch's impact vanishes (speed v → 0) its multipliers but one
+/// tend to those of the grazing limit (grazing_limit.hpp): the one nearest
+/// `target`, extrapolated to v = 0 by the quadratic in √depth ∝ v through
+/// the branch's three shallowest points (of distinct depths: the branch
+/// repeats its last point), if they lie below √depth 1e-4; else none.
+std::optional<std::complex<double>> BranchLimitMultiplier(const Branch& branch,
+                                                          std::complex<double> target) {
+  std::vector<std::pair<double, std::complex<double>>> samples;  // (√depth, λ)
+  for (const BranchPoint& point : branch.points) {
+    samples.emplace_back(std::sqrt(point.orbit.contacts.slowest_depth),
+                         Nearest(point.orbit, target));
+  }
+  std::sort(samples.begin(), samples.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::array<std::pair<double, std::complex<double>>, 3> distinct;
+  std::size_t count = 0;
+  for (const auto& sample : samples) {
+    if (count == 3) break;
+    if (count == 0 || sample.first > 1.01 * distinct[count - 1].first) distinct[count++] = sample;
+  }
+  if (count < 3 || distinct[2].first > 1e-4) return std::nullopt;
+  return QuadraticAtZero(distinct);
+}
+
+/// The distance from `target` of the limit multiplier: from the branch's
+/// own points where its approach resolved the last stretch, else from
+/// orbits found afresh at √depth ≈ 1, 2, 4 times the branch's shallowest
+/// (at least 5e-6), placed in Ω by √depth's linear fall to 0 at `graze`
+/// (each FindOrbit from the last, the first from the branch's shallowest
+/// point, with Newton's tolerance eased for the conditioning as the
+/// continuation's approach eases it). Where the approach stepped is
+/// rounding's choice: P(1,1)'s shallowest points at √depth 6e-6 and 1.7e-4
+/// extrapolate to 2.5e-4 from −1, the fresh ones to 2.7e-6.
+double LimitMultiplierGap(const Branch& branch, const System& system, double graze, int p, int q,
+                          std::complex<double> target) {
+  if (const auto limit = BranchLimitMultiplier(branch, target)) return std::abs(*limit - target);
+  const BranchPoint& shallowest = *std::min_element(
+      branch.points.begin(), branch.points.end(), [](const auto& a, const auto& b) {
+        return a.orbit.contacts.slowest_depth < b.orbit.contacts.slowest_depth;
+      });
+  const double root = std::sqrt(shallowest.orbit.contacts.slowest_depth);
+  REQUIRE(root > 0);
+  OrbitOptions options;
+  options.p = p;
+  options.q = q;
+  // As the continuation's approach does: Newton's residual to what the
+  // conditioning (multipliers ~1/v) allows.
+  options.newton.residual_tolerance *=
+      std::max(1.0, 1e-4 * shallowest.orbit.multipliers.cwiseAbs().maxCoeff());
+  Eigen::VectorXd seed = shallowest.orbit.eta;
+  std::array<std::pair<double, std::complex<double>>, 3> samples;  // (√depth, λ)
+  for (int k = 0; k < 3; ++k) {
+    const double wanted = std::max(root, 5e-6) * (1 << k);
+    const double omega = graze + (shallowest.parameter - graze) * wanted / root;
+    PeriodicOrbit orbit;
+    REQUIRE(FindOrbit(At(system, "omega", omega), seed, options, &orbit).termination ==
+            Termination::kConverged);
+    seed = orbit.eta;
+    samples[k] = {std::sqrt(orbit.contacts.slowest_depth), Nearest(orbit, target)};
+  }
+  return std::abs(QuadraticAtZero(samples) - target);
 }
 
 /// The curve's point next to its corner (the last with an orbit).
@@ -232,9 +285,10 @@ TEST_CASE(
     const auto [branch, graze] =
         BranchWith(second, value_c, omega_c, near.orbit.eta, p, 1, SpecialPointType::kGrazing);
     CHECK(std::abs(graze - omega_c) < 1e-8);
-    // (At the shallowest point it is 3.6e-3 from −1 for P(1,1), 1.8e-4
-    // for P(2,1); extrapolated, 4e-6 and 5e-7.)
-    CHECK(LimitMultiplierGap(branch, -1.0) < 1e-5);
+    // (At the shallowest point it is some 1e-3 from −1 for P(1,1), 1e-4
+    // for P(2,1); extrapolated, a few 1e-6 or less.)
+    CHECK(LimitMultiplierGap(branch, At(PaperSystem(omega_c), second, value_c), graze, p, 1, -1.0) <
+          1e-5);
     // P(1,1): the period doubling at value_c − δ (speed ∝ δ) tends to the
     // corner as δ → 0, smoothly (the curve crosses the grazing curve): the
     // quadratic through δ = 4h, 2h, h at 0 (error ~2e-8: 1.1e-6 at
@@ -275,7 +329,7 @@ TEST_CASE(
   const auto [branch, graze] =
       BranchWith("xs", xs_c, omega_c - 0.01, near.orbit.eta, 1, 2, SpecialPointType::kGrazing);
   CHECK(std::abs(graze - omega_c) < 1e-8);
-  CHECK(LimitMultiplierGap(branch, 1.0) < 1e-5);
+  CHECK(LimitMultiplierGap(branch, At(PaperSystem(omega_c), "xs", xs_c), graze, 1, 2, 1.0) < 1e-5);
   const std::array<double, 4> deltas{1.5e-4, 2e-4, 3e-4, 4e-4};
   Eigen::Matrix4d powers;
   Eigen::Vector4d gaps;

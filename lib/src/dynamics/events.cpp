@@ -13,6 +13,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// for the whole future to be settled at once: well above the bound's own
 /// rounding.
 constexpr double kUnreachableMargin = 1e-12;
+/// How far above 0 (relative to sup|w|) the cubic lower bound must rise
+/// for a crossing to be certain: well above w's rounding.
+constexpr double kCertainMargin = 1e-12;
 
 /// w, w' and w'' at one time.
 struct Point {
@@ -36,8 +39,10 @@ double UpperCubic(const Point& p, double b3, double s) {
 /// A step h with P < 0 on [0, h) (w < 0 at p), within 2% of P's first
 /// positive root: no crossing can lie in [t, t + h). P is monotone between
 /// its critical points, so the root is bracketed on the first monotone
-/// piece whose end is not negative and bisected there (polynomial
-/// evaluations cost nothing beside the signal's transcendental calls).
+/// piece whose end is not negative and narrowed there by the Illinois
+/// method, which keeps the bracket (its left end is the certified step)
+/// and needs a few evaluations of P where bisection from a bracket many
+/// times wider than the root needed up to twenty.
 double CertifiedStep(const Point& p, double b3) {
   if (p.w >= 0) return 0.0;
   double pieces[2];
@@ -72,9 +77,23 @@ double CertifiedStep(const Point& p, double b3) {
     }
     high = low + span;
   }
+  double f_low = UpperCubic(p, b3, low), f_high = UpperCubic(p, b3, high);
+  int side = 0;  // which end moved last: -1 low, +1 high
   while (high - low > 0.02 * high) {
-    const double mid = 0.5 * (low + high);
-    (UpperCubic(p, b3, mid) < 0 ? low : high) = mid;
+    double mid = (low * f_high - high * f_low) / (f_high - f_low);
+    if (!(mid > low && mid < high)) mid = 0.5 * (low + high);
+    const double f = UpperCubic(p, b3, mid);
+    if (f < 0) {
+      low = mid;
+      f_low = f;
+      if (side == -1) f_high *= 0.5;  // Illinois: the stuck end's value halved
+      side = -1;
+    } else {
+      high = mid;
+      f_high = f;
+      if (side == +1) f_low *= 0.5;
+      side = +1;
+    }
   }
   return low;
 }
@@ -107,7 +126,7 @@ double TimeTolerance(double t, const EventOptions& options) {
 }
 
 /// The root of w in [a, b], where w(a) < 0 <= w(b) and w' >= slope_bound > 0
-/// on [a, b]: Newton on the exact derivative from the end nearer the root,
+/// on [a, b]: Newton on the exact derivative from t (the caller's estimate),
 /// kept inside the shrinking bracket (bisection when a Newton step would
 /// leave it). Hand-written because the certified bracket and the exact w'
 /// make it converge in a few steps, and the bracket invariant is what the
@@ -115,10 +134,8 @@ double TimeTolerance(double t, const EventOptions& options) {
 /// from the root, lands within curvature_bound e² / (2 w'(t)) of it (Taylor);
 /// once that is below the tolerance the step is returned without the
 /// evaluation that would only confirm it (one of about ten per flight).
-double RefineRoot(const Signal& w, Point a, Point b, double slope_bound, double curvature_bound,
-                  const EventOptions& options) {
-  const Point& nearer = -a.w < b.w ? a : b;
-  double t = nearer.t - nearer.w / nearer.dw;
+double RefineRoot(const Signal& w, Point a, Point b, double t, double slope_bound,
+                  double curvature_bound, const EventOptions& options) {
   for (int iteration = 0; iteration < 100; ++iteration) {
     if (!(t > a.t && t < b.t)) t = 0.5 * (a.t + b.t);
     const Point p = Evaluate(w, t);
@@ -184,12 +201,52 @@ double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds,
                            : std::numeric_limits<double>::infinity();
 }
 
+/// The first crossing after p when the cubic lower bound certifies it close
+/// ahead, else none (the caller steps on). With L(s) = w + w' s + w'' s²/2
+/// − B3 s³/6 <= w(t + s) and the certified step h (U < 0 on [0, h)): if
+/// L(s_l) >= margin (the rounding of w, or the search's resolution) and the
+/// lower bound of w', w' + w'' s − B3 s²/2 (concave: least at an end), is
+/// positive at h and s_l, then w < 0 at t + h, w > 0 at t + s_l and w
+/// rises in between, so the first crossing is the one root there: refined
+/// by Newton from the root of the Taylor quadratic T = (U + L)/2, which lies
+/// between. s_l is tried where L's root would be by the symmetry of U and L
+/// about T: 2 s_T − h, plus the margin's share. Without this, the search
+/// approached the root in shrinking certified steps (two or three more
+/// evaluations per flight) and, near grazing, by bisection.
+std::optional<double> CertainCrossing(const Signal& w, const Point& p, double certified, double b3,
+                                      double t_end, double margin, const EventOptions& options) {
+  // The Taylor quadratic's first positive root, where it rises.
+  const double a2 = 0.5 * p.d2w;
+  double s_taylor;
+  if (a2 == 0) {
+    if (!(p.dw > 0)) return std::nullopt;
+    s_taylor = -p.w / p.dw;
+  } else {
+    const double discriminant = p.dw * p.dw - 4.0 * a2 * p.w;
+    if (!(discriminant >= 0)) return std::nullopt;
+    // The root where T' = w' + w'' s > 0, written without cancellation.
+    s_taylor = 2.0 * -p.w / (p.dw + std::sqrt(discriminant));
+  }
+  const double rise = p.dw + p.d2w * s_taylor;  // T'(s_T)
+  if (!(s_taylor > certified && rise > 0)) return std::nullopt;
+  const double far = 2.0 * s_taylor - certified + 2.0 * margin / rise;
+  if (p.t + far > t_end) return std::nullopt;
+  const double lower = p.w + far * (p.dw + far * (a2 - far * b3 / 6.0));
+  auto slope_bound = [&](double s) { return p.dw + s * (p.d2w - 0.5 * b3 * s); };
+  const double slope = std::min(slope_bound(certified), slope_bound(far));
+  if (!(lower >= margin && slope > 0)) return std::nullopt;
+  const Point a{p.t + certified, -kInfinity, 0.0, 0.0};
+  const Point b{p.t + far, kInfinity, 0.0, 0.0};
+  return RefineRoot(w, a, b, p.t + s_taylor, slope, b3 * far + std::abs(p.d2w), options);
+}
+
 /// The first crossing in (a, b], or none, by certified bisection.
 std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, double bound,
                               const EventOptions& options) {
   if (b.w >= 0 && a.w < 0) {
     if (const double slope = SlopeLowerBound(a, b, bound); slope > 0) {
-      return RefineRoot(w, a, b, slope, bound, options);
+      const Point& nearer = -a.w < b.w ? a : b;
+      return RefineRoot(w, a, b, nearer.t - nearer.w / nearer.dw, slope, bound, options);
     }
   }
   // Empty, or w could rise above 0 only by less than the resolution: a
@@ -222,6 +279,7 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
     return std::nullopt;
   }
   const double b2 = bounds[2], b3 = bounds[3];
+  const double margin = std::max(kCertainMargin * bounds[0], options.resolution);
   Point p = Evaluate(w, t_begin);
   if (const double exit = SurfaceExitStep(w, p, bounds, options); exit > 0) {
     if (exit >= t_end - t_begin) return std::nullopt;
@@ -230,6 +288,7 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
   while (p.t < t_end) {
     const double step = CertifiedStep(p, b3);
     if (step >= t_end - p.t) return std::nullopt;
+    if (auto crossing = CertainCrossing(w, p, step, b3, t_end, margin, options)) return crossing;
     if (step >= short_step) {
       const Point next = Evaluate(w, p.t + step);
       // The bound makes next.w <= 0; rounding can make it touch 0.

@@ -102,10 +102,4 @@ ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
   }
 }
 
-std::complex<double> ModeClock::Rotor(double tau) const {
-  std::complex<double> rotor;
-  if (rotor_.Evaluate(tau, &rotor)) return rotor;
-  return std::polar(1.0, omega_ * tau);
-}
-
 }  // namespace impactkit

@@ -106,6 +106,11 @@ class ModeClock {
   const std::vector<ModeBasis>& Modes() const { return modes_; }
   /// Mode j's e^{-aτ} C(τ) and e^{-aτ} S(τ) (ModeBasis::Evaluate, to a few ulps).
   void Evaluate(int j, double tau, double* ec, double* es) const {
+    if (tau == 0.0) {  // a flight's own start: exactly what every path gives
+      *ec = 1.0;
+      *es = 0.0;
+      return;
+    }
     std::complex<double> e;
     if (tables_[j].Evaluate(tau, &e)) {
       *ec = e.real();
@@ -115,7 +120,11 @@ class ModeClock {
     modes_[j].Evaluate(tau, ec, es);
   }
   /// e^{iΩτ}.
-  std::complex<double> Rotor(double tau) const;
+  std::complex<double> Rotor(double tau) const {
+    std::complex<double> rotor{1.0, 0.0};
+    if (tau == 0.0 || rotor_.Evaluate(tau, &rotor)) return rotor;
+    return std::polar(1.0, omega_ * tau);
+  }
 
  private:
   std::vector<ModeBasis> modes_;
