@@ -79,3 +79,21 @@ TEST_CASE("ExponentialTable declines outside its range, and the clock falls back
     CHECK(std::abs(rotor - std::polar(1.0, 1.3 * tau)) < 1e-15);
   }
 }
+
+TEST_CASE("the forcing rotor at an instant is std::polar's, whichever instant was asked before",
+          "[mode_clock]") {
+  // The per-thread memo must never hand one instant's rotor to another:
+  // repeated, alternating and nearby instants and two forcing frequencies.
+  const double instants[] = {0.0, 1.5, 1.5, 1.5 + 1e-15, 0.0, 1e4, 1.5, -3.0};
+  for (const double omega : {0.6, 1.4, 0.6}) {
+    for (const double t : instants) {
+      const std::complex<double> expected = std::polar(1.0, omega * t);
+      CAPTURE(omega, t);
+      CHECK(ForcingRotor(omega, t) == expected);
+      CHECK(ForcingRotor(omega, t) == expected);
+    }
+  }
+  // One instant, another frequency.
+  CHECK(ForcingRotor(0.6, 2.0) == std::polar(1.0, 0.6 * 2.0));
+  CHECK(ForcingRotor(1.4, 2.0) == std::polar(1.0, 1.4 * 2.0));
+}

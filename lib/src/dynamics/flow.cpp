@@ -295,7 +295,7 @@ void LinearFlow::Transient(double t, const Eigen::VectorXd& x, const Eigen::Vect
   const Eigen::Index n = dof_;
   y.resize(2 * n);
   y << x, v;
-  const std::complex<double> rotor = std::polar(1.0, omega_ * t);
+  const std::complex<double> rotor = ForcingRotor(omega_, t);
   z->resize(2 * n);
   z->noalias() = inverse_basis_ * y;
   *z -= (steady_forced_ * rotor).real();
@@ -307,7 +307,7 @@ void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::Ve
   thread_local Eigen::VectorXd z, y;
   const Eigen::Index n = dof_;
   const double tau = t - t0;
-  const std::complex<double> rotor = std::polar(1.0, omega_ * t);
+  const std::complex<double> rotor = ForcingRotor(omega_, t);
   z = (steady_forced_ * rotor).real() + steady_constant_;
   for (Eigen::Index j = 0; j < n; ++j) {
     double ec, es;
@@ -358,7 +358,7 @@ void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::Ve
     signal->alpha_(j) = c.dot(zj);
     signal->gamma_(j) = c.dot(shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
-  signal->forced_ = output.forced * std::polar(1.0, omega_ * t0);
+  signal->forced_ = output.forced * ForcingRotor(omega_, t0);
   signal->constant_ = output.constant;
 }
 

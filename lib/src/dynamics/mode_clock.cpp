@@ -22,6 +22,17 @@ std::complex<double> Exponential(std::complex<double> rate, double tau) {
 
 }  // namespace
 
+std::complex<double> ForcingRotor(double omega, double t) {
+  struct Memo {
+    double omega = std::numeric_limits<double>::quiet_NaN();
+    double t = 0.0;
+    std::complex<double> rotor;
+  };
+  thread_local Memo memo;
+  if (omega != memo.omega || t != memo.t) memo = {omega, t, std::polar(1.0, omega * t)};
+  return memo.rotor;
+}
+
 ModeBasis ModeBasis::Make(double decay, double beta2) {
   return ModeBasis{decay, beta2, std::sqrt(std::abs(beta2))};
 }

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
+#include "impactkit/dynamics/mode_clock.hpp"
 #include "model/stuck_subsystem.hpp"
 
 namespace impactkit {
@@ -78,9 +80,9 @@ double Mode::Acceleration(int stop, double t, const Eigen::VectorXd& x, const Ei
                           Eigen::VectorXd* acceleration) const {
   // A_F cos Ωt − C_F· v − K_F· x (the held masses' v = 0 and x = xs give
   // −K_FH xs_H), in the order of HybridSystem::Acceleration.
-  const double wt = system_->omega * t;
+  const std::complex<double> rotor = ForcingRotor(system_->omega, t);  // cos Ωt, sin Ωt
   const int c = dof_index_[stop];
-  *force = forcing_ * std::cos(wt);
+  *force = forcing_ * rotor.real();
   force->noalias() -= damping_rows_ * v;
   force->noalias() -= stiffness_rows_ * x;
   if (held_ == 0) {
@@ -93,7 +95,7 @@ double Mode::Acceleration(int stop, double t, const Eigen::VectorXd& x, const Ei
   // d/dt of the force: −A_F Ω sin Ωt − C_F· a − K_F· v.
   force->noalias() = -damping_rows_ * *acceleration;
   force->noalias() -= stiffness_rows_ * v;
-  *force -= forcing_ * (system_->omega * std::sin(wt));
+  *force -= forcing_ * (system_->omega * rotor.imag());
   *rate = inverse_mass_rows_[stop].dot(*force);
   return a_c;
 }

@@ -96,6 +96,13 @@ class ExponentialTable {
   std::vector<std::complex<double>> coarse_;
 };
 
+/// e^{iΩt} at an absolute time t, as std::polar(1, Ω t). Per thread the
+/// last instant's value is kept: at every event the simulator asks for one
+/// instant's rotor four times (the state there, the next flight's modal
+/// coordinates, its witness and the chatter rule's acceleration), and each
+/// sincos was ~3 % of an impact.
+std::complex<double> ForcingRotor(double omega, double t);
+
 /// Every mode's time dependence and the forcing's rotor, tabulated where
 /// the rate allows.
 class ModeClock {
