@@ -49,7 +49,7 @@ inline std::vector<double> OurImpactTimes(const System& s, double t_end) {
   HybridState state = RestState(s);
   Simulator(s).Run(state, t_end, recorder);
   std::vector<double> times;
-  for (const Impact& i : recorder.Impacts()) times.push_back(i.t);
+  for (const ImpactView i : recorder.Impacts()) times.push_back(i.t);
   return times;
 }
 

@@ -19,7 +19,7 @@ int main() {
   simulator.Run(state, 210 * system.ForcingPeriod(), recorders);
 
   std::vector<double> times;
-  for (const Impact& impact : impacts.Impacts()) {
+  for (const ImpactView impact : impacts.Impacts()) {
     std::printf("impact at t = %.12f, phase %.6f, speed %.9f\n", impact.t, impact.phase,
                 impact.velocity);
     times.push_back(impact.t);

@@ -161,7 +161,7 @@ TEST_CASE("a mass at rest on the stop lands: no impact at zero speed (closed for
   REQUIRE(!impacts.Impacts().empty());
   CHECK_THAT(impacts.Impacts().front().t, WithinAbs(t1, 1e-10));
   CHECK_THAT(impacts.Impacts().front().velocity, WithinAbs(v(t1), 1e-10));
-  for (const Impact& impact : impacts.Impacts()) CHECK(impact.velocity > 1e-8);
+  for (const ImpactView impact : impacts.Impacts()) CHECK(impact.velocity > 1e-8);
 }
 
 TEST_CASE("the issue's zero-speed impacts are landings: every impact has a resolved speed",
@@ -185,7 +185,7 @@ TEST_CASE("the issue's zero-speed impacts are landings: every impact has a resol
         Simulator(s).Run(state, k.periods * s.ForcingPeriod(), impacts);
     CHECK(summary.status == SimulationStatus::kReachedEnd);
     CHECK(summary.impacts < 100L * k.periods);
-    for (const Impact& impact : impacts.Impacts()) CHECK(impact.velocity > 1e-8);
+    for (const ImpactView impact : impacts.Impacts()) CHECK(impact.velocity > 1e-8);
   }
 }
 

@@ -28,7 +28,7 @@ SteadyOrbit Steady(double omega) {
   o.strobe = state;
   ImpactRecorder impacts;
   simulator.Run(state, 804 * period, impacts);
-  const Impact& last = impacts.Impacts().back();
+  const ImpactView last = impacts.Impacts().back();
   o.eta = ImpactMap(o.system).ToEta(last.t, last.x, last.v);
   return o;
 }
@@ -127,7 +127,7 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     simulator.Run(state, 100 * s.ForcingPeriod());
     ImpactRecorder impacts;
     simulator.Run(state, 101 * s.ForcingPeriod(), impacts);
-    const Impact& first = impacts.Impacts().front();
+    const ImpactView first = impacts.Impacts().front();
     const ImpactMap map(s);
     const MapResult r = map.Apply(map.ToEta(first.t, first.x, first.v), 200, true);
     CHECK(r.status == MapStatus::kChatter);

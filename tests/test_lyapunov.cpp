@@ -22,7 +22,7 @@ Eigen::VectorXd SettledImpact(const System& system, int periods) {
   HybridState state = RestState(system);
   Simulate(system, {}, state, periods * system.ForcingPeriod(), impacts);
   REQUIRE_FALSE(impacts.Impacts().empty());
-  const Impact& last = impacts.Impacts().back();
+  const ImpactView last = impacts.Impacts().back();
   return ImpactMap(system).ToEta(last.t, last.x, last.v);
 }
 

@@ -78,7 +78,7 @@ TEST_CASE("on the paper's Omega = 1.72 return map the break sits at the near-ver
   ImpactRecorder recorder;
   Simulate(s, {}, state, state.t + 3000 * s.ForcingPeriod(), recorder);
   std::vector<double> speeds;
-  for (const Impact& impact : recorder.Impacts()) speeds.push_back(impact.velocity);
+  for (const ImpactView impact : recorder.Impacts()) speeds.push_back(impact.velocity);
   const ReturnMapPoints points = LowVelocityReturnMap(speeds, 0.3);
   REQUIRE(points.from.size() > 1000);
   std::vector<double> drop;

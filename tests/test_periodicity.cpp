@@ -46,7 +46,7 @@ TEST_CASE("the paper's periodic motions are recognised", "[periodicity]") {
 }
 
 TEST_CASE("a non-repeating window is not called periodic", "[periodicity]") {
-  std::vector<Sample> strobe;
+  SampleLog strobe;
   for (int k = 0; k < 20; ++k) {
     strobe.push_back(
         Sample{double(k), Eigen::Vector2d(std::sin(k * 1.0), 0.0), Eigen::Vector2d::Zero(), false});

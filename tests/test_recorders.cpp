@@ -36,7 +36,7 @@ TEST_CASE("exact per-period extrema bound dense samples tightly", "[recorders]")
     for (const PeriodExtrema& e : periods) {
       Eigen::Vector2d max = Eigen::Vector2d::Constant(-INFINITY), min = -max;
       double speed = 0.0;
-      for (const Sample& s : dense.Samples()) {
+      for (const SampleView s : dense.Samples()) {
         if (s.t < e.period * period || s.t > (e.period + 1) * period) continue;
         max = max.cwiseMax(s.x);
         min = min.cwiseMin(s.x);
@@ -96,7 +96,7 @@ TEST_CASE("sticking intervals end at releases and hold the mass at the stop", "[
   for (std::size_t i = 0; i < releases.times.size(); ++i) {
     CHECK(sticking.Intervals()[i].end == releases.times[i]);
   }
-  for (const Sample& s : series.Samples()) {
+  for (const SampleView s : series.Samples()) {
     if (s.stuck) CHECK(s.x(1) == 0.1);
   }
   CHECK(sticking.TotalTime() > 0.0);
@@ -124,22 +124,22 @@ TEST_CASE("a series with events has each impact before and after, and every stic
     }
     RecordSteady(omega, 3, all);
     std::vector<Sample> grid, before, after, sticks, release_samples;
-    for (const Sample& sample : with_events.Samples()) {
+    for (const SampleView sample : with_events.Samples()) {
       switch (sample.kind) {
         case SampleKind::kGrid:
-          grid.push_back(sample);
+          grid.push_back(sample.Owned());
           break;
         case SampleKind::kBeforeImpact:
-          before.push_back(sample);
+          before.push_back(sample.Owned());
           break;
         case SampleKind::kAfterImpact:
-          after.push_back(sample);
+          after.push_back(sample.Owned());
           break;
         case SampleKind::kStick:
-          sticks.push_back(sample);
+          sticks.push_back(sample.Owned());
           break;
         case SampleKind::kRelease:
-          release_samples.push_back(sample);
+          release_samples.push_back(sample.Owned());
           break;
       }
     }
@@ -158,7 +158,7 @@ TEST_CASE("a series with events has each impact before and after, and every stic
     REQUIRE(after.size() == before.size());
     REQUIRE_FALSE(before.empty());
     for (std::size_t k = 0; k < before.size(); ++k) {
-      const Impact& impact = impacts.Impacts()[k];
+      const ImpactView impact = impacts.Impacts()[k];
       CHECK(before[k].t == impact.t);
       CHECK(after[k].t == impact.t);
       CHECK(before[k].x(c) == s.stops[0].position);
@@ -190,4 +190,41 @@ TEST_CASE("a series with events has each impact before and after, and every stic
       CHECK(release_samples.empty());
     }
   }
+}
+
+TEST_CASE("a record log gives back every record it was given, field by field", "[recorders]") {
+  // Impacts of a 3-DOF system, as an ImpactRecorder's vector of records
+  // would have held them; every view's fields and vectors are the record's.
+  std::vector<Impact> given;
+  ImpactLog log;
+  for (int k = 0; k < 1000; ++k) {
+    const Eigen::Vector3d x(k, 0.5 * k, -1.0), v(0.1 * k, -2.0, k * k), after(-0.1 * k, 2.0, 1.0);
+    given.push_back(Impact{0.25 * k, k % 2, 0.01 * k, 1.0 / (1 + k), x, v, after});
+    log.push_back(given.back());
+  }
+  REQUIRE(log.size() == given.size());
+  std::size_t k = 0;
+  for (const ImpactView view : log) {
+    const Impact& expected = given[k++];
+    CHECK(view.t == expected.t);
+    CHECK(view.stop == expected.stop);
+    CHECK(view.phase == expected.phase);
+    CHECK(view.velocity == expected.velocity);
+    CHECK(view.x == expected.x);
+    CHECK(view.v == expected.v);
+    CHECK(view.v_after == expected.v_after);
+  }
+  CHECK(k == given.size());
+  const Impact last = log.back().Owned();
+  CHECK(last.v_after == given.back().v_after);
+  CHECK(log.front().x == given.front().x);
+
+  // A record of another length would be read back wrongly: refused.
+  const Eigen::Vector3d x = given.back().x;
+  const Eigen::Vector2d short_vector(1.0, 2.0);
+  CHECK_THROWS_AS(log.push_back(Impact{1.0, 0, 0.0, 1.0, x, short_vector, x}), InvalidInput);
+  REQUIRE(log.size() == given.size());
+  CHECK(log.back().v_after == given.back().v_after);
+  log.push_back(given.front());
+  CHECK(log.back().x == given.front().x);
 }

@@ -37,7 +37,7 @@ System Clearance(double omega, double d, double restitution) {
   return s;
 }
 
-std::vector<Impact> ImpactsOf(const System& s, double t_end) {
+ImpactLog ImpactsOf(const System& s, double t_end) {
   ImpactRecorder recorder;
   HybridState state = RestState(s);
   Simulator(s).Run(state, t_end, recorder);
@@ -165,8 +165,8 @@ TEST_CASE("a stop given as a list is the seed's one stop", "[stops]") {
   REQUIRE(list.stops == keys.stops);
   // The same system, so the same numbers to the bit (test_fingerprints.cpp
   // holds the simulator to the values recorded before stop lists).
-  const std::vector<Impact> a = ImpactsOf(keys, 100 * keys.ForcingPeriod()),
-                            b = ImpactsOf(list, 100 * list.ForcingPeriod());
+  const ImpactLog a = ImpactsOf(keys, 100 * keys.ForcingPeriod()),
+                  b = ImpactsOf(list, 100 * list.ForcingPeriod());
   REQUIRE(a.size() == b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     CHECK(a[i].t == b[i].t);
@@ -220,7 +220,7 @@ TEST_CASE("a chain with stops on two masses: the first 50 impacts as CVODE finds
   s.stops = {{1, StopSide::kUpper, 0.1, 0.7}, {0, StopSide::kLower, -0.4, 0.6}};
   Validate(s);
   const double t_end = 40 * s.ForcingPeriod();
-  const std::vector<Impact> ours = ImpactsOf(s, t_end);
+  const ImpactLog ours = ImpactsOf(s, t_end);
   const reference::ReferenceRun cvode =
       reference::CvodeImpacts(s, RestState(s).x, RestState(s).v, 0.0, t_end, {});
   REQUIRE(ours.size() >= 50);
@@ -242,15 +242,15 @@ TEST_CASE("a clearance's symmetric P(2,1) orbit against its closed form", "[stop
     const System s = Clearance(omega, 0.5, 0.8);
     const std::optional<SymmetricOrbit> exact = SymmetricClosedForm(omega, 0.5, 0.8);
     REQUIRE(exact);
-    const std::vector<Impact> impacts = ImpactsOf(s, 400 * s.ForcingPeriod());
+    const ImpactLog impacts = ImpactsOf(s, 400 * s.ForcingPeriod());
     REQUIRE(impacts.size() > 10);
     // The last impacts alternate between the stops, half a period apart.
-    const Impact& last = impacts.back();
-    const Impact& before = impacts[impacts.size() - 2];
+    const ImpactView last = impacts.back();
+    const ImpactView before = impacts[impacts.size() - 2];
     CHECK(last.stop != before.stop);
     CHECK_THAT(last.t - before.t, WithinAbs(s.ForcingPeriod() / 2, 1e-9));
-    const Impact& upper = last.stop == 0 ? last : before;
-    const Impact& lower = last.stop == 0 ? before : last;
+    const ImpactView& upper = last.stop == 0 ? last : before;
+    const ImpactView& lower = last.stop == 0 ? before : last;
     CHECK_THAT(upper.velocity, WithinAbs(exact->speed, 1e-9));
     CHECK_THAT(lower.velocity, WithinAbs(exact->speed, 1e-9));
     CHECK_THAT(upper.phase, WithinAbs(exact->phase, 1e-9));
@@ -405,7 +405,7 @@ TEST_CASE("impact map with two stops: the analytic Jacobian against finite diffe
     HybridState state = RestState(s);
     ImpactRecorder recorder;
     Simulator(s).Run(state, 200 * s.ForcingPeriod(), recorder);
-    const Impact& last = recorder.Impacts().back();
+    const ImpactView last = recorder.Impacts().back();
     ImpactMapOptions section;
     section.stop = last.stop;
     const ImpactMap map(s, section);
@@ -531,7 +531,7 @@ TEST_CASE("simultaneous and near-simultaneous impacts at two stops are both take
   const Eigen::Matrix2d identity = Eigen::Matrix2d::Identity();
   const System one =
       UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 1.0), 1.3, 0.5, 0.8);
-  const std::vector<Impact> alone = ImpactsOf(one, 60 * one.ForcingPeriod());
+  const ImpactLog alone = ImpactsOf(one, 60 * one.ForcingPeriod());
   REQUIRE(alone.size() > 40);
   for (double shift : {0.0, 1e-9}) {
     INFO("stop 2 higher by " << shift);
@@ -539,21 +539,21 @@ TEST_CASE("simultaneous and near-simultaneous impacts at two stops are both take
                                 0.5, 0.8, 0);
     twin.stops.push_back({1, StopSide::kUpper, 0.5 + shift, 0.8});
     Validate(twin);
-    const std::vector<Impact> both = ImpactsOf(twin, 60 * twin.ForcingPeriod());
-    std::vector<const Impact*> at[2];
-    for (const Impact& impact : both) at[impact.stop].push_back(&impact);
+    const ImpactLog both = ImpactsOf(twin, 60 * twin.ForcingPeriod());
+    std::vector<Impact> at[2];
+    for (const ImpactView impact : both) at[impact.stop].push_back(impact.Owned());
     REQUIRE(at[0].size() == alone.size());
     REQUIRE(at[1].size() == alone.size());
     for (std::size_t k = 0; k < alone.size(); ++k) {
-      CHECK_THAT(at[0][k]->t, WithinAbs(alone[k].t, 1e-9));
-      CHECK_THAT(at[1][k]->t, WithinAbs(alone[k].t, 1e-6));
-      CHECK_THAT(at[0][k]->velocity, WithinAbs(alone[k].velocity, 1e-9));
-      CHECK_THAT(at[1][k]->velocity, WithinAbs(alone[k].velocity, 1e-6));
+      CHECK_THAT(at[0][k].t, WithinAbs(alone[k].t, 1e-9));
+      CHECK_THAT(at[1][k].t, WithinAbs(alone[k].t, 1e-6));
+      CHECK_THAT(at[0][k].velocity, WithinAbs(alone[k].velocity, 1e-9));
+      CHECK_THAT(at[1][k].velocity, WithinAbs(alone[k].velocity, 1e-6));
     }
     // From rest the two masses move alike up to the first impacts: the
     // higher stop's comes a hair later (later impacts differ by the
     // rebounds' own small difference, either way).
-    if (shift > 0) CHECK(at[1][0]->t > at[0][0]->t);
+    if (shift > 0) CHECK(at[1][0].t > at[0][0].t);
     // In time order, as recorded.
     for (std::size_t k = 1; k < both.size(); ++k) CHECK(both[k].t >= both[k - 1].t);
   }

@@ -89,7 +89,7 @@ TEST_CASE("elastic, undamped, unforced: energy conserved across 1000 impacts", "
   Simulator simulator(s);
   while (impacts.Impacts().size() < 1000) summary = simulator.Run(state, state.t + 100.0, impacts);
   double worst = 0.0;
-  for (const Impact& i : impacts.Impacts())
+  for (const ImpactView i : impacts.Impacts())
     worst = std::max(worst, std::abs(Energy(s, i.x, i.v) - e0));
   CHECK(worst <= 1e-9 * e0);
   CHECK(std::abs(Energy(s, state.x, state.v) - e0) <= 1e-9 * e0);
@@ -316,6 +316,6 @@ TEST_CASE("sticking is booked from the accumulation point, not the last impact",
   CHECK_THAT(tight.stuck_time / 2, Catch::Matchers::WithinAbs(7.4563728878, 1e-9));
   // The series' stuck flag agrees, to its sampling interval.
   long stuck_samples = 0;
-  for (const Sample& sample : series.Samples()) stuck_samples += sample.stuck;
+  for (const SampleView sample : series.Samples()) stuck_samples += sample.stuck;
   CHECK(std::abs(stuck_samples * period / 2000 - summary.stuck_time) <= 2 * period / 2000);
 }

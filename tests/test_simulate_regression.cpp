@@ -58,7 +58,7 @@ TEST_CASE("10^4 impacts agree with the frozen earlier results to 1e-12 max(1, t)
   HybridState state = RestState(s);
   // Just past the last frozen impact, so the run holds exactly those.
   Simulator(s).Run(state, frozen.back().t + 1e-3, recorder);
-  const std::vector<Impact>& impacts = recorder.Impacts();
+  const ImpactLog& impacts = recorder.Impacts();
   REQUIRE(impacts.size() == frozen.size());
 
   // Each difference divided by max(1, t), t the later impact's time.

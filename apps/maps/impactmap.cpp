@@ -44,7 +44,7 @@ void RunImpactMap(const ImpactMapRequest& request) {
   PrintRun(system, request.run, recorded);
   Curve points{"impacts", {}, {}, false, "#1f4e9a", true};
   double v_min = INFINITY, v_max = 0.0;
-  for (const Impact& impact : recorded.impacts) {
+  for (const ImpactView impact : recorded.impacts) {
     if (csv) csv->WriteRow(std::vector<double>{impact.t, impact.phase, impact.velocity});
     points.x.push_back(impact.phase);
     points.y.push_back(impact.velocity);

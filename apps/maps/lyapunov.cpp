@@ -59,7 +59,7 @@ void RunLyapunov(const LyapunovRequest& request) {
   if (recorder.Impacts().empty()) {
     result.message = "no impact in the transient run: the motion does not impact";
   } else {
-    const Impact& last = recorder.Impacts().back();
+    const ImpactView last = recorder.Impacts().back();
     LyapunovOptions options = request.options;
     options.map.stop = last.stop;
     const Eigen::VectorXd eta = ImpactMap(system, options.map).ToEta(last.t, last.x, last.v);

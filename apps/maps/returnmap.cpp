@@ -79,7 +79,7 @@ void RunReturnMap(const ReturnMapRequest& request) {
   const RecordedRun recorded = RecordImpacts(system, request.run);
   PrintRun(system, request.run, recorded);
   std::vector<double> speeds;
-  for (const Impact& impact : recorded.impacts) speeds.push_back(impact.velocity);
+  for (const ImpactView impact : recorded.impacts) speeds.push_back(impact.velocity);
   const ReturnMapPoints points = LowVelocityReturnMap(speeds, request.bound);
   fmt::print("return map:  {} pairs of successive impacts with speed < {} (of {} impacts)\n",
              points.from.size(), request.bound, speeds.size());

@@ -28,7 +28,7 @@ void AddRunOptions(CLI::App& command, RunOptions& run, int default_periods);
 void ValidateRun(const RunOptions& run);
 
 struct RecordedRun {
-  std::vector<Impact> impacts;
+  ImpactLog impacts;
   SimulationSummary summary;  ///< of the recorded window
   HybridState end;
 };

@@ -26,7 +26,8 @@ std::vector<std::string> StateColumns(std::vector<std::string> first, int dof,
   return first;
 }
 
-void AppendState(std::vector<double>& row, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+void AppendState(std::vector<double>& row, const Eigen::Ref<const Eigen::VectorXd>& x,
+                 const Eigen::Ref<const Eigen::VectorXd>& v) {
   row.insert(row.end(), x.begin(), x.end());
   row.insert(row.end(), v.begin(), v.end());
 }
@@ -54,13 +55,13 @@ LineChart TimeSeriesChart(const SimulateResult& result) {
                         system.StopCount(), MotionLabel(result.analysis));
   chart.x_label = "t";
   chart.y_label = "displacement";
-  const std::vector<Sample>& samples = result.recorders.series->Samples();
+  const SampleLog& samples = result.recorders.series->Samples();
   for (int i = 0, other = 0; i < system.Dof(); ++i) {
     Curve curve;
     curve.title = fmt::format("x{}", i + 1);
     curve.dashed = !HasStop(system, i);
     if (curve.dashed) curve.color = kPalette[other++ % kPalette.size()];
-    for (const Sample& sample : samples) {
+    for (const SampleView sample : samples) {
       curve.x.push_back(sample.t);
       curve.y.push_back(sample.x(i));
     }
@@ -109,7 +110,7 @@ void SimulateOutputs::Write(const SimulateResult& result) {
 void SimulateOutputs::WriteSeries(const SimulateResult& result) {
   std::vector<double> row;
   std::vector<std::string> event(1);
-  for (const Sample& sample : result.recorders.series->Samples()) {
+  for (const SampleView sample : result.recorders.series->Samples()) {
     row.assign({sample.t});
     AppendState(row, sample.x, sample.v);
     row.push_back(sample.stuck ? 1.0 : 0.0);
@@ -121,7 +122,7 @@ void SimulateOutputs::WriteSeries(const SimulateResult& result) {
 
 void SimulateOutputs::WriteImpacts(const SimulateResult& result) {
   std::vector<double> row;
-  for (const Impact& impact : result.recorders.steady.Impacts()) {
+  for (const ImpactView impact : result.recorders.steady.Impacts()) {
     row.assign({impact.t, impact.phase, impact.velocity});
     AppendState(row, impact.x, impact.v);
     row.push_back(impact.stop + 1);  // stops count from 1 in files, as in the system file

@@ -116,7 +116,7 @@ double Advance(const Simulator& simulator, HybridState& state, double t_end,
 
 WindowAnalysis Analyse(const WindowRecorders& recorders, const Window& window) {
   WindowAnalysis analysis;
-  const std::vector<Impact>& impacts = recorders.steady.Impacts();
+  const ImpactLog& impacts = recorders.steady.Impacts();
   analysis.impacts_per_period = static_cast<double>(impacts.size()) / window.periods;
   analysis.sticking_fraction = recorders.sticking.TotalTime() / (window.end - window.begin);
   analysis.chatter_sequences = static_cast<long>(recorders.steady.ChatterEnds().size());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "impactkit/io/system_file.hpp"
@@ -22,13 +23,15 @@ std::string Count(long n, const std::string& noun) {
 long PeriodsForFullSearch() { return 2L * PeriodOptions{}.max_q; }
 
 std::string ImpactLine(const SimulateResult& result) {
-  const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
+  const ImpactLog& impacts = result.recorders.steady.Impacts();
   if (impacts.empty()) return "none";
-  const auto [slowest, fastest] =
-      std::minmax_element(impacts.begin(), impacts.end(),
-                          [](const Impact& a, const Impact& b) { return a.velocity < b.velocity; });
+  double slowest = INFINITY, fastest = 0.0;
+  for (const ImpactView impact : impacts) {
+    slowest = std::min(slowest, impact.velocity);
+    fastest = std::max(fastest, impact.velocity);
+  }
   return fmt::format("{} ({:.6g} per forcing period), speed {:.6g} to {:.6g}", impacts.size(),
-                     result.analysis.impacts_per_period, slowest->velocity, fastest->velocity);
+                     result.analysis.impacts_per_period, slowest, fastest);
 }
 
 std::string WrittenFiles(const SimulateRequest& request) {
@@ -127,7 +130,7 @@ std::string SummaryText(const SimulateResult& result) {
 }
 
 std::string SummaryJson(const SimulateResult& result, const Provenance& provenance) {
-  const std::vector<Impact>& impacts = result.recorders.steady.Impacts();
+  const ImpactLog& impacts = result.recorders.steady.Impacts();
   const Window& window = result.window;
   Json json = {{"provenance", provenance.Json()}};
   json["system"] = Json::parse(SystemToJson(result.system));

@@ -57,10 +57,9 @@ class InterruptWatch : public Observer {
 
 /// Samples (t, x, v, stuck, event) as arrays of shapes (n,), (n, N), (n, N),
 /// (n,), (n,); event "" on the time grid, else the event's name.
-py::dict SampleArrays(const std::vector<Sample>& samples, int dof) {
+py::dict SampleArrays(const SampleLog& samples, int dof) {
   std::vector<double> t, x, v;
-  std::vector<bool> stuck_bits;
-  for (const Sample& s : samples) {
+  for (const SampleView s : samples) {
     t.push_back(s.t);
     x.insert(x.end(), s.x.begin(), s.x.end());
     v.insert(v.end(), s.v.begin(), s.v.end());

@@ -29,6 +29,6 @@ int main(int argc, char** argv) {
   simulator.Run(state, static_cast<double>(transient) * period);
   impactkit::ImpactRecorder impacts;
   simulator.Run(state, static_cast<double>(transient + periods) * period, impacts);
-  for (const impactkit::Impact& impact : impacts.Impacts()) fmt::print("{}\n", impact.velocity);
+  for (const impactkit::ImpactView impact : impacts.Impacts()) fmt::print("{}\n", impact.velocity);
   return 0;
 }

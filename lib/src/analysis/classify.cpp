@@ -58,8 +58,8 @@ std::string Classification::ToString() const {
   return fmt::format("unresolved: {}, lambda = {:.3g}", period.ToString(), lyapunov.largest);
 }
 
-Classification ClassifyMotion(const System& system, const std::vector<Sample>& strobe,
-                              const std::vector<Impact>& impacts,
+Classification ClassifyMotion(const System& system, const SampleLog& strobe,
+                              const ImpactLog& impacts,
                               const std::vector<double>& chatter_end_times,
                               const ClassifyOptions& options) {
   std::string error;
@@ -67,14 +67,14 @@ Classification ClassifyMotion(const System& system, const std::vector<Sample>& s
   Classification result;
   std::vector<double> times;
   times.reserve(impacts.size());
-  for (const Impact& i : impacts) times.push_back(i.t);
+  for (const ImpactView i : impacts) times.push_back(i.t);
   result.period = DetectPeriod(strobe, times, chatter_end_times, options.period);
   if (impacts.empty()) {
     result.kind = MotionKind::kNonImpacting;
   } else if (result.period.periodic) {
     result.kind = result.period.sticking ? MotionKind::kSticking : MotionKind::kPeriodic;
   } else {
-    const Impact& last = impacts.back();
+    const ImpactView last = impacts.back();
     LyapunovOptions lyapunov = options.lyapunov;
     lyapunov.map.stop = last.stop;
     const Eigen::VectorXd eta = ImpactMap(system, lyapunov.map).ToEta(last.t, last.x, last.v);

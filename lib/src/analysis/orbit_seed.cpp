@@ -22,7 +22,7 @@ std::optional<OrbitSeed> SeedFromSimulation(const System& system, int transient,
   SteadyWindowRecorder window(period);
   simulator.Run(state, (transient + 2 * max_q + 1) * period, window);
   if (window.Impacts().empty()) return std::nullopt;
-  const Impact& last = window.Impacts().back();
+  const ImpactView last = window.Impacts().back();
   ImpactMapOptions section;
   section.stop = last.stop;
   return OrbitSeed{window.Period(PeriodOptions{max_q, 1e-6}),

@@ -8,13 +8,13 @@
 namespace impactkit {
 namespace {
 
-double Distance(const Sample& a, const Sample& b) {
+double Distance(const SampleView& a, const SampleView& b) {
   return std::max((a.x - b.x).cwiseAbs().maxCoeff(), (a.v - b.v).cwiseAbs().maxCoeff());
 }
 
-double Scale(const std::vector<Sample>& strobe) {
+double Scale(const SampleLog& strobe) {
   double scale = 1e-3;
-  for (const Sample& s : strobe) {
+  for (const SampleView s : strobe) {
     scale = std::max({scale, s.x.cwiseAbs().maxCoeff(), s.v.cwiseAbs().maxCoeff()});
   }
   return scale;
@@ -25,7 +25,7 @@ double Scale(const std::vector<Sample>& strobe) {
 /// comparisons instead of a pass over the whole window: over a window that
 /// is not periodic every q up to max_q failed after a full pass, 12 % of
 /// `impactkit simulate`'s instructions).
-double Mismatch(const std::vector<Sample>& strobe, int q, double scale, double limit) {
+double Mismatch(const SampleLog& strobe, int q, double scale, double limit) {
   double worst = 0.0;
   for (std::size_t k = 0; k + q < strobe.size() && worst <= limit; ++k) {
     worst = std::max(worst, Distance(strobe[k + q], strobe[k]) / scale);
@@ -44,8 +44,7 @@ std::string MotionPeriod::ToString() const {
   return sticking ? fmt::format("P(inf,{})", q) : fmt::format("P({},{})", p, q);
 }
 
-MotionPeriod DetectPeriod(const std::vector<Sample>& strobe,
-                          const std::vector<double>& impact_times,
+MotionPeriod DetectPeriod(const SampleLog& strobe, const std::vector<double>& impact_times,
                           const std::vector<double>& chatter_end_times,
                           const PeriodOptions& options) {
   MotionPeriod result;

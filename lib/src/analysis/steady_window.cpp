@@ -11,7 +11,7 @@ SteadyWindowRecorder::SteadyWindowRecorder(double period) : strobe_(period) {
 MotionPeriod SteadyWindowRecorder::Period(const PeriodOptions& options) const {
   std::vector<double> times;
   times.reserve(Impacts().size());
-  for (const Impact& impact : Impacts()) times.push_back(impact.t);
+  for (const ImpactView impact : Impacts()) times.push_back(impact.t);
   return DetectPeriod(Strobe(), times, ChatterEnds(), options);
 }
 

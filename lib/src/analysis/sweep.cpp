@@ -132,11 +132,11 @@ bool RunValue(const System& system, const SweepOptions& options, HybridState& st
   point->status = run.Status();
   point->events = run.Events();
   const double t_record = static_cast<double>(transient) * run.Period();
-  for (const Impact& i : steady.Impacts()) {
+  for (const ImpactView i : steady.Impacts()) {
     if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity, i.stop});
   }
   if (!steady.Impacts().empty() && steady.Impacts().back().t >= t_record) {
-    point->last_impact = steady.Impacts().back();
+    point->last_impact = steady.Impacts().back().Owned();
   }
   const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
   point->range_contact = Ranges(periods, system.stops[0].dof);

@@ -53,6 +53,14 @@ void TimeSeriesRecorder::OnImpact(const Impact& impact) {
   samples_.push_back({impact.t, impact.x, impact.v_after, false, SampleKind::kAfterImpact});
 }
 
+void TimeSeriesRecorder::AddState(const Segment& segment, double t, SampleKind kind) {
+  scratch_.t = t;
+  scratch_.stuck = segment.Stuck();
+  scratch_.kind = kind;
+  segment.StateAt(t, &scratch_.x, &scratch_.v);
+  samples_.push_back(scratch_);
+}
+
 void TimeSeriesRecorder::AddEventAtBegin(const Segment& segment) {
   const SegmentMode mode = segment.Mode();
   // The first segment seen begins no event: it is where recording starts.
@@ -61,12 +69,7 @@ void TimeSeriesRecorder::AddEventAtBegin(const Segment& segment) {
   const bool release = mode != SegmentMode::kStuck && last_mode_ == SegmentMode::kStuck;
   last_mode_ = mode;
   if (!(stick || release) || segment.Begin() < t_first_) return;
-  Sample s;
-  s.t = segment.Begin();
-  s.stuck = segment.Stuck();
-  s.kind = stick ? SampleKind::kStick : SampleKind::kRelease;
-  segment.StateAt(s.t, &s.x, &s.v);
-  samples_.push_back(std::move(s));
+  AddState(segment, segment.Begin(), stick ? SampleKind::kStick : SampleKind::kRelease);
 }
 
 void TimeSeriesRecorder::OnSegment(const Segment& segment) {
@@ -76,11 +79,7 @@ void TimeSeriesRecorder::OnSegment(const Segment& segment) {
   const long first_inside = static_cast<long>(std::ceil((segment.Begin() - t_first_) / dt_ - 1e-9));
   next_ = std::max(next_, first_inside);
   for (double t = t_first_ + next_ * dt_; t <= segment.End(); t = t_first_ + (++next_) * dt_) {
-    Sample s;
-    s.t = t;
-    s.stuck = segment.Stuck();
-    segment.StateAt(t, &s.x, &s.v);
-    samples_.push_back(std::move(s));
+    AddState(segment, t, SampleKind::kGrid);
   }
 }
 

@@ -67,8 +67,8 @@ struct Classification {
 /// period (StroboscopicRecorder), every impact and chatter end in the same
 /// window. The exponent starts from the last impact. Throws InvalidInput for
 /// invalid options or system.
-Classification ClassifyMotion(const System& system, const std::vector<Sample>& strobe,
-                              const std::vector<Impact>& impacts,
+Classification ClassifyMotion(const System& system, const SampleLog& strobe,
+                              const ImpactLog& impacts,
                               const std::vector<double>& chatter_end_times,
                               const ClassifyOptions& options = {});
 

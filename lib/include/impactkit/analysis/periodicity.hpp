@@ -34,8 +34,7 @@ struct PeriodOptions {
 /// Looks for the smallest q with s_{k+q} = s_k for every stroboscopic point
 /// of the window (which must hold at least 2q + 1 points). Impacts and
 /// chatter ends are counted in the last q periods.
-MotionPeriod DetectPeriod(const std::vector<Sample>& strobe,
-                          const std::vector<double>& impact_times,
+MotionPeriod DetectPeriod(const SampleLog& strobe, const std::vector<double>& impact_times,
                           const std::vector<double>& chatter_end_times,
                           const PeriodOptions& options = {});
 

@@ -24,8 +24,8 @@ class SteadyWindowRecorder : public Observer {
   void OnImpact(const Impact& impact) override { recorders_.OnImpact(impact); }
   void OnChatter(double t_first, double t_end) override { recorders_.OnChatter(t_first, t_end); }
 
-  const std::vector<Impact>& Impacts() const { return impacts_.Impacts(); }
-  const std::vector<Sample>& Strobe() const { return strobe_.Points(); }
+  const ImpactLog& Impacts() const { return impacts_.Impacts(); }
+  const SampleLog& Strobe() const { return strobe_.Points(); }
   const std::vector<double>& ChatterEnds() const { return chatter_.EndTimes(); }
   /// The period of the recorded motion (DetectPeriod over this window).
   MotionPeriod Period(const PeriodOptions& options = {}) const;

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "impactkit/hybrid/record_log.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 
 namespace impactkit {
@@ -46,6 +47,69 @@ struct Sample {
   SampleKind kind = SampleKind::kGrid;
 };
 
+/// A recorded sample (record_log.hpp): Sample's fields, the vectors mapped.
+struct SampleView {
+  double t;
+  Eigen::Map<const Eigen::VectorXd> x;
+  Eigen::Map<const Eigen::VectorXd> v;
+  bool stuck;
+  SampleKind kind;
+  Sample Owned() const { return Sample{t, x, v, stuck, kind}; }
+};
+
+template <>
+struct RecordLayout<Sample> {
+  struct Scalars {
+    double t;
+    bool stuck;
+    SampleKind kind;
+  };
+  using View = SampleView;
+  static constexpr int kVectors = 2;
+  static Scalars ScalarsOf(const Sample& s) { return {s.t, s.stuck, s.kind}; }
+  static std::array<const Eigen::VectorXd*, 2> VectorsOf(const Sample& s) { return {&s.x, &s.v}; }
+  static View MakeView(const Scalars& s, const double* vectors, Eigen::Index n) {
+    return {s.t, {vectors, n}, {vectors + n, n}, s.stuck, s.kind};
+  }
+};
+
+/// Samples stored flat (record_log.hpp).
+using SampleLog = RecordLog<Sample>;
+
+/// A recorded impact (record_log.hpp): Impact's fields, the vectors mapped.
+struct ImpactView {
+  double t;
+  int stop;
+  double phase;
+  double velocity;
+  Eigen::Map<const Eigen::VectorXd> x;
+  Eigen::Map<const Eigen::VectorXd> v;
+  Eigen::Map<const Eigen::VectorXd> v_after;
+  Impact Owned() const { return Impact{t, stop, phase, velocity, x, v, v_after}; }
+};
+
+template <>
+struct RecordLayout<Impact> {
+  struct Scalars {
+    double t;
+    int stop;
+    double phase;
+    double velocity;
+  };
+  using View = ImpactView;
+  static constexpr int kVectors = 3;
+  static Scalars ScalarsOf(const Impact& i) { return {i.t, i.stop, i.phase, i.velocity}; }
+  static std::array<const Eigen::VectorXd*, 3> VectorsOf(const Impact& i) {
+    return {&i.x, &i.v, &i.v_after};
+  }
+  static View MakeView(const Scalars& s, const double* vectors, Eigen::Index n) {
+    return {s.t, s.stop, s.phase, s.velocity, {vectors, n}, {vectors + n, n}, {vectors + 2 * n, n}};
+  }
+};
+
+/// Impacts stored flat (record_log.hpp).
+using ImpactLog = RecordLog<Impact>;
+
 /// Samples at t = t_first + k dt (k = 0, 1, ...) that fall inside segments
 /// and, with `events`, every event from t_first on as samples of its own,
 /// in time order: each impact twice (the state before and after it, at one
@@ -57,28 +121,31 @@ class TimeSeriesRecorder : public Observer {
   TimeSeriesRecorder(double t_first, double dt, bool events = false);
   void OnSegment(const Segment& segment) override;
   void OnImpact(const Impact& impact) override;
-  const std::vector<Sample>& Samples() const { return samples_; }
+  const SampleLog& Samples() const { return samples_; }
 
  private:
   /// The sticking or release, if any, that the segment's first instant is.
   void AddEventAtBegin(const Segment& segment);
+  /// The segment's state at t, recorded.
+  void AddState(const Segment& segment, double t, SampleKind kind);
 
   double t_first_;
   double dt_;
   bool events_;
   long next_ = 0;
   std::optional<SegmentMode> last_mode_;
-  std::vector<Sample> samples_;
+  Sample scratch_;  ///< the sample being recorded (its vectors' storage reused)
+  SampleLog samples_;
 };
 
 /// Every impact.
 class ImpactRecorder : public Observer {
  public:
   void OnImpact(const Impact& impact) override { impacts_.push_back(impact); }
-  const std::vector<Impact>& Impacts() const { return impacts_; }
+  const ImpactLog& Impacts() const { return impacts_; }
 
  private:
-  std::vector<Impact> impacts_;
+  ImpactLog impacts_;
 };
 
 /// The state once per forcing period, at t = k T (forcing phase 0).
@@ -86,7 +153,7 @@ class StroboscopicRecorder : public Observer {
  public:
   explicit StroboscopicRecorder(double period) : sampler_(0.0, period) {}
   void OnSegment(const Segment& segment) override { sampler_.OnSegment(segment); }
-  const std::vector<Sample>& Points() const { return sampler_.Samples(); }
+  const SampleLog& Points() const { return sampler_.Samples(); }
 
  private:
   TimeSeriesRecorder sampler_;
