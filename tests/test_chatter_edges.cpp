@@ -4,7 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <random>
 
+#include "hybrid/chatter_rule.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/parameters.hpp"
@@ -231,4 +233,46 @@ TEST_CASE("the paper's chain undamped with the stop on mass 1 at xs = 0 runs in 
   CHECK(summary.status == SimulationStatus::kReachedEnd);
   CHECK(summary.impacts + summary.landings + summary.releases < 1000L * 220);
   CHECK(gap.worst <= 1e-12);
+}
+
+TEST_CASE("the chatter rule's gate never skips an impact whose chatter it would end",
+          "[simulate][chatter]") {
+  // Wherever EndsAt ends chatter with acceleration a (any jerk), MayEnd
+  // must let a bound >= a through: the simulator skips the acceleration
+  // only where MayEnd says no. Random impacts over twelve decades of speed
+  // and acceleration, both methods, r from 0 to 1; and the gate must say
+  // no to most impacts that end nothing, or it saves nothing.
+  std::mt19937 random(20261123);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto decades = [&](double low, double high) {
+    return std::pow(10.0, low + (high - low) * unit(random));
+  };
+  long ended = 0, kept_going = 0, skipped = 0;
+  for (const ChatterMethod method : {ChatterMethod::kAccumulation, ChatterMethod::kThreshold}) {
+    SimulationOptions options;
+    options.chatter = method;
+    for (const double r : {0.0, 0.5, 0.8, 0.99, 1.0}) {
+      const ChatterRule rule(options, r, 2 * std::numbers::pi);
+      for (int trial = 0; trial < 20000; ++trial) {
+        // Accelerations away from the stop too: the bound is then 0.
+        const double speed = decades(-12.0, 0.0);
+        const double acceleration = (unit(random) < 0.9 ? 1.0 : -1.0) * decades(-6.0, 6.0);
+        const double bound = std::max(acceleration, 0.0);
+        const double jerk = (unit(random) - 0.5) * decades(-6.0, 6.0), length = decades(-3.0, 0.0);
+        const double te = 10.0, previous = te - decades(-10.0, 0.0);
+        const double rebound = r * speed;
+        CAPTURE(r, speed, acceleration, jerk, length, te - previous);
+        if (rule.EndsAt(te, previous, speed, rebound, acceleration, jerk, length)) {
+          ++ended;
+          CHECK(rule.MayEnd(te, previous, rebound, bound, length));
+          CHECK(rule.MayEnd(te, previous, rebound, 2.0 * bound, length));
+        } else {
+          ++kept_going;
+          skipped += !rule.MayEnd(te, previous, rebound, bound, length);
+        }
+      }
+    }
+  }
+  CHECK(ended > 20000);
+  CHECK(skipped > kept_going / 2);
 }

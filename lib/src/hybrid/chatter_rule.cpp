@@ -30,6 +30,21 @@ std::optional<double> ChatterRule::EndsAt(double te, double previous, double spe
   return std::nullopt;
 }
 
+bool ChatterRule::MayEnd(double te, double previous, double rebound, double bound,
+                         double length_scale) const {
+  if (rebound == 0.0) return true;
+  if (options_.chatter == ChatterMethod::kThreshold && te - previous < options_.chatter_threshold) {
+    return true;
+  }
+  if (!(bound > 0)) return false;
+  // EndsAt's other ends need an acceleration a > 0 with an unresolved
+  // micro-bounce or a bounce 2 u / a shorter than the chatter span (a Budd
+  // & Dux span, 2 u / (a (1 − r)), is longer): both hold for every a above
+  // some least value.
+  return Unresolved(rebound, bound, length_scale) ||
+         2.0 * rebound / bound <= options_.chatter_span * time_scale_;
+}
+
 /// Budd & Dux: with rebound speed u = r v and acceleration a > 0 towards the
 /// stop, the impacts that follow come at intervals 2 r^k u / a and end after
 /// 2 u / (a (1 − r)).

@@ -45,6 +45,12 @@ class ChatterRule {
   /// the stop there), or nothing to keep simulating impacts.
   std::optional<double> EndsAt(double te, double previous, double speed, double rebound,
                                double acceleration, double jerk, double length_scale) const;
+  /// False when EndsAt returns nothing for every acceleration towards the
+  /// stop up to `bound` (and any jerk): each way it ends chatter needs the
+  /// acceleration above a least value that falls with the rebound. Most
+  /// impacts rebound far too fast, and the simulator then skips computing
+  /// the acceleration and its rate (8 % of an impact's instructions).
+  bool MayEnd(double te, double previous, double rebound, double bound, double length_scale) const;
 
  private:
   bool Unresolved(double speed, double acceleration, double length_scale) const {

@@ -48,11 +48,14 @@ Mode::Mode(const System& system, const std::vector<Stop>& stops, StopSet held)
     }
   }
   inverse_mass_ = system.mass(moving_, moving_).inverse();
-  inverse_mass_rows_.resize(stops.size());
-  for (std::size_t k = 0; k < stops.size(); ++k) {
-    if (dof_index_[k] >= 0) inverse_mass_rows_[k] = inverse_mass_.row(dof_index_[k]);
-  }
   damping_rows_ = system.damping(moving_, Eigen::all);
+  inverse_mass_rows_.resize(stops.size());
+  damping_responses_.resize(stops.size());
+  for (std::size_t k = 0; k < stops.size(); ++k) {
+    if (dof_index_[k] < 0) continue;
+    inverse_mass_rows_[k] = inverse_mass_.row(dof_index_[k]);
+    damping_responses_[k] = inverse_mass_rows_[k] * damping_rows_;
+  }
   stiffness_rows_ = system.stiffness(moving_, Eigen::all);
   forcing_ = system.forcing(moving_);
 }

@@ -121,7 +121,8 @@ class HybridRun {
   std::optional<double> ImpactTime(int stop, double end);
   void MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, double t);
   void ArriveAtStop(int stop, double te, double speed);
-  void ApplyImpact(int stop, double te, double speed);
+  void ApplyImpact(int stop, double te, double speed, double arrival_acceleration);
+  double AccelerationBound(int stop, double arrival_acceleration) const;
   bool OverWorkBound();
   double LengthScale(int stop) const;
   /// Where the current phase's search stops if no event comes first: t_end,
@@ -352,10 +353,23 @@ void HybridRun::ArriveAtStop(int stop, double te, double speed) {
     LandAtStop(stop);
     return;
   }
-  ApplyImpact(stop, te, speed);
+  ApplyImpact(stop, te, speed, acceleration);
 }
 
-void HybridRun::ApplyImpact(int stop, double te, double speed) {
+/// An upper bound of the acceleration towards stop `stop` just after the
+/// impact whose reset has just been applied (impact_ holds the velocities
+/// before it): the arrival's, `arrival_acceleration` (the gap's curvature),
+/// changed by the damping of the velocity jump, with a factor 2 and 1e-9
+/// of the motion's acceleration scale (L (2π/τ)²) over their rounding.
+double HybridRun::AccelerationBound(int stop, double arrival_acceleration) const {
+  const Mode& mode = hybrid_.Holding(state_.held);
+  const double change = mode.AccelerationChange(stop, state_.v - impact_.v);
+  const double rate = 2 * std::numbers::pi / hybrid_.TimeScale();
+  return 2.0 * (std::abs(arrival_acceleration) + std::abs(change)) +
+         1e-9 * length_scales_[stop] * rate * rate;
+}
+
+void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_acceleration) {
   const System& system = hybrid_.GetSystem();
   const Stop& s = hybrid_.GetStop(stop);
   const Mode& mode = hybrid_.Holding(state_.held);
@@ -373,14 +387,18 @@ void HybridRun::ApplyImpact(int stop, double te, double speed) {
   ++summary_.impacts;
   const double previous = last_impacts_[stop];
   last_impacts_[stop] = te;
+  const double rebound = -s.SpeedTowards(state_.v(c));
+  if (!rules_[stop].MayEnd(te, previous, rebound, AccelerationBound(stop, arrival_acceleration),
+                           length_scales_[stop])) {
+    return;
+  }
   // The acceleration after the reset (the rebound's), which the chatter
   // prediction models, towards the stop.
   double jerk;
   const double acceleration = mode.Acceleration(stop, te, state_.x, state_.v, &jerk,
                                                 &force_scratch_, &acceleration_scratch_);
-  const std::optional<double> t_star =
-      rules_[stop].EndsAt(te, previous, speed, -s.SpeedTowards(state_.v(c)),
-                          s.Sign() * acceleration, s.Sign() * jerk, length_scales_[stop]);
+  const std::optional<double> t_star = rules_[stop].EndsAt(
+      te, previous, speed, rebound, s.Sign() * acceleration, s.Sign() * jerk, length_scales_[stop]);
   if (t_star) JumpToAccumulation(stop, te, std::min(t_end_, *t_star));
 }
 

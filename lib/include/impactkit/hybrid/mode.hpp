@@ -53,6 +53,11 @@ class Mode {
   /// `acceleration` (size N) are scratch, so that no call allocates.
   double Acceleration(int stop, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                       double* rate, Eigen::VectorXd* force, Eigen::VectorXd* acceleration) const;
+  /// The change of stop `stop`'s mass's acceleration when the velocities
+  /// change by dv at one instant (an impact's reset): −(M_FF⁻¹ C_F·)_c dv.
+  double AccelerationChange(int stop, const Eigen::VectorXd& dv) const {
+    return -damping_responses_[stop].dot(dv);
+  }
   /// Fs of a held stop at t, from the moving masses' state.
   double ContactForce(int stop, double t, const Eigen::VectorXd& x_moving,
                       const Eigen::VectorXd& v_moving) const;
@@ -71,8 +76,9 @@ class Mode {
   /// Per stop whose mass moves, its row of M_FF⁻¹, contiguous (a strided
   /// row's dot product would sum in another order).
   std::vector<Eigen::RowVectorXd> inverse_mass_rows_;
-  Eigen::MatrixXd damping_rows_, stiffness_rows_;  ///< C_F·, K_F· (all columns)
-  Eigen::VectorXd forcing_;                        ///< A_F
+  std::vector<Eigen::RowVectorXd> damping_responses_;  ///< per such stop, (M_FF⁻¹ C_F·)_c
+  Eigen::MatrixXd damping_rows_, stiffness_rows_;      ///< C_F·, K_F· (all columns)
+  Eigen::VectorXd forcing_;                            ///< A_F
 };
 
 }  // namespace impactkit
