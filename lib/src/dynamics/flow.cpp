@@ -135,6 +135,7 @@ Signal Signal::Derivative(int order) const {
     }
     d.forced_ *= std::complex<double>(0.0, omega_);
   }
+  d.forced_magnitude_ = std::abs(d.forced_);
   if (order > 0) d.constant_ = 0.0;
   return d;
 }
@@ -150,7 +151,7 @@ void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) cons
     throw std::out_of_range("Signal::DerivativeBounds: order must be in [0, 6]");
   }
   const double tau = t_from - t0_;
-  double forced = std::abs(forced_);
+  double forced = forced_magnitude_;
   for (int k = 0; k <= max_order; ++k, forced *= omega_) bounds[k] = forced;
   bounds[0] += std::abs(constant_);
   for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
@@ -165,7 +166,7 @@ void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) cons
 }
 
 double Signal::Scale() const {
-  return alpha_.cwiseAbs().sum() + gamma_.cwiseAbs().sum() + std::abs(forced_) +
+  return alpha_.cwiseAbs().sum() + gamma_.cwiseAbs().sum() + forced_magnitude_ +
          std::abs(constant_);
 }
 
@@ -359,6 +360,7 @@ void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::Ve
     signal->gamma_(j) = c.dot(shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
   signal->forced_ = output.forced * ForcingRotor(omega_, t0);
+  signal->forced_magnitude_ = std::abs(signal->forced_);
   signal->constant_ = output.constant;
 }
 

@@ -67,6 +67,9 @@ class Signal {
   Eigen::VectorXd alpha_;
   Eigen::VectorXd gamma_;
   std::complex<double> forced_{0.0, 0.0};  ///< P: the forced part at t0
+  /// |P|, kept with P: the bounds and the scale of every flight's search
+  /// need it, and each std::abs is a hypot call.
+  double forced_magnitude_ = 0.0;
   double constant_ = 0.0;
 };
 
