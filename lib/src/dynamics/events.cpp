@@ -216,13 +216,16 @@ Departure Depart(const Signal& w, const Point& p, const double* bounds,
 /// impact k = 1, at a release from sticking k = 2 or 3. Returns that step,
 /// or 0 when w is not at the surface or not certainly leaving it. Without
 /// this, an interval starting on the surface could never be certified empty.
+/// `bounds` holds orders 0 to 3 (from p.t); order 4, needed only at a
+/// release of order 3, is computed here.
 double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds,
                        const EventOptions& options) {
   const Departure departure = Depart(w, p, bounds, options);
   if (departure.order == 0 || departure.sign >= 0) return 0.0;
   const int k = departure.order;
-  if (!(bounds[k + 1] > 0)) return kInfinity;
-  const double step = (k + 1) * -departure.derivative / bounds[k + 1];
+  const double next_bound = k < 3 ? bounds[k + 1] : w.DerivativeBound(4, p.t);
+  if (!(next_bound > 0)) return kInfinity;
+  const double step = (k + 1) * -departure.derivative / next_bound;
   if (k > 1) return step;
   // After an impact the known w'' often pulls w away from the surface:
   // w <= s (w' + w'' s/2 + B3 s²/6) keeps w < 0 up to the quadratic's
@@ -300,9 +303,10 @@ std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, d
 std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_end,
                                       const EventOptions& options) {
   const double short_step = 1e-3 * options.time_scale;
-  // Bounds of |w^(k)| valid for every t >= t_begin (Signal::DerivativeBound).
-  double bounds[5];
-  w.DerivativeBounds(t_begin, 4, bounds);
+  // Bounds of |w^(k)| valid for every t >= t_begin (Signal::DerivativeBound),
+  // k = 0 to 3; order 4 is rarely needed (SurfaceExitStep).
+  double bounds[4];
+  w.DerivativeBounds(t_begin, 3, bounds);
   if (bounds[0] == 0) return std::nullopt;  // w = 0 throughout
   // w <= R + (bound of the rest) < 0 for every t >= t_begin: a stop far
   // beyond the motion's reach is settled without a step.
@@ -353,8 +357,8 @@ std::vector<double> SignChanges(const Signal& w, double t_begin, double t_end,
 }
 
 int SurfaceSign(const Signal& w, double t, const EventOptions& options) {
-  double bounds[5];
-  w.DerivativeBounds(t, 4, bounds);
+  double bounds[4];
+  w.DerivativeBounds(t, 3, bounds);
   const Point p = Evaluate(w, t);
   if (const int sign = Depart(w, p, bounds, options).sign; sign != 0) return sign;
   // All rounding: the raw values decide, so that asking twice at one
