@@ -49,8 +49,16 @@ TimeSeriesRecorder::TimeSeriesRecorder(double t_first, double dt, bool events)
 
 void TimeSeriesRecorder::OnImpact(const Impact& impact) {
   if (!events_ || impact.t < t_first_) return;
-  samples_.push_back({impact.t, impact.x, impact.v, false, SampleKind::kBeforeImpact});
-  samples_.push_back({impact.t, impact.x, impact.v_after, false, SampleKind::kAfterImpact});
+  // Through the scratch sample, whose vectors keep their storage.
+  scratch_.t = impact.t;
+  scratch_.stuck = false;
+  scratch_.x = impact.x;
+  scratch_.v = impact.v;
+  scratch_.kind = SampleKind::kBeforeImpact;
+  samples_.push_back(scratch_);
+  scratch_.v = impact.v_after;
+  scratch_.kind = SampleKind::kAfterImpact;
+  samples_.push_back(scratch_);
 }
 
 void TimeSeriesRecorder::AddState(const Segment& segment, double t, SampleKind kind) {
