@@ -100,6 +100,17 @@ double CvodeClearance(const System& system, const Eigen::VectorXd& eta, double d
   return system.stops[0].position - height(0.5 * (a + b));
 }
 
+/// The start of the branch born at `branch`'s period doubling in (low, high),
+/// continued with `options` (both required to exist).
+BranchStart DoubledStartIn(const System& system, const Branch& branch, double low, double high,
+                           const ContinuationOptions& options) {
+  const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, low, high);
+  REQUIRE(pd != nullptr);
+  const std::optional<BranchStart> doubled = DoubledBranchStart(system, branch, *pd, options);
+  REQUIRE(doubled.has_value());
+  return *doubled;
+}
+
 /// Consecutive points differ by no more than the largest step allows.
 void CheckNoJumps(const Branch& branch, const ContinuationOptions& options) {
   const double largest = std::hypot(1.0, options.max_correction) * options.max_step;
@@ -247,15 +258,11 @@ TEST_CASE(
   const System system = PaperSystem(1.0);
   const ContinuationOptions options = Options(0.5, 2.0, 1, 1);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
-  const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, 1.60, 1.62);
-  REQUIRE(pd != nullptr);
-
-  const std::optional<BranchStart> doubled = DoubledBranchStart(system, branch, *pd, options);
-  REQUIRE(doubled.has_value());
-  CHECK(doubled->orbit.p == 2);
-  CHECK(doubled->orbit.residual < 1e-10);
+  const BranchStart doubled = DoubledStartIn(system, branch, 1.60, 1.62, options);
+  CHECK(doubled.orbit.p == 2);
+  CHECK(doubled.orbit.residual < 1e-10);
   ContinuationOptions twice = Options(0.5, 2.0, 2, 2, ContinuationDirection::kIncreasing);
-  const Branch p22 = ContinueBranch(*doubled, twice);
+  const Branch p22 = ContinueBranch(doubled, twice);
   // Its own period doubling (the paper: near 1.68).
   const SpecialPoint* pd2 = Find(p22, SpecialPointType::kPeriodDoubling, 1.67, 1.69);
   REQUIRE(pd2 != nullptr);
@@ -292,11 +299,7 @@ namespace {
 BranchStart P42Start(const System& system) {
   const ContinuationOptions options = Options(0.8, 0.9, 2, 1);
   const Branch p21 = ContinueBranch({system, Orbit(system, 2, 1), {}}, options);
-  const SpecialPoint* pd = Find(p21, SpecialPointType::kPeriodDoubling, 0.835, 0.839);
-  REQUIRE(pd != nullptr);
-  const std::optional<BranchStart> doubled = DoubledBranchStart(system, p21, *pd, options);
-  REQUIRE(doubled.has_value());
-  return *doubled;
+  return DoubledStartIn(system, p21, 0.835, 0.839, options);
 }
 
 /// P(4,2)'s branch in fine steps (max 0.002): its period doubling near
@@ -338,12 +341,8 @@ TEST_CASE(
   // may stall at a depth of a few 1e-9, short of the 1e-10 tolerance.
   const System system = PaperSystem(0.83);
   const Branch p42 = ContinueBranch(P42Start(system), Options(0.8, 0.9, 4, 2));
-  const SpecialPoint* pd = Find(p42, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
-  REQUIRE(pd != nullptr);
   const ContinuationOptions options = Options(0.8, 0.9, 8, 4);
-  const std::optional<BranchStart> doubled = DoubledBranchStart(system, p42, *pd, options);
-  REQUIRE(doubled.has_value());
-  const Branch p84 = ContinueBranch(*doubled, options);
+  const Branch p84 = ContinueBranch(DoubledStartIn(system, p42, 0.8323, 0.8327, options), options);
   CHECK(p84.end == BranchEnd::kGrazing);
   REQUIRE(!p84.special_points.empty());
   const SpecialPoint& end = p84.special_points.back();
