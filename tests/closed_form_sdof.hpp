@@ -157,10 +157,24 @@ inline Eigen::Vector2d SdofImpactDirection(const SdofParameters& p) {
                                   Eigen::Vector2d(0, 1));
 }
 
+/// The P(1,1) orbit of a root u of the speeds' quadratic: τ from
+/// cos θ = (xs + u d1) / X, sin θ = −u d2 / (XΩ), τ = (θ + φ) / Ω mod T.
+inline SdofP11 SdofP11WithSpeed(const SdofParameters& p, double u) {
+  const double period = p.Period(), x = p.SteadyAmplitude();
+  const Eigen::Vector2d d = SdofImpactDirection(p);
+  const double cos_th = (p.xs + u * d(0)) / x;
+  const double sin_th = -u * d(1) / (x * p.omega);
+  const double theta = std::atan2(sin_th, cos_th);
+  double tau = std::fmod((theta + p.SteadyLag()) / p.omega, period);
+  if (tau < 0.0) tau += period;
+  if (tau >= period) tau -= period;
+  return {tau, u};
+}
+
 /// All solutions of the P(1,1) equations with u > 0 (not yet checked for
 /// extra contacts: see SdofCheckFlight).
 inline std::vector<SdofP11> SdofP11Solutions(const SdofParameters& p) {
-  const double period = p.Period(), x = p.SteadyAmplitude();
+  const double x = p.SteadyAmplitude();
   const Eigen::Vector2d d = SdofImpactDirection(p);
   // qa u² + qb u + qc = 0.
   const double qa = d(0) * d(0) + d(1) * d(1) / (p.omega * p.omega);
@@ -179,14 +193,7 @@ inline std::vector<SdofP11> SdofP11Solutions(const SdofParameters& p) {
   if (disc == 0.0) roots.resize(1);
   std::sort(roots.begin(), roots.end());
   for (double u : roots) {
-    if (!(u > 0.0)) continue;
-    const double cos_th = (p.xs + u * d(0)) / x;
-    const double sin_th = -u * d(1) / (x * p.omega);
-    const double theta = std::atan2(sin_th, cos_th);
-    double tau = std::fmod((theta + p.SteadyLag()) / p.omega, period);
-    if (tau < 0.0) tau += period;
-    if (tau >= period) tau -= period;
-    out.push_back({tau, u});
+    if (u > 0.0) out.push_back(SdofP11WithSpeed(p, u));
   }
   return out;
 }

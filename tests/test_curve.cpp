@@ -363,60 +363,6 @@ TEST_CASE(
   CHECK(minus < 1e-6);
 }
 
-TEST_CASE(
-    "curves: P(3,1)'s fold curve in (omega, A1) reports no cusp where its test jumps, next to "
-    "where the fold meets its new-contact grazing",
-    "[curve]") {
-  // The tangent's parameter part jumped sign just before the corrector
-  // failed at the new contact (clearance 4e-7): that was reported as a cusp
-  // at omega = 0.4524241, A1 = 0.1476188 with the test 2.7e-4 from zero.
-  const System system = PaperSystem(0.44);
-  ContinuationOptions search;
-  search.lower = 0.1;
-  search.upper = 2.0;
-  search.orbit.p = 3;
-  const std::optional<SpecialPoint> fold = LocateSpecialPoint(
-      {system, testing::SeededOrbit(system, 3, 1), {}}, search, SpecialPointType::kFold);
-  REQUIRE(fold.has_value());
-  CurveOptions options = Plane("A1", 0.05, 3.0, 3, 1);
-  options.lower = 0.1;
-  options.upper = 2.0;
-  const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
-  for (const Codim2Point& c : curve.codim2_points) CHECK(c.type != Codim2Type::kCusp);
-  const CurvePoint& end = curve.points.front();
-  REQUIRE(std::abs(end.parameter2 - 0.14762) < 1e-4);
-  REQUIRE(end.orbit.contacts.clearance.has_value());
-  CHECK(*end.orbit.contacts.clearance < 1e-6);
-  // What is there instead: the branch in omega at A1 = 0.1474 starts at its
-  // new-contact grazing and folds 2.8e-6 below it — the fold curve running
-  // into the grazing curve, a fold-grazing corner.
-  ContinuationOptions branch = search;
-  branch.lower = end.parameter - 0.02;
-  branch.upper = end.parameter + 0.02;
-  branch.direction = ContinuationDirection::kBoth;
-  const CurvePoint& seed = curve.points[6];  // 1e-3 along the curve from its end
-  System at;
-  PeriodicOrbit orbit;
-  bool found = false;
-  for (double shift : {0.0, 1e-4, -1e-4, 1e-3, -1e-3}) {
-    at = At(At(system, "A1", 0.1474), "omega", seed.parameter + shift);
-    found =
-        FindOrbit(at, seed.orbit.eta, branch.orbit, &orbit).termination == Termination::kConverged;
-    if (found) break;
-  }
-  REQUIRE(found);
-  std::optional<double> grazing, fold_near;
-  for (const SpecialPoint& s : ContinueBranch({at, orbit, {}}, branch).special_points) {
-    if (std::abs(s.parameter - end.parameter) > 1e-3) continue;
-    if (s.type == SpecialPointType::kGrazing) grazing = s.parameter;
-    if (s.type == SpecialPointType::kFold) fold_near = s.parameter;
-  }
-  REQUIRE(grazing.has_value());
-  REQUIRE(fold_near.has_value());
-  CHECK(*grazing - *fold_near > 0.0);
-  CHECK(*grazing - *fold_near < 1e-5);
-}
-
 TEST_CASE("curves: the defining rows' differenced gradient agrees with Richardson extrapolation",
           "[curve]") {
   for (SpecialPointType type : {SpecialPointType::kGrazing, SpecialPointType::kPeriodDoubling}) {

@@ -78,21 +78,23 @@ std::optional<MapResult> BranchProblem::Image(const Eigen::VectorXd& x, bool wit
 }
 
 bool BranchProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u) const {
-  // Newton asks for the Jacobian where it has just asked for the residual:
-  // the analytic D P costs little beside the map, so compute both at once.
-  const std::optional<MapResult> image = Image(x, true);
-  if (!image) return false;
-  cached_x_ = x;
-  cached_map_jacobian_ = image->jacobian;
-  *u = image->eta;
+  // Newton asks for the Jacobian where it has just asked for the residual,
+  // and a defining row for D P there too: the analytic D P costs little
+  // beside the map, so compute both at once and keep them for that point.
+  if (!(cached_x_.size() == x.size() && cached_x_ == x)) {
+    const std::optional<MapResult> image = Image(x, true);
+    if (!image) return false;
+    cached_x_ = x;
+    cached_residual_ = image->eta;
+    cached_map_jacobian_ = image->jacobian;
+  }
+  *u = cached_residual_;
   return u->allFinite();
 }
 
 bool BranchProblem::MapJacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* dp) const {
-  if (!(cached_x_.size() == x.size() && cached_x_ == x)) {
-    Eigen::VectorXd u;
-    if (!Residual(x, &u)) return false;
-  }
+  Eigen::VectorXd u;
+  if (!Residual(x, &u)) return false;
   *dp = cached_map_jacobian_;
   return true;
 }

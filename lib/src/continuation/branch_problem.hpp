@@ -75,7 +75,8 @@ class BranchProblem {
   int repeat_divisor_ = 1;
   ImpactMapOptions map_options_;
   mutable std::vector<std::pair<double, std::unique_ptr<ImpactMap>>> maps_;  // newest last
-  mutable Eigen::VectorXd cached_x_;  ///< where cached_map_jacobian_ was computed
+  mutable Eigen::VectorXd cached_x_;  ///< where the two below were computed
+  mutable Eigen::VectorXd cached_residual_;
   mutable Eigen::MatrixXd cached_map_jacobian_;
 };
 

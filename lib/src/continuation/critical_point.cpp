@@ -35,8 +35,14 @@ std::optional<Eigen::VectorXd> SolveCriticalPoint(const BranchProblem& problem,
   };
   const impactkit::Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
     Eigen::MatrixXd ju, gradient;
-    if (!problem.Jacobian(x, &ju)) return false;
-    if (!CentralDifferenceGradient(sigma, x, step, &gradient)) return false;
+    Eigen::VectorXd u;
+    if (!problem.Jacobian(x, &ju) || !problem.Residual(x, &u)) return false;
+    // σ is differenced only between maps that follow x's impacts.
+    const Rows same_impacts = [&](const Eigen::VectorXd& at, Eigen::VectorXd* g) {
+      Eigen::VectorXd u_at;
+      return problem.Residual(at, &u_at) && SameImpacts(u_at - u, ju * (at - x)) && sigma(at, g);
+    };
+    if (!CentralDifferenceGradient(same_impacts, x, step, &gradient)) return false;
     j->topRows(n) = ju;
     j->bottomRows(1) = gradient;
     return j->allFinite();

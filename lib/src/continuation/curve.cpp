@@ -29,8 +29,8 @@ constexpr double kGrazingBracket = 1e-13;
 /// A second test's located zero must be this small relative to its values
 /// at the ends of the interval: where the Illinois method cannot close a
 /// sign change (the test jumps, as the tangent did on P(3,1)'s fold curve
-/// in (omega, A1) just before the corrector failed at a new contact) there
-/// is no zero. Smooth tests are located to ~1e-12 of their size.
+/// in (omega, A1) while σ was differenced across a new contact) there is
+/// no zero. Smooth tests are located to ~1e-12 of their size.
 constexpr double kLocatedZero = 1e-6;
 
 /// Why a curve may stop short of its located end: "; impact 1 vanishes
@@ -300,7 +300,7 @@ class CurveTracer {
     const std::optional<Codim2Point> corner =
         detail::GrazingCornerAhead(problem_, type_, half.points[half.points.size() - 2], last);
     if (depth < detail::kCornerDepth) corner_tried_depth_ = depth;
-    if (!corner) return false;
+    if (!corner || Beyond(corner->point.parameter, corner->point.parameter2)) return false;
     half.points.push_back(corner->point);
     half.codim2.push_back(*corner);
     half.end = CurveEnd::kGrazing;
@@ -332,6 +332,8 @@ class CurveTracer {
       int iterations = 0;
       const std::optional<CurvePoint> trial =
           Advance(best, s, &iterations, std::max(1.0, 1e-4 * conditioning));
+      // A limit beyond a bound is not this curve's end: it reaches the bound first.
+      if (trial && Beyond(trial->parameter, trial->parameter2)) return std::nullopt;
       const std::optional<double> m = trial ? detail::LinearMonitor(*trial, monitor) : std::nullopt;
       if (!m || !(*m < *m_lo)) {
         failed = s;

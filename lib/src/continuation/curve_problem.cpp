@@ -64,7 +64,8 @@ const BranchProblem& CurveProblem::Along2(double mu1) const {
   return *along2_;
 }
 
-bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const {
+bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,
+                            Eigen::VectorXd* u) const {
   if (!x.allFinite()) return false;
   if (response_) {
     g->resize(1);
@@ -90,15 +91,19 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const 
     *g << at.x(c) - map->GetSystem().stops[0].position + kGrazingMargin, at.v(c);
     return g->allFinite();
   }
-  const MapResult image = map->Apply(eta, options_.orbit.p, true);
-  if (image.status != MapStatus::kOk) return false;
+  // U and D P come from one map application, which Residual has usually
+  // just made (BranchProblem keeps them).
+  const BranchProblem& along = Along1(Mu2(x));
+  const Eigen::VectorXd at = BranchProblem::Join(eta, Mu1(x));
+  Eigen::VectorXd own_u;
+  Eigen::MatrixXd dp;
+  if (!along.Residual(at, u ? u : &own_u) || !along.MapJacobian(at, &dp)) return false;
   g->resize(1);
   if (type_ == SpecialPointType::kFold || type_ == SpecialPointType::kPeriodDoubling) {
-    (*g)(0) =
-        kMultiplierRowWeight * MultiplierFunction(image.jacobian, CriticalMultiplier(), borders_);
+    (*g)(0) = kMultiplierRowWeight * MultiplierFunction(dp, CriticalMultiplier(), borders_);
   } else {
-    const Eigen::VectorXcd lambda = image.jacobian.eigenvalues();
-    (*g)(0) = BifurcationTests()[2].value(image.jacobian, lambda);
+    const Eigen::VectorXcd lambda = dp.eigenvalues();
+    (*g)(0) = BifurcationTests()[2].value(dp, lambda);
   }
   return g->allFinite();
 }
@@ -147,17 +152,28 @@ bool CurveProblem::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian,
   jacobian->topLeftCorner(eta_size_, eta_size_) = along1.leftCols(eta_size_);
   jacobian->block(0, size_ - 2, eta_size_, 1) = along1.col(eta_size_);
   jacobian->block(0, size_ - 1, eta_size_, 1) = along2.col(eta_size_);
+  const Eigen::MatrixXd u_jacobian = jacobian->topRows(eta_size_);
   Eigen::MatrixXd defining;
-  if (!DefiningGradient(x, step_scale, &defining)) return false;
+  if (!DefiningGradient(x, step_scale, &defining, &u_jacobian)) return false;
   jacobian->bottomRows(defining.rows()) = defining;
   return jacobian->allFinite();
 }
 
 bool CurveProblem::DefiningGradient(const Eigen::VectorXd& x, double step_scale,
-                                    Eigen::MatrixXd* gradient) const {
+                                    Eigen::MatrixXd* gradient,
+                                    const Eigen::MatrixXd* u_jacobian) const {
+  Eigen::VectorXd g, u;
+  // Rows built on D P are differenced only between maps that follow the
+  // same impacts (SameImpacts); the grazing rows follow one flight and
+  // ignore the stop, so they are smooth across it.
+  const bool guarded = u_jacobian && !IsGrazing() && Defining(x, &g, &u);
   return CentralDifferenceGradient(
-      [this](const Eigen::VectorXd& at, Eigen::VectorXd* g) { return Defining(at, g); }, x,
-      kDefiningStep * step_scale, gradient);
+      [&](const Eigen::VectorXd& at, Eigen::VectorXd* rows) {
+        if (!guarded) return Defining(at, rows);
+        Eigen::VectorXd u_at;
+        return Defining(at, rows, &u_at) && SameImpacts(u_at - u, *u_jacobian * (at - x));
+      },
+      x, kDefiningStep * step_scale, gradient);
 }
 
 Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
@@ -176,11 +192,9 @@ Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
 
 void CurveProblem::UpdateBorders(const Eigen::VectorXd& x) {
   if (type_ != SpecialPointType::kFold && type_ != SpecialPointType::kPeriodDoubling) return;
-  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
-  if (!map) return;
-  const MapResult image = map->Apply(Eta(x), options_.orbit.p, true);
-  if (image.status != MapStatus::kOk) return;
-  borders_ = MultiplierBorders(image.jacobian, CriticalMultiplier());
+  Eigen::MatrixXd dp;
+  if (!Along1(Mu2(x)).MapJacobian(BranchProblem::Join(Eta(x), Mu1(x)), &dp)) return;
+  borders_ = MultiplierBorders(dp, CriticalMultiplier());
 }
 
 std::optional<Eigen::VectorXd> CurveProblem::Correct(const Eigen::VectorXd& guess,

@@ -82,11 +82,13 @@ class CurveProblem {
  private:
   const BranchProblem& Along1(double mu2) const;  ///< U in (η, μ1) at μ2
   const BranchProblem& Along2(double mu1) const;  ///< U in (η, μ2) at μ1
-  /// The defining rows at X (size 1, or 2 for grazing); false if the map fails.
-  bool Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g) const;
-  /// The defining rows' gradient by central differences (steps scaled).
-  bool DefiningGradient(const Eigen::VectorXd& x, double step_scale,
-                        Eigen::MatrixXd* gradient) const;
+  /// The defining rows at X (size 1, or 2 for grazing), and U if `u` (not
+  /// for grazing, whose rows do not apply the map); false if the map fails.
+  bool Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g, Eigen::VectorXd* u = nullptr) const;
+  /// The defining rows' gradient by central differences (steps scaled);
+  /// with U's Jacobian, only between maps that follow X's impacts.
+  bool DefiningGradient(const Eigen::VectorXd& x, double step_scale, Eigen::MatrixXd* gradient,
+                        const Eigen::MatrixXd* u_jacobian = nullptr) const;
   /// Grazing: a guess beyond the grazing (where U has no value), moved
   /// back inside; any other guess unchanged.
   Eigen::VectorXd Inside(const Eigen::VectorXd& x) const;

@@ -30,6 +30,13 @@ double MultiplierFunction(const Eigen::MatrixXd& dp, double lambda, const SigmaB
   return sigma / (1.0 + dp.norm());
 }
 
+bool SameImpacts(const Eigen::VectorXd& change, const Eigen::VectorXd& predicted) {
+  // U carries the event times' rounding, ~1e-12 (impact_map.hpp).
+  constexpr double kRelative = 10.0, kRounding = 1e-10;
+  return (change - predicted).lpNorm<Eigen::Infinity>() <=
+         kRelative * predicted.lpNorm<Eigen::Infinity>() + kRounding;
+}
+
 bool CentralDifferenceGradient(const Rows& rows, const Eigen::VectorXd& x, double relative_step,
                                Eigen::MatrixXd* gradient) {
   Eigen::VectorXd g0;

@@ -47,6 +47,18 @@ constexpr double kMultiplierRowWeight = 1e-2;
 /// v ≈ 0.01, 1e-5 left a 1% error in the xs column, 1e-6 leaves 1e-4.
 constexpr double kDefiningStep = 1e-6;
 
+/// True when U's change between a difference's centre and one of its
+/// points, `change`, is what U's analytic derivative predicts, `predicted`,
+/// to a tenth of it (plus U's rounding): the map there followed the same
+/// impacts. Beside a grazing a step of 1e-6 can cross it, and the map then
+/// takes the new contact: its U jumps by a flight and its D P is another
+/// orbit's, so a row built on D P must not be differenced across it (the
+/// N = 1 oscillator's P(1,1) fold curve in (Ω, xs) and the paper's P(3,1)
+/// fold curve in (Ω, A1) failed so at clearance 7e-7: the gradient of σ
+/// was wrong and Newton stalled). The truncation of a step of 1e-6 is
+/// ~1e-4 of the change even beside a slow impact (v ≈ 0.01).
+bool SameImpacts(const Eigen::VectorXd& change, const Eigen::VectorXd& predicted);
+
 /// `rows` at x (their number fixed by the first call); false where they have
 /// no value.
 using Rows = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd* g)>;

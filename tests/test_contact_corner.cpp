@@ -1,0 +1,201 @@
+// Fold curves that end where their orbit's flight touches the stop (a
+// fold–grazing corner by a new contact): the N = 1 oscillator's against
+// the closed form, the paper's P(3,1) against one-parameter branches.
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "closed_form_sdof.hpp"
+#include "curve_plane.hpp"
+#include "impactkit/continuation/curve.hpp"
+#include "impactkit/model/parameters.hpp"
+#include "seeded_orbit.hpp"
+#include "system_at.hpp"
+
+using namespace impactkit;
+using testing::At;
+using testing::SdofParameters;
+
+namespace {
+
+/// The stop position xs < 0 at which the closed form's P(1,1) speeds,
+/// qa u² + 2 xs d1 u + xs² − X² = 0 (closed_form_sdof.hpp), have a double
+/// root at p.omega: xs² (qa − d1²) = qa X². (d and X do not depend on xs.)
+double FoldStop(const SdofParameters& p) {
+  const Eigen::Vector2d d = testing::SdofImpactDirection(p);
+  const double qa = d(0) * d(0) + d(1) * d(1) / (p.omega * p.omega);
+  const double x = p.SteadyAmplitude();
+  return -std::sqrt(qa * x * x / (qa - d(0) * d(0)));
+}
+
+/// The fold orbit at p.omega with the stop at FoldStop: the double root
+/// u = −xs d1 / qa.
+testing::SdofP11 FoldOrbit(SdofParameters* p) {
+  p->xs = FoldStop(*p);
+  const Eigen::Vector2d d = testing::SdofImpactDirection(*p);
+  const double qa = d(0) * d(0) + d(1) * d(1) / (p->omega * p->omega);
+  return testing::SdofP11WithSpeed(*p, -p->xs * d(0) / qa);
+}
+
+/// xs minus the highest interior maximum of x over the orbit's flight (the
+/// flight starts and ends on the stop, so only maxima with v = 0 count):
+/// sampled, then each sign change of v from + to − bisected to 1e-15.
+double FlightClearance(const SdofParameters& p, const testing::SdofP11& o) {
+  const Eigen::Vector2d start(p.xs, -p.r * o.u);
+  auto state = [&](double t) { return testing::SdofFlight(p, o.tau, start, t); };
+  constexpr int kSamples = 4000;
+  const double period = p.Period();
+  double highest = -1e300;
+  for (int i = 1; i < kSamples; ++i) {
+    double lo = o.tau + period * (i - 1) / kSamples, hi = o.tau + period * i / kSamples;
+    if (!(state(lo)(1) > 0.0 && state(hi)(1) <= 0.0)) continue;
+    while (hi - lo > 1e-15 * hi) {
+      const double mid = 0.5 * (lo + hi);
+      (state(mid)(1) > 0.0 ? lo : hi) = mid;
+    }
+    highest = std::max(highest, state(lo)(0));
+  }
+  return p.xs - highest;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "contact corner: the N = 1 oscillator's P(1,1) fold curve in (omega, xs) below the rest "
+    "position ends where its flight touches the stop, at the closed form's corner",
+    "[curve][contact-corner]") {
+  // The fold at xs = −0.2 (near omega = 2.167) followed up in xs: its
+  // flight's maximum rises to the stop near omega = 2.0395, xs = −0.1632,
+  // before its impact could vanish (at omega = 2 ω_d, xs = −X).
+  const System system =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 2.3, -0.2, 0.7);
+  SdofParameters p{1.0, 1.0, 0.1, 0.5, -0.2, 0.7, 2.3};
+  const std::vector<testing::SdofP11> roots = testing::SdofP11Solutions(p);
+  REQUIRE(roots.size() == 2);
+  OrbitOptions orbit_options;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(system, Eigen::Vector2d(roots[0].tau, roots[0].u), orbit_options, &orbit)
+              .termination == Termination::kConverged);
+  ContinuationOptions search;
+  search.lower = 1.5;
+  search.upper = 3.0;
+  const std::optional<SpecialPoint> fold =
+      LocateSpecialPoint({system, orbit, {}}, search, SpecialPointType::kFold);
+  REQUIRE(fold.has_value());
+  const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold},
+                                    testing::Plane("xs", -0.4, -0.05, 1, 1));
+  REQUIRE(curve.end == CurveEnd::kGrazing);
+  REQUIRE(!curve.codim2_points.empty());
+  const Codim2Point& corner = curve.codim2_points.back();
+  CHECK(corner.type == Codim2Type::kFoldGrazing);
+  CHECK(corner.defining_residual < 1e-10);
+  CHECK(corner.second_residual < 1e-9);
+
+  // Along the curve: the closed form's fold stop at each point's omega.
+  for (std::size_t k = 0; k < curve.points.size(); k += curve.points.size() / 8) {
+    p.omega = curve.points[k].parameter;
+    CHECK(std::abs(FoldStop(p) - curve.points[k].parameter2) < 1e-8);
+  }
+  // The corner: the fold orbit's clearance, zero by bisection in omega.
+  auto clearance = [&](double omega) {
+    p.omega = omega;
+    const testing::SdofP11 o = FoldOrbit(&p);
+    return FlightClearance(p, o);
+  };
+  double lo = 2.03, hi = 2.05;
+  REQUIRE((clearance(lo) > 0) != (clearance(hi) > 0));
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    ((clearance(mid) > 0) == (clearance(lo) > 0) ? lo : hi) = mid;
+  }
+  p.omega = lo;
+  INFO("closed form: omega = " << lo << ", xs = " << FoldStop(p));
+  CHECK(std::abs(corner.point.parameter - lo) < 1e-8);
+  CHECK(std::abs(corner.point.parameter2 - FoldStop(p)) < 1e-8);
+}
+
+namespace {
+
+/// The grazing and the fold nearest `omega` on the P(3,1) branch in omega
+/// through `seed`'s orbit at this A1 (either empty if not found).
+std::pair<std::optional<double>, std::optional<double>> GrazingAndFold(double a1, double omega,
+                                                                       const CurvePoint& seed) {
+  ContinuationOptions branch;
+  branch.lower = omega - 0.02;
+  branch.upper = omega + 0.02;
+  branch.direction = ContinuationDirection::kBoth;
+  branch.orbit.p = 3;
+  System at;
+  PeriodicOrbit orbit;
+  bool found = false;
+  for (double shift : {0.0, 1e-4, -1e-4, 1e-3, -1e-3}) {
+    at = At(At(PaperSystem(omega), "A1", a1), "omega", seed.parameter + shift);
+    found =
+        FindOrbit(at, seed.orbit.eta, branch.orbit, &orbit).termination == Termination::kConverged;
+    if (found) break;
+  }
+  std::optional<double> grazing, fold;
+  if (!found) return {grazing, fold};
+  for (const SpecialPoint& s : ContinueBranch({at, orbit, {}}, branch).special_points) {
+    if (s.type != SpecialPointType::kGrazing && s.type != SpecialPointType::kFold) continue;
+    std::optional<double>& slot = s.type == SpecialPointType::kGrazing ? grazing : fold;
+    if (!slot || std::abs(s.parameter - omega) < std::abs(*slot - omega)) slot = s.parameter;
+  }
+  return {grazing, fold};
+}
+
+}  // namespace
+
+TEST_CASE(
+    "contact corner: the paper's P(3,1) fold curve in (omega, A1) ends where a new contact is "
+    "born, and one-parameter folds touch that grazing there",
+    "[curve][contact-corner]") {
+  const System system = PaperSystem(0.44);
+  ContinuationOptions search;
+  search.lower = 0.1;
+  search.upper = 2.0;
+  search.orbit.p = 3;
+  const std::optional<SpecialPoint> fold = LocateSpecialPoint(
+      {system, testing::SeededOrbit(system, 3, 1), {}}, search, SpecialPointType::kFold);
+  REQUIRE(fold.has_value());
+  CurveOptions options = testing::Plane("A1", 0.05, 3.0, 3, 1);
+  options.lower = 0.1;
+  options.upper = 2.0;
+  const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
+  // The tangent's parameter part once jumped sign here, where the σ row was
+  // differenced across the new contact: that was reported as a cusp.
+  for (const Codim2Point& c : curve.codim2_points) CHECK(c.type != Codim2Type::kCusp);
+  REQUIRE(curve.begin == CurveEnd::kGrazing);
+  const Codim2Point& corner = curve.codim2_points.front();
+  CHECK(corner.type == Codim2Type::kFoldGrazing);
+  CHECK(corner.defining_residual < 1e-10);
+  CHECK(corner.second_residual < 1e-9);
+  const double omega_c = corner.point.parameter, a1_c = corner.point.parameter2;
+  INFO("corner at omega = " << omega_c << ", A1 = " << a1_c);
+  const CurvePoint& seed = curve.points[6];
+  // At the corner's A1 the branch in omega grazes at the corner's omega.
+  const auto [grazing_c, fold_c] = GrazingAndFold(a1_c, omega_c, seed);
+  REQUIRE(grazing_c.has_value());
+  CHECK(std::abs(*grazing_c - omega_c) < 1e-8);
+  // Below it the branch folds just before it grazes, D(δ) = ω_graze − ω_fold
+  // at A1 = a1_c − δ; fitted by a δ + b δ² + c δ³, a parabola whose vertex
+  // −a / (2b) is where the fold curve touches the grazing curve.
+  const std::array<double, 4> deltas{1e-4, 1.5e-4, 2e-4, 3e-4};
+  Eigen::Matrix4d powers;
+  Eigen::Vector4d gaps;
+  for (int k = 0; k < 4; ++k) {
+    const double d = deltas[k];
+    const auto [grazing, fold_near] = GrazingAndFold(a1_c - d, omega_c, seed);
+    REQUIRE(grazing.has_value());
+    REQUIRE(fold_near.has_value());
+    powers.row(k) << d, d * d, d * d * d, d * d * d * d;
+    gaps(k) = *grazing - *fold_near;
+  }
+  const Eigen::Vector4d fit = powers.fullPivLu().solve(gaps);
+  INFO("gaps " << gaps.transpose() << ", fit " << fit.transpose());
+  CHECK(fit(1) > 0.0);
+  CHECK(std::abs(fit(0) / (2.0 * fit(1))) < 1e-6);
+}
