@@ -178,6 +178,11 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
     start.special.parameter = s.at("param").get<double>();
     start.special.point.parameter = start.special.parameter;
     start.special.monitor = s.value("monitor", 0.0);
+    if (s.contains("multiplier")) {
+      const std::vector<double> l = s.at("multiplier").get<std::vector<double>>();
+      Require(l.size() == 2, "--start-json: a multiplier is [re, im]");
+      start.special.multiplier = {l[0], l[1]};
+    }
     const bool vanishing = s.contains("vanishing_impact") && !s.at("vanishing_impact").is_null();
     Require(!vanishing || orbit.p == 1,
             "--start-json: a vanishing impact's curve starts from the orbit with one impact "

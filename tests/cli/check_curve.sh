@@ -43,6 +43,9 @@ done
   >"$work/stdout" || fail "--start-json failed: $(cat "$work/stdout")"
 grep -q "begins:   parameter_bound (reached omega = 1.61564" "$work/stdout" ||
   fail "--start-json gave another curve: $(cat "$work/stdout")"
+# The start line shows the point's multiplier as the JSON has it.
+grep -q "^start:      period doubling at omega = .* (multiplier -1.000000000" "$work/stdout" ||
+  fail "--start-json lost the multiplier: $(cat "$work/stdout")"
 # P(1,2)'s impact vanishes: followed as the non-impacting response touching
 # the stop (p = 0 in the JSON, points without multipliers).
 "$impactkit" curve --type grazing --p 1 --q 2 --omega 2.0 --param2 xs --from 0.5 --to 3 \
