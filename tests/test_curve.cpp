@@ -132,6 +132,32 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "curves: the paper's P(1,1) fold curve in (omega, A2) through A2 = -0.5 is a closed loop, "
+    "traced once round, whose points one-parameter continuation confirms",
+    "[curve]") {
+  // With the second mass forced against the first, P(1,1)'s branch in
+  // omega folds (at 1.0536 for A2 = -0.5); the folds form a loop in
+  // omega in [0.72, 1.19], A2 in [-0.79, -0.33] (arclength 7.16 in X).
+  const System system = At(PaperSystem(1.2), "A2", -0.5);
+  const Curve curve = ContinueCurve(Start(system, SpecialPointType::kFold, 1, 1),
+                                    Plane("A2", -1.5, 0.5, 1, 1));
+  REQUIRE(curve.end == CurveEnd::kClosed);
+  CHECK(curve.begin == CurveEnd::kClosed);
+  REQUIRE(curve.points.size() > 20);
+  const CurvePoint& start = curve.points.front();
+  CHECK(curve.points.back().x == start.x);
+  // Once round: no point but those at the ends comes back near the start.
+  for (std::size_t k = 3; k + 3 < curve.points.size(); ++k) {
+    CHECK((curve.points[k].x - start.x).norm() > 0.01);
+  }
+  for (const CurvePoint* point : Spread(curve)) {
+    INFO("A2 = " << point->parameter2);
+    CHECK(std::abs(OneParameterOmega(system, curve, *point, SpecialPointType::kFold) -
+                   point->parameter) < 1e-8);
+  }
+}
+
 TEST_CASE("curves: P(2,1)'s vanishing impact is followed as P(1,1)'s grazing, the same curve",
           "[curve]") {
   const System system = PaperSystem(0.6);

@@ -96,7 +96,7 @@ void BindCurveClass(py::module_& module) {
       .def_property_readonly(
           "begin", [](const Curve& c) { return ToString(c.begin); },
           "Why the first point is the first: 'parameter_bound', 'grazing', 'sticking', "
-          "'max_points' or 'corrector_failed'.")
+          "'max_points', 'corrector_failed' or 'closed' (a loop, traced once round).")
       .def_property_readonly(
           "end", [](const Curve& c) { return ToString(c.end); }, "Why the last point is the last.")
       .def_readonly("begin_message", &Curve::begin_message, "The beginning in words.")

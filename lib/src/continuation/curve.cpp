@@ -118,6 +118,15 @@ class CurveTracer {
       }
       if (options_.locate_codim2) LocateCodim2(from, *next, &half);
       Accept(*next, &half);
+      if (Closes(start, from, *next)) {
+        CurvePoint again = start;
+        again.arclength = next->arclength + std::copysign((start.x - next->x).norm(), step);
+        Accept(again, &half);
+        half.end = CurveEnd::kClosed;
+        half.message =
+            fmt::format("the curve closes on itself (arclength {:.6g})", std::abs(again.arclength));
+        return half;
+      }
       if (LimitAhead(half, step) && EndAtExistenceLimit(half)) return half;
       if (EndAtCorner(half)) return half;
       if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
@@ -143,6 +152,17 @@ class CurveTracer {
     std::optional<CurvePoint> point = problem_.Describe(*x, t);
     if (point) point->arclength = from.arclength + s;
     return point;
+  }
+
+  /// True where the step from a to b comes back to the start: it crosses,
+  /// from behind, the hyperplane through the start normal to its tangent,
+  /// within two steps of the start. (Going away, a loop crosses that plane
+  /// the other way; a curve that only passes near its start is farther.)
+  static bool Closes(const CurvePoint& start, const CurvePoint& a, const CurvePoint& b) {
+    const double before = start.tangent.dot(a.x - start.x);
+    const double after = start.tangent.dot(b.x - start.x);
+    return before < 0 && after >= 0 &&
+           (b.x - start.x).norm() <= 2.0 * std::abs(b.arclength - a.arclength);
   }
 
   bool Beyond(double mu1, double mu2) const {
@@ -452,6 +472,8 @@ std::string ToString(CurveEnd end) {
       return "max_points";
     case CurveEnd::kCorrectorFailed:
       return "corrector_failed";
+    case CurveEnd::kClosed:
+      return "closed";
   }
   return "unknown";
 }
@@ -512,10 +534,13 @@ Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
 
   CurveTracer tracer(problem, special.type, own, progress);
   HalfCurve forward = tracer.Trace(first);
-  CurvePoint reversed = first;
-  reversed.tangent = -first.tangent;
-  problem.UpdateBorders(first.x);
-  HalfCurve backward = tracer.Trace(reversed);
+  HalfCurve backward{{first}, {}, forward.end, forward.message};
+  if (forward.end != CurveEnd::kClosed) {  // a loop is whole in one direction
+    CurvePoint reversed = first;
+    reversed.tangent = -first.tangent;
+    problem.UpdateBorders(first.x);
+    backward = tracer.Trace(reversed);
+  }
 
   Curve curve;
   curve.type = special.type;

@@ -120,9 +120,11 @@ enum class CurveEnd {
   kSticking,         ///< the orbit stops existing at sticking onset (codim-2 point)
   kMaxPoints,        ///< max_points reached
   kCorrectorFailed,  ///< no convergence even with the smallest step
+  kClosed,           ///< the curve came back to its start: a closed loop
 };
 
-/// "parameter_bound", "grazing", "sticking", "max_points", "corrector_failed".
+/// "parameter_bound", "grazing", "sticking", "max_points", "corrector_failed",
+/// "closed".
 std::string ToString(CurveEnd end);
 
 struct Curve {
@@ -130,7 +132,8 @@ struct Curve {
   std::string parameter, parameter2;
   int p = 0, q = 0;
   /// In order along the curve: from the end reached with μ2 decreasing to
-  /// the end reached with μ2 increasing.
+  /// the end reached with μ2 increasing. A closed curve is traced once,
+  /// from its start round to the start again (its last point).
   std::vector<CurvePoint> points;
   std::vector<Codim2Point> codim2_points;  ///< in order along the curve
   CurveEnd begin = CurveEnd::kMaxPoints, end = CurveEnd::kMaxPoints;
