@@ -140,8 +140,8 @@ TEST_CASE(
   // omega folds (at 1.0536 for A2 = -0.5); the folds form a loop in
   // omega in [0.72, 1.19], A2 in [-0.79, -0.33] (arclength 7.16 in X).
   const System system = At(PaperSystem(1.2), "A2", -0.5);
-  const Curve curve = ContinueCurve(Start(system, SpecialPointType::kFold, 1, 1),
-                                    Plane("A2", -1.5, 0.5, 1, 1));
+  const Curve curve =
+      ContinueCurve(Start(system, SpecialPointType::kFold, 1, 1), Plane("A2", -1.5, 0.5, 1, 1));
   REQUIRE(curve.end == CurveEnd::kClosed);
   CHECK(curve.begin == CurveEnd::kClosed);
   REQUIRE(curve.points.size() > 20);
