@@ -6,13 +6,15 @@
 # paper's r = 0.7, xs = 0.1; the region where P(1,1) exists and is stable
 # (between its grazing and its period doubling) shaded; where P(1,q)'s
 # impact vanishes (the non-impacting response touches the stop); the
-# codimension-two points found marked. docs/continuation.md describes them.
+# codimension-two points found marked. Then a cusp: P(7,4)'s fold curve in
+# (Ω, r), which turns back where two folds of the branch in Ω meet.
+# docs/continuation.md describes them.
 #
 #   examples/parameter_planes.sh [impactkit binary] [figure folder] [data folder]
 #
 # Defaults: ./build/apps/impactkit, ./out/figures, ./out/curves. The
-# figures are plane-r.png and plane-xs.png; each curve's CSV and JSON
-# (docs/curves-json.md) are data. Needs gnuplot.
+# figures are plane-r.png, plane-xs.png and cusp-p74-r.png; each curve's
+# CSV and JSON (docs/curves-json.md) are data. Needs gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
 figures=${2:-./out/figures}
@@ -71,3 +73,11 @@ GNUPLOT
 
 plane r 0.3 0.95
 plane xs 0 0.3
+
+# The cusp: P(7,4)'s fold near Ω = 1.6917 at r = 0.7, followed in r. The
+# motion from rest at this Ω is not P(7,4), so the orbit is seeded by a
+# guess (a P(7,4) orbit of `impactkit diagram`); the fold is located from
+# the orbit it converges to.
+"$impactkit" curve --type fold --p 7 --q 4 --omega 1.6915 --guess=0.4277,2.1354,-1.2808,0.1051 \
+  --param omega --param2 r --from 1.68 --to 1.71 --from2 0.6 --to2 0.95 \
+  --out "$data/fold74-r.csv" --json "$data/fold74-r.json" --plot "$figures/cusp-p74-r.png"
