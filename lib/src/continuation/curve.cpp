@@ -33,8 +33,9 @@ constexpr double kGrazingBracket = 1e-13;
 /// no zero. Smooth tests are located to ~1e-12 of their size.
 constexpr double kLocatedZero = 1e-6;
 
-/// Why a curve may stop short of its located end: "; impact 1 vanishes
-/// nearby (depth 2.2e-07, not located to 1e-10)" when a monitor is small.
+/// Why a curve may stop short of its located end (its corrector failed or
+/// it reached max_points): "; impact 1 vanishes nearby (depth 2.2e-07, not
+/// located to 1e-10)" when a monitor is small.
 std::string NearLimit(const CurvePoint& point) {
   if (point.orbit.multipliers.size() == 0) return "";  // the response's grazing: no orbit
   const OrbitContacts& c = point.orbit.contacts;
@@ -133,7 +134,10 @@ class CurveTracer {
       if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
     }
     half.end = CurveEnd::kMaxPoints;
-    half.message = fmt::format("{} points reached", options_.max_points);
+    // Near a vanishing impact the corrector may creep on by tiny steps to
+    // the cap: say so.
+    half.message =
+        fmt::format("{} points reached{}", options_.max_points, NearLimit(half.points.back()));
     return half;
   }
 
