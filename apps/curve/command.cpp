@@ -47,10 +47,19 @@ struct CurveRequest {
   std::string out, json, plot;
 };
 
-SpecialPointType CurveType(const std::string& name) {
+/// The special point a curve can follow that `name` names, if any.
+std::optional<SpecialPointType> FollowableType(const std::string& name) {
   const std::optional<SpecialPointType> type = SpecialPointTypeFromName(name);
-  Require(type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
-              type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing,
+  if (type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
+      type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing) {
+    return type;
+  }
+  return std::nullopt;
+}
+
+SpecialPointType CurveType(const std::string& name) {
+  const std::optional<SpecialPointType> type = FollowableType(name);
+  Require(type.has_value(),
           fmt::format("--type must be fold, period_doubling, neimark_sacker or grazing, got '{}'",
                       name));
   return *type;
@@ -156,7 +165,17 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
   nlohmann::json j;
   try {
     in >> j;
+    Require(j.value("kind", std::string()) != "sticking",
+            fmt::format("--start-json {}: a sticking family P(inf,q) (`continue --sticking`); "
+                        "curve follows fold, period_doubling, neimark_sacker and grazing points "
+                        "of orbits P(p,q)",
+                        request.start_json));
     const nlohmann::json& s = j.at("special_points").at(request.point - 1);
+    const std::string type = s.at("type").get<std::string>();
+    Require(FollowableType(type).has_value(),
+            fmt::format("--start-json: point {} is a {}; curve follows fold, period_doubling, "
+                        "neimark_sacker and grazing points",
+                        request.point, type));
     std::ostringstream text;
     text << j.at("system");
     *system = ParseSystem(text.str(), SystemFileFormat::kJson, request.start_json);

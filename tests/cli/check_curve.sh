@@ -7,7 +7,7 @@
 # the parameter names; a start read from `impactkit continue --json` gives
 # the same curve as the direct start; P(1,2)'s vanishing impact is the
 # non-impacting response's grazing, and its fold curve begins at a corner
-# on it.
+# on it; a sticking family's JSON is refused as a start, with its reason.
 #
 #     check_curve.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -65,4 +65,11 @@ json=$(tr -d ' \n' <"$work/f.json")
 [[ $json == *'"multipliers":[],"omega":2.37786842'*'"outside":null'* ]] || fail "corner JSON: $json"
 grep -v "^#" "$work/f.csv" | sed -n 2p | grep -q '^2.37786842[0-9]*,0.0314465[0-9]*,[-0-9.e]*,,,,,,fold_grazing$' ||
   fail "corner CSV row: $(grep -v "^#" "$work/f.csv" | sed -n 2p)"
+# A sticking family's JSON is refused, saying why, with exit status 2.
+"$impactkit" continue --from 0.2 --to 0.5 --json "$work/s.json" >/dev/null || fail "sticking family failed"
+status=0
+"$impactkit" curve --start-json "$work/s.json" --param2 r --from2 0.3 --to2 0.9 >/dev/null \
+  2>"$work/stderr" || status=$?
+((status == 2)) && grep -q "a sticking family P(inf,q) (.continue --sticking.); curve follows" \
+  "$work/stderr" || fail "sticking JSON: exit $status, $(cat "$work/stderr")"
 echo ok
