@@ -50,10 +50,7 @@ struct CurveRequest {
 /// The special point a curve can follow that `name` names, if any.
 std::optional<SpecialPointType> FollowableType(const std::string& name) {
   const std::optional<SpecialPointType> type = SpecialPointTypeFromName(name);
-  if (type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
-      type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing) {
-    return type;
-  }
+  if (type && HasCurve(*type)) return type;
   return std::nullopt;
 }
 

@@ -414,8 +414,7 @@ CurvePoint StartPoint(CurveProblem& problem, const Eigen::VectorXd& x0,
 
 void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1, double mu2) {
   const SpecialPointType type = start.special.type;
-  Require(type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
-              type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing,
+  Require(HasCurve(type),
           fmt::format("a {} point has no two-parameter curve here (fold, period_doubling, "
                       "neimark_sacker and grazing have)",
                       ToString(type)));
@@ -435,6 +434,11 @@ void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1
 }
 
 }  // namespace
+
+bool HasCurve(SpecialPointType type) {
+  return type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
+         type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing;
+}
 
 std::string ToString(Codim2Type type) {
   switch (type) {

@@ -156,6 +156,10 @@ struct CurveStart {
 
 using CurveProgress = std::function<void(const CurvePoint&)>;
 
+/// Whether special points of this type lie on two-parameter curves that
+/// ContinueCurve follows: fold, period doubling, Neimark–Sacker, grazing.
+bool HasCurve(SpecialPointType type);
+
 /// Follows the curve through `start` both ways. Throws InvalidInput for bad
 /// options (the same parameter twice, n, bounds not holding the start), a
 /// special point of another kind (branch points, sticking), a vanishing
