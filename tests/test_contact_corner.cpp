@@ -1,11 +1,14 @@
 // Fold curves that end where their orbit's flight touches the stop (a
 // fold–grazing corner by a new contact): the N = 1 oscillator's against
-// the closed form, the paper's P(3,1) against one-parameter branches.
+// the closed form, the paper's P(3,1) and its chatter orbit P(8,1)'s
+// against one-parameter branches.
 
+#include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "closed_form_sdof.hpp"
@@ -119,20 +122,25 @@ TEST_CASE(
 
 namespace {
 
-/// The grazing and the fold nearest `omega` on the P(3,1) branch in omega
-/// through `seed`'s orbit at this A1 (either empty if not found).
-std::pair<std::optional<double>, std::optional<double>> GrazingAndFold(double a1, double omega,
-                                                                       const CurvePoint& seed) {
+/// The grazing and the fold nearest `omega` on the P(p,q) branch in omega
+/// through `seed`'s orbit, with the paper's `second` parameter at `value`,
+/// followed by steps up to `max_step` (either empty if not found).
+std::pair<std::optional<double>, std::optional<double>> GrazingAndFold(
+    const std::string& second, double value, double omega, const CurvePoint& seed, int p, int q,
+    double max_step = ContinuationOptions().max_step) {
   ContinuationOptions branch;
   branch.lower = omega - 0.02;
   branch.upper = omega + 0.02;
   branch.direction = ContinuationDirection::kBoth;
-  branch.orbit.p = 3;
+  branch.orbit.p = p;
+  branch.orbit.q = q;
+  branch.initial_step = std::min(branch.initial_step, max_step);
+  branch.max_step = max_step;
   System at;
   PeriodicOrbit orbit;
   bool found = false;
   for (double shift : {0.0, 1e-4, -1e-4, 1e-3, -1e-3}) {
-    at = At(At(PaperSystem(omega), "A1", a1), "omega", seed.parameter + shift);
+    at = At(At(PaperSystem(omega), second, value), "omega", seed.parameter + shift);
     found =
         FindOrbit(at, seed.orbit.eta, branch.orbit, &orbit).termination == Termination::kConverged;
     if (found) break;
@@ -177,7 +185,7 @@ TEST_CASE(
   INFO("corner at omega = " << omega_c << ", A1 = " << a1_c);
   const CurvePoint& seed = curve.points[6];
   // At the corner's A1 the branch in omega grazes at the corner's omega.
-  const auto [grazing_c, fold_c] = GrazingAndFold(a1_c, omega_c, seed);
+  const auto [grazing_c, fold_c] = GrazingAndFold("A1", a1_c, omega_c, seed, 3, 1);
   REQUIRE(grazing_c.has_value());
   CHECK(std::abs(*grazing_c - omega_c) < 1e-8);
   // Below it the branch folds just before it grazes, D(δ) = ω_graze − ω_fold
@@ -188,7 +196,7 @@ TEST_CASE(
   Eigen::Vector4d gaps;
   for (int k = 0; k < 4; ++k) {
     const double d = deltas[k];
-    const auto [grazing, fold_near] = GrazingAndFold(a1_c - d, omega_c, seed);
+    const auto [grazing, fold_near] = GrazingAndFold("A1", a1_c - d, omega_c, seed, 3, 1);
     REQUIRE(grazing.has_value());
     REQUIRE(fold_near.has_value());
     powers.row(k) << d, d * d, d * d * d, d * d * d * d;
@@ -198,4 +206,50 @@ TEST_CASE(
   INFO("gaps " << gaps.transpose() << ", fit " << fit.transpose());
   CHECK(fit(1) > 0.0);
   CHECK(std::abs(fit(0) / (2.0 * fit(1))) < 1e-6);
+}
+
+TEST_CASE(
+    "contact corner: the paper's chatter orbit P(8,1) has a fold curve in (omega, xs) that ends "
+    "where a chatter impact is born, at the grazing of the branch in omega",
+    "[curve][contact-corner]") {
+  // The seed: a P(8,1) orbit of `impactkit diagram --from 0.3 --to 0.5`
+  // near its fold (a guess; the fold is located from the orbit it
+  // converges to). Eight impacts per period: the chatter before sticking.
+  const System system = PaperSystem(0.3142);
+  ContinuationOptions search;
+  search.lower = 0.25;
+  search.upper = 0.4;
+  search.orbit.p = 8;
+  search.orbit.q = 1;
+  PeriodicOrbit seed;
+  REQUIRE(
+      FindOrbit(system, Eigen::Vector4d(0.35183, 19.7822, 0.11437, 0.24441), search.orbit, &seed)
+          .termination == Termination::kConverged);
+  const std::optional<SpecialPoint> fold =
+      LocateSpecialPoint({system, seed, {}}, search, SpecialPointType::kFold);
+  REQUIRE(fold.has_value());
+  CurveOptions options = testing::Plane("xs", 0.0, 0.3, 8, 1);
+  options.lower = 0.2;
+  options.upper = 0.6;
+  const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
+  REQUIRE(curve.end == CurveEnd::kGrazing);
+  const Codim2Point& corner = curve.codim2_points.back();
+  CHECK(corner.type == Codim2Type::kFoldGrazing);
+  CHECK(corner.defining_residual < 1e-10);
+  CHECK(corner.second_residual < 1e-9);
+  const double omega_c = corner.point.parameter, xs_c = corner.point.parameter2;
+  INFO("corner at omega = " << omega_c << ", xs = " << xs_c);
+  // A new contact: the corner orbit's highest flight maximum is at the
+  // stop. At its xs the branch in omega grazes at its omega.
+  const std::optional<double>& clearance = corner.point.orbit.contacts.clearance;
+  REQUIRE(clearance.has_value());
+  CHECK(std::abs(*clearance) < 1e-9);
+  // Steps of 1e-4: beside these orbits, whose second flight rises to 1e-4
+  // below the stop, lie P(8,1) orbits with a slow impact there instead
+  // (depth 3e-5, no such maximum); steps of 1e-3 jumped to those and passed
+  // the grazing unseen.
+  const auto [grazing, fold_c] =
+      GrazingAndFold("xs", xs_c, omega_c, curve.points[curve.points.size() - 6], 8, 1, 1e-4);
+  REQUIRE(grazing.has_value());
+  CHECK(std::abs(*grazing - omega_c) < 1e-8);
 }
