@@ -24,6 +24,13 @@ using testing::SdofParameters;
 
 namespace {
 
+/// A fold–grazing corner, its residuals at the curves' tolerances.
+void CheckFoldGrazing(const Codim2Point& corner) {
+  CHECK(corner.type == Codim2Type::kFoldGrazing);
+  CHECK(corner.defining_residual < 1e-10);
+  CHECK(corner.second_residual < 1e-9);
+}
+
 /// The stop position xs < 0 at which the closed form's P(1,1) speeds,
 /// qa u² + 2 xs d1 u + xs² − X² = 0 (closed_form_sdof.hpp), have a double
 /// root at p.omega: xs² (qa − d1²) = qa X². (d and X do not depend on xs.)
@@ -93,9 +100,7 @@ TEST_CASE(
   REQUIRE(curve.end == CurveEnd::kGrazing);
   REQUIRE(!curve.codim2_points.empty());
   const Codim2Point& corner = curve.codim2_points.back();
-  CHECK(corner.type == Codim2Type::kFoldGrazing);
-  CHECK(corner.defining_residual < 1e-10);
-  CHECK(corner.second_residual < 1e-9);
+  CheckFoldGrazing(corner);
 
   // Along the curve: the closed form's fold stop at each point's omega.
   for (std::size_t k = 0; k < curve.points.size(); k += curve.points.size() / 8) {
@@ -155,6 +160,26 @@ std::pair<std::optional<double>, std::optional<double>> GrazingAndFold(
   return {grazing, fold};
 }
 
+/// The fold curve in (omega, `second`) of the P(p,q) branch through
+/// `seed`: its fold located in omega in [lower, upper], then followed
+/// within those bounds and `second` in [lower2, upper2].
+Curve FoldCurve(const System& system, const PeriodicOrbit& seed, int p, int q,
+                const std::string& second, double lower2, double upper2, double lower,
+                double upper) {
+  ContinuationOptions search;
+  search.lower = lower;
+  search.upper = upper;
+  search.orbit.p = p;
+  search.orbit.q = q;
+  const std::optional<SpecialPoint> fold =
+      LocateSpecialPoint({system, seed, {}}, search, SpecialPointType::kFold);
+  REQUIRE(fold.has_value());
+  CurveOptions options = testing::Plane(second, lower2, upper2, p, q);
+  options.lower = lower;
+  options.upper = upper;
+  return ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -162,25 +187,14 @@ TEST_CASE(
     "born, and one-parameter folds touch that grazing there",
     "[curve][contact-corner]") {
   const System system = PaperSystem(0.44);
-  ContinuationOptions search;
-  search.lower = 0.1;
-  search.upper = 2.0;
-  search.orbit.p = 3;
-  const std::optional<SpecialPoint> fold = LocateSpecialPoint(
-      {system, testing::SeededOrbit(system, 3, 1), {}}, search, SpecialPointType::kFold);
-  REQUIRE(fold.has_value());
-  CurveOptions options = testing::Plane("A1", 0.05, 3.0, 3, 1);
-  options.lower = 0.1;
-  options.upper = 2.0;
-  const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
+  const Curve curve =
+      FoldCurve(system, testing::SeededOrbit(system, 3, 1), 3, 1, "A1", 0.05, 3.0, 0.1, 2.0);
   // The tangent's parameter part once jumped sign here, where the σ row was
   // differenced across the new contact: that was reported as a cusp.
   for (const Codim2Point& c : curve.codim2_points) CHECK(c.type != Codim2Type::kCusp);
   REQUIRE(curve.begin == CurveEnd::kGrazing);
   const Codim2Point& corner = curve.codim2_points.front();
-  CHECK(corner.type == Codim2Type::kFoldGrazing);
-  CHECK(corner.defining_residual < 1e-10);
-  CHECK(corner.second_residual < 1e-9);
+  CheckFoldGrazing(corner);
   const double omega_c = corner.point.parameter, a1_c = corner.point.parameter2;
   INFO("corner at omega = " << omega_c << ", A1 = " << a1_c);
   const CurvePoint& seed = curve.points[6];
@@ -216,27 +230,15 @@ TEST_CASE(
   // near its fold (a guess; the fold is located from the orbit it
   // converges to). Eight impacts per period: the chatter before sticking.
   const System system = PaperSystem(0.3142);
-  ContinuationOptions search;
-  search.lower = 0.25;
-  search.upper = 0.4;
-  search.orbit.p = 8;
-  search.orbit.q = 1;
+  OrbitOptions orbit;
+  orbit.p = 8;
   PeriodicOrbit seed;
-  REQUIRE(
-      FindOrbit(system, Eigen::Vector4d(0.35183, 19.7822, 0.11437, 0.24441), search.orbit, &seed)
-          .termination == Termination::kConverged);
-  const std::optional<SpecialPoint> fold =
-      LocateSpecialPoint({system, seed, {}}, search, SpecialPointType::kFold);
-  REQUIRE(fold.has_value());
-  CurveOptions options = testing::Plane("xs", 0.0, 0.3, 8, 1);
-  options.lower = 0.2;
-  options.upper = 0.6;
-  const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
+  REQUIRE(FindOrbit(system, Eigen::Vector4d(0.35183, 19.7822, 0.11437, 0.24441), orbit, &seed)
+              .termination == Termination::kConverged);
+  const Curve curve = FoldCurve(system, seed, 8, 1, "xs", 0.0, 0.3, 0.2, 0.6);
   REQUIRE(curve.end == CurveEnd::kGrazing);
   const Codim2Point& corner = curve.codim2_points.back();
-  CHECK(corner.type == Codim2Type::kFoldGrazing);
-  CHECK(corner.defining_residual < 1e-10);
-  CHECK(corner.second_residual < 1e-9);
+  CheckFoldGrazing(corner);
   const double omega_c = corner.point.parameter, xs_c = corner.point.parameter2;
   INFO("corner at omega = " << omega_c << ", xs = " << xs_c);
   // A new contact: the corner orbit's highest flight maximum is at the
