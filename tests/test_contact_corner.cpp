@@ -17,6 +17,7 @@
 #include "impactkit/model/parameters.hpp"
 #include "seeded_orbit.hpp"
 #include "system_at.hpp"
+#include "touching_vertex.hpp"
 
 using namespace impactkit;
 using testing::At;
@@ -203,23 +204,17 @@ TEST_CASE(
   REQUIRE(grazing_c.has_value());
   CHECK(std::abs(*grazing_c - omega_c) < 1e-8);
   // Below it the branch folds just before it grazes, D(δ) = ω_graze − ω_fold
-  // at A1 = a1_c − δ; fitted by a δ + b δ² + c δ³, a parabola whose vertex
-  // −a / (2b) is where the fold curve touches the grazing curve.
+  // at A1 = a1_c − δ; fitted by a δ + b δ² + c δ³ + d δ⁴, a parabola whose
+  // vertex −a / (2b) is where the fold curve touches the grazing curve.
   const std::array<double, 4> deltas{1e-4, 1.5e-4, 2e-4, 3e-4};
-  Eigen::Matrix4d powers;
   Eigen::Vector4d gaps;
   for (int k = 0; k < 4; ++k) {
-    const double d = deltas[k];
-    const auto [grazing, fold_near] = GrazingAndFold("A1", a1_c - d, omega_c, seed, 3, 1);
+    const auto [grazing, fold_near] = GrazingAndFold("A1", a1_c - deltas[k], omega_c, seed, 3, 1);
     REQUIRE(grazing.has_value());
     REQUIRE(fold_near.has_value());
-    powers.row(k) << d, d * d, d * d * d, d * d * d * d;
     gaps(k) = *grazing - *fold_near;
   }
-  const Eigen::Vector4d fit = powers.fullPivLu().solve(gaps);
-  INFO("gaps " << gaps.transpose() << ", fit " << fit.transpose());
-  CHECK(fit(1) > 0.0);
-  CHECK(std::abs(fit(0) / (2.0 * fit(1))) < 1e-6);
+  testing::CheckTouchingAtCorner(deltas, gaps, 1e-6);
 }
 
 TEST_CASE(
