@@ -46,6 +46,7 @@ echo "  branch-*.csv      each branch of the connected diagram, one row per poin
 echo "  fig3-sweep.csv    the Fig. 3 sweep, one row per value"
 echo "  *.png             Figs. 2 and 3 and the connected diagram (diagram.png)"
 echo "  figures/          the paper's Figs. 2-12 from examples/fig*.sh, the parameter"
-echo "                    planes plane-*.png from examples/parameter_planes.sh, the maps"
+echo "                    planes plane-*.png and the cusp cusp-p74-r.png from"
+echo "                    examples/parameter_planes.sh, the maps"
 echo "                    from examples/parameter_maps.sh and *_python.png from examples/python/"
 echo "  data/             their CSV and JSON"

@@ -7,7 +7,8 @@
 # the parameter names; a start read from `impactkit continue --json` gives
 # the same curve as the direct start; P(1,2)'s vanishing impact is the
 # non-impacting response's grazing, and its fold curve begins at a corner
-# on it; a sticking family's JSON is refused as a start, with its reason.
+# on it; a curve stopped by --max-points names the impact vanishing
+# nearby; a sticking family's JSON is refused as a start, with its reason.
 #
 #     check_curve.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -65,6 +66,13 @@ json=$(tr -d ' \n' <"$work/f.json")
 [[ $json == *'"multipliers":[],"omega":2.37786842'*'"outside":null'* ]] || fail "corner JSON: $json"
 grep -v "^#" "$work/f.csv" | sed -n 2p | grep -q '^2.37786842[0-9]*,0.0314465[0-9]*,[-0-9.e]*,,,,,,fold_grazing$' ||
   fail "corner CSV row: $(grep -v "^#" "$work/f.csv" | sed -n 2p)"
+# A curve cut off by --max-points beside a vanishing impact says so: P(5,2)'s
+# fold curve in (omega, xs) creeps there (docs/continuation.md, known limits).
+"$impactkit" curve --type fold --p 5 --q 2 --omega 1.67526 \
+  --guess=-0.54522,3.62549,1.06863,0.0181567 --param2 xs --from2 0 --to2 0.2 --from 1.5 \
+  --to 1.9 --max-points 60 >"$work/stdout" 2>/dev/null || fail "P(5,2) fold curve: $(cat "$work/stdout")"
+grep -q "max_points (60 points reached; impact 1 vanishes nearby (depth " "$work/stdout" ||
+  fail "max_points without the vanishing impact: $(cat "$work/stdout")"
 # A sticking family's JSON is refused, saying why, with exit status 2.
 "$impactkit" continue --from 0.2 --to 0.5 --json "$work/s.json" >/dev/null || fail "sticking family failed"
 status=0
