@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "impactkit/core/errors.hpp"
+#include "impactkit/core/large_buffer_allocator.hpp"
 
 namespace impactkit {
 
@@ -87,9 +88,9 @@ class RecordLog {
   Iterator end() const { return {this, size()}; }
 
  private:
-  std::vector<typename Layout::Scalars> scalars_;
-  std::vector<double>
-      values_;  ///< record i's vectors at [i kVectors length, (i + 1) kVectors length)
+  std::vector<typename Layout::Scalars, LargeBufferAllocator<typename Layout::Scalars>> scalars_;
+  /// Record i's vectors at [i kVectors length, (i + 1) kVectors length).
+  std::vector<double, LargeBufferAllocator<double>> values_;
   Eigen::Index length_ = 0;
 };
 
