@@ -107,19 +107,24 @@ void Signal::ValueAndSlope(double t, double* value, double* slope) const {
   ValueSlopeCurvature(t, value, slope, &curvature);
 }
 
+void Signal::ModeTerms::Set(const ModeBasis& mode, double alpha0, double gamma0) {
+  for (int k = 0; k < 3; ++k) {
+    alpha[k] = alpha0;
+    gamma[k] = gamma0;
+    mode.Differentiate(&alpha0, &gamma0);
+  }
+}
+
 void Signal::ValueSlopeCurvature(double t, double* value, double* slope, double* curvature) const {
   const double tau = t - t0_;
   double w = constant_, dw = 0.0, d2w = 0.0;
-  const auto& modes = clock_->Modes();
-  for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
+  for (std::size_t j = 0; j < terms_.size(); ++j) {
     double ec, es;
     clock_->Evaluate(static_cast<int>(j), tau, &ec, &es);
-    double a = alpha_(j), g = gamma_(j);
-    w += a * ec + g * es;
-    modes[j].Differentiate(&a, &g);
-    dw += a * ec + g * es;
-    modes[j].Differentiate(&a, &g);
-    d2w += a * ec + g * es;
+    const ModeTerms& m = terms_[j];
+    w += m.alpha[0] * ec + m.gamma[0] * es;
+    dw += m.alpha[1] * ec + m.gamma[1] * es;
+    d2w += m.alpha[2] * ec + m.gamma[2] * es;
   }
   const std::complex<double> forced = forced_ * clock_->Rotor(tau);
   *value = w + forced.real();
@@ -129,12 +134,13 @@ void Signal::ValueSlopeCurvature(double t, double* value, double* slope, double*
 
 Signal Signal::Derivative(int order) const {
   Signal d = *this;
-  for (int k = 0; k < order; ++k) {
-    for (Eigen::Index j = 0; j < d.alpha_.size(); ++j) {
-      clock_->Modes()[j].Differentiate(&d.alpha_(j), &d.gamma_(j));
-    }
-    d.forced_ *= std::complex<double>(0.0, omega_);
+  for (std::size_t j = 0; j < d.terms_.size(); ++j) {
+    const ModeBasis& mode = clock_->Modes()[j];
+    double alpha = terms_[j].alpha[0], gamma = terms_[j].gamma[0];
+    for (int k = 0; k < order; ++k) mode.Differentiate(&alpha, &gamma);
+    d.terms_[j].Set(mode, alpha, gamma);
   }
+  for (int k = 0; k < order; ++k) d.forced_ *= std::complex<double>(0.0, omega_);
   d.forced_magnitude_ = std::abs(d.forced_);
   if (order > 0) d.constant_ = 0.0;
   return d;
@@ -154,10 +160,10 @@ void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) cons
   double forced = forced_magnitude_;
   for (int k = 0; k <= max_order; ++k, forced *= omega_) bounds[k] = forced;
   bounds[0] += std::abs(constant_);
-  for (Eigen::Index j = 0; j < alpha_.size(); ++j) {
+  for (std::size_t j = 0; j < terms_.size(); ++j) {
     const ModeBasis& mode = clock_->Modes()[j];
     const ModeBasis::Decay decay = mode.DecayFrom(tau);  // shared by every order
-    double a = alpha_(j), g = gamma_(j);
+    double a = terms_[j].alpha[0], g = terms_[j].gamma[0];
     for (int k = 0; k <= max_order; ++k) {
       bounds[k] += mode.Envelope(a, g, decay);
       mode.Differentiate(&a, &g);
@@ -166,14 +172,22 @@ void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) cons
 }
 
 double Signal::Scale() const {
-  return alpha_.cwiseAbs().sum() + gamma_.cwiseAbs().sum() + forced_magnitude_ +
-         std::abs(constant_);
+  double alpha = 0.0, gamma = 0.0;
+  for (const ModeTerms& m : terms_) {
+    alpha += std::abs(m.alpha[0]);
+    gamma += std::abs(m.gamma[0]);
+  }
+  return alpha + gamma + forced_magnitude_ + std::abs(constant_);
 }
 
 Signal Signal::Negated() const {
   Signal n = *this;
-  n.alpha_ = -alpha_;
-  n.gamma_ = -gamma_;
+  for (ModeTerms& m : n.terms_) {
+    for (int k = 0; k < 3; ++k) {
+      m.alpha[k] = -m.alpha[k];
+      m.gamma[k] = -m.gamma[k];
+    }
+  }
   n.forced_ = -forced_;
   n.constant_ = -constant_;
   return n;
@@ -351,13 +365,12 @@ void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::Ve
   signal->clock_ = &clock_;
   signal->omega_ = omega_;
   signal->t0_ = t0;
-  signal->alpha_.resize(n);
-  signal->gamma_.resize(n);
+  signal->terms_.resize(n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const Eigen::Vector2d c = output.modal_weights.segment<2>(2 * j).transpose();
     const Eigen::Vector2d zj = z0.segment<2>(2 * j);
-    signal->alpha_(j) = c.dot(zj);
-    signal->gamma_(j) = c.dot(shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
+    signal->terms_[j].Set(clock_.Modes()[j], c.dot(zj),
+                          c.dot(shifted_blocks_.block<2, 2>(0, 2 * j) * zj));
   }
   signal->forced_ = output.forced * ForcingRotor(omega_, t0);
   signal->forced_magnitude_ = std::abs(signal->forced_);

@@ -61,11 +61,20 @@ class Signal {
   double Omega() const { return omega_; }
 
  private:
+  /// One mode's coefficients (α, γ) of w, w' and w'' (ModeBasis::Differentiate),
+  /// kept side by side: an evaluation, some ten per flight, then
+  /// differentiates nothing.
+  struct ModeTerms {
+    double alpha[3];
+    double gamma[3];
+    /// From w's coefficients.
+    void Set(const ModeBasis& mode, double alpha0, double gamma0);
+  };
+
   const ModeClock* clock_ = nullptr;
   double omega_ = 0.0;
   double t0_ = 0.0;
-  Eigen::VectorXd alpha_;
-  Eigen::VectorXd gamma_;
+  std::vector<ModeTerms> terms_;
   std::complex<double> forced_{0.0, 0.0};  ///< P: the forced part at t0
   /// |P|, kept with P: the bounds and the scale of every flight's search
   /// need it, and each std::abs is a hypot call.
