@@ -95,13 +95,11 @@ ExponentialTable::ExponentialTable(std::complex<double> rate) {
   limit_ = kFine * kCoarse - 0.5;
   std::complex<double> term = 1.0;
   for (int n = 0; n <= kDegree; ++n) {
-    taylor_[n] = term;
+    taylor_[n] = {term.real(), term.imag()};
     term *= rate / static_cast<double>(n + 1);
   }
-  fine_.resize(kFine);
-  coarse_.resize(kCoarse);
-  for (int k = 0; k < kFine; ++k) fine_[k] = Exponential(rate, k * step_);
-  for (int k = 0; k < kCoarse; ++k) coarse_[k] = Exponential(rate, k * kFine * step_);
+  for (unsigned k = 0; k < kFine; ++k) fine_[k] = Exponential(rate, k * step_);
+  for (unsigned k = 0; k < kCoarse; ++k) coarse_[k] = Exponential(rate, k * kFine * step_);
 }
 
 ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
