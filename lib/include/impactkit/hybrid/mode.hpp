@@ -55,7 +55,9 @@ class Mode {
                       double* rate, Eigen::VectorXd* force, Eigen::VectorXd* acceleration) const;
   /// The change of stop `stop`'s mass's acceleration when the velocities
   /// change by dv at one instant (an impact's reset): −(M_FF⁻¹ C_F·)_c dv.
-  double AccelerationChange(int stop, const Eigen::VectorXd& dv) const {
+  /// Any expression: the difference the simulator passes is not stored.
+  template <class Derived>
+  double AccelerationChange(int stop, const Eigen::MatrixBase<Derived>& dv) const {
     return -damping_responses_[stop].dot(dv);
   }
   /// Fs of a held stop at t, from the moving masses' state.
