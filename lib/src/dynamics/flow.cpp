@@ -94,6 +94,24 @@ BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
   return d;
 }
 
+/// y = A x for the change of basis at every event. A 2 x 2 or 4 x 4 A (one
+/// or two degrees of freedom, the usual vibro-impact models) goes through
+/// Eigen's fixed-size product, unrolled in registers; the general kernel's
+/// set-up cost more than its arithmetic there (~170 instructions a call
+/// against ~60,
+/// docs/performance.md).
+void Multiply(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd* y) {
+  if (a.rows() == 4) {
+    Eigen::Map<Eigen::Vector4d>(y->data()).noalias() =
+        Eigen::Map<const Eigen::Matrix4d>(a.data()) * Eigen::Map<const Eigen::Vector4d>(x.data());
+  } else if (a.rows() == 2) {
+    Eigen::Map<Eigen::Vector2d>(y->data()).noalias() =
+        Eigen::Map<const Eigen::Matrix2d>(a.data()) * Eigen::Map<const Eigen::Vector2d>(x.data());
+  } else {
+    y->noalias() = a * x;
+  }
+}
+
 }  // namespace
 
 double Signal::Value(double t) const {
@@ -312,7 +330,7 @@ void LinearFlow::Transient(double t, const Eigen::VectorXd& x, const Eigen::Vect
   y << x, v;
   const std::complex<double> rotor = ForcingRotor(omega_, t);
   z->resize(2 * n);
-  z->noalias() = inverse_basis_ * y;
+  Multiply(inverse_basis_, y, z);
   *z -= (steady_forced_ * rotor).real();
   *z -= steady_constant_;
 }
@@ -331,7 +349,7 @@ void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::Ve
     z.segment<2>(2 * j) += ec * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
   y.resize(2 * n);
-  y.noalias() = basis_ * z;
+  Multiply(basis_, z, &y);
   *x = y.head(n);
   *v = y.tail(n);
 }
