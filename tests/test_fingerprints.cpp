@@ -19,7 +19,10 @@
 // points Newton refines from, so the last bits of event times): the
 // certified step narrowed by the Illinois method and a certain crossing
 // bracketed ahead, then the step narrowed by Newton and the chord to 10% of
-// the cubic's root and the exit step after an impact taken from w''.
+// the cubic's root and the exit step after an impact taken from w''; and
+// the Ω = 0.2 simulation and the branch when a lightly damped mode's
+// derivative bounds came from its amplitude times powers of |λ| (the same
+// bound, rounded otherwise: dynamics/mode_clock.hpp).
 
 #include <catch2/catch.hpp>
 #include <cstdint>
@@ -129,7 +132,7 @@ TEST_CASE("Simulations are bit-identical to the recorded fingerprints", "[finger
     std::uint64_t expected;
   };
   const Case cases[] = {
-      {PaperSystem(0.2), 0x39eac0e14f7fabcaull},      // chatter and sticking every period
+      {PaperSystem(0.2), 0xa471da4dd1299429ull},      // chatter and sticking every period
       {PaperSystem(0.6), 0x112fbb83c38850d6ull},      // P(2,1)
       {PaperSystem(1.4), 0xbef38243f7005271ull},      // P(1,1)
       {PaperSystem(1.75), 0x5923fea2850bd358ull},     // chaotic
@@ -184,5 +187,5 @@ TEST_CASE("A continued branch is bit-identical to the recorded fingerprint", "[f
     hash.Add(special.monitor);
   }
   INFO("branch: " << branch.points.size() << " points, 0x" << std::hex << hash.Value());
-  CHECK(hash.Value() == 0x55570a219b320b3cull);
+  CHECK(hash.Value() == 0x33b61842106210feull);
 }

@@ -98,8 +98,7 @@ BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
 /// or two degrees of freedom, the usual vibro-impact models) goes through
 /// Eigen's fixed-size product, unrolled in registers; the general kernel's
 /// set-up cost more than its arithmetic there (~170 instructions a call
-/// against ~60,
-/// docs/performance.md).
+/// against ~60, docs/performance.md).
 void Multiply(const Eigen::MatrixXd& a, const Eigen::VectorXd& x, Eigen::VectorXd* y) {
   if (a.rows() == 4) {
     Eigen::Map<Eigen::Vector4d>(y->data()).noalias() =
@@ -180,8 +179,15 @@ void Signal::DerivativeBounds(double t_from, int max_order, double* bounds) cons
   bounds[0] += std::abs(constant_);
   for (std::size_t j = 0; j < terms_.size(); ++j) {
     const ModeBasis& mode = clock_->Modes()[j];
-    const ModeBasis::Decay decay = mode.DecayFrom(tau);  // shared by every order
     double a = terms_[j].alpha[0], g = terms_[j].gamma[0];
+    if (mode.lightly_damped) {
+      const double ratio = g / mode.root;
+      double envelope = std::sqrt(a * a + ratio * ratio);
+      if (tau > 0) envelope *= std::exp(-mode.decay * tau);
+      for (int k = 0; k <= max_order; ++k, envelope *= mode.modulus) bounds[k] += envelope;
+      continue;
+    }
+    const ModeBasis::Decay decay = mode.DecayFrom(tau);  // shared by every order
     for (int k = 0; k <= max_order; ++k) {
       bounds[k] += mode.Envelope(a, g, decay);
       mode.Differentiate(&a, &g);

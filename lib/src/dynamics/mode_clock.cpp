@@ -34,7 +34,12 @@ std::complex<double> ForcingRotor(double omega, double t) {
 }
 
 ModeBasis ModeBasis::Make(double decay, double beta2) {
-  return ModeBasis{decay, beta2, std::sqrt(std::abs(beta2))};
+  ModeBasis mode{decay, beta2, std::sqrt(std::abs(beta2))};
+  // For β >= e a the generic bound |α| e^{-aτ0} + |γ| sup τ e^{-aτ} is never
+  // below the amplitude's: sup τ e^{-aτ} >= e^{-aτ0}/β then.
+  mode.lightly_damped = beta2 > 0 && mode.root >= std::numbers::e * decay;
+  if (mode.lightly_damped) mode.modulus = std::sqrt(decay * decay + beta2);
+  return mode;
 }
 
 void ModeBasis::Evaluate(double tau, double* ec, double* es) const {

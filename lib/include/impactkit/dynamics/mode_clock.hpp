@@ -32,6 +32,12 @@ struct ModeBasis {
   double decay = 0.0;  ///< a >= 0
   double beta2 = 0.0;  ///< β² (negative: over-damped)
   double root = 0.0;   ///< sqrt(|β²|)
+  /// Under-damped with β >= e a: then e^{-aτ}(α C + γ S) = Re((α − iγ/β) e^{λτ}),
+  /// λ = −a + iβ, is bounded by e^{-aτ0} |α − iγ/β| for τ >= τ0 at least as
+  /// tightly as by Envelope's other bound, and its k-th derivative by |λ|^k
+  /// times that (Signal::DerivativeBounds: one square root for all orders).
+  bool lightly_damped = false;
+  double modulus = 0.0;  ///< |λ| = sqrt(a² + β²) where lightly damped
 
   static ModeBasis Make(double decay, double beta2);
 
