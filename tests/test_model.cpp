@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <random>
 
 #include "impactkit/model/modal.hpp"
 #include "impactkit/model/parameters.hpp"
@@ -221,4 +223,25 @@ TEST_CASE("the parameter table names every parameter once, with its meaning", "[
   CHECK(FindParameter(chain, "A3") == nullptr);
   CHECK(FindParameter(general, "m") == nullptr);
   CHECK_THROWS_WITH(GetParameter(general, "m"), Contains("unknown parameter 'm'"));
+}
+
+TEST_CASE("the forcing phase is fmod's exact remainder, at every scale of t", "[model]") {
+  // System::Phase takes t - floor(t/T) T by one fused multiply-add and falls
+  // back on fmod where t/T rounds across an integer: both exact, so the two
+  // must agree bit for bit, including at multiples of T and just beside them.
+  std::mt19937_64 random(7);
+  for (const double omega : {0.6, 1.4, 1.75, std::numbers::pi, 0.1}) {
+    System system = PaperSystem(omega);
+    const double period = system.ForcingPeriod();
+    std::uniform_real_distribution<double> exponent(-3.0, 7.0);
+    for (int i = 0; i < 20000; ++i) {
+      double t = std::pow(10.0, exponent(random));
+      if (i % 4 == 1) t = std::round(t / period) * period;  // on a multiple of T
+      if (i % 4 == 2) t = std::nextafter(std::round(t / period) * period, 0.0);
+      if (i % 4 == 3) t = -t;
+      const double remainder = std::fmod(t, period);
+      const double expected = remainder < 0 ? remainder + period : remainder;
+      REQUIRE(system.Phase(t) == expected);
+    }
+  }
 }
