@@ -31,15 +31,30 @@ Point Evaluate(const Signal& signal, double t) {
   return p;
 }
 
+/// B3 >= sup|w'''| over a flight, with the multiples every step uses
+/// (computed once per flight: each step took five divisions by it).
+struct ThirdBound {
+  explicit ThirdBound(double b3)
+      : b3(b3), half(0.5 * b3), sixth(b3 / 6.0), inverse(b3 > 0 ? 1.0 / b3 : 0.0) {}
+  double b3, half, sixth, inverse;
+};
+
 /// The cubic upper bound P(s) = w + w' s + w'' s²/2 + B3 s³/6 >= w(t + s).
 struct UpperCubic {
-  UpperCubic(const Point& p, double b3)
-      : w(p.w), dw(p.dw), d2w(p.d2w), half_d2w(0.5 * p.d2w), b3(b3), sixth_b3(b3 / 6.0) {}
+  UpperCubic(const Point& p, const ThirdBound& bound)
+      : w(p.w),
+        dw(p.dw),
+        d2w(p.d2w),
+        half_d2w(0.5 * p.d2w),
+        b3(bound.b3),
+        half_b3(bound.half),
+        sixth_b3(bound.sixth),
+        inverse_b3(bound.inverse) {}
   double operator()(double s) const { return w + s * (dw + s * (half_d2w + s * sixth_b3)); }
-  double Slope(double s) const { return dw + s * (d2w + s * 0.5 * b3); }
+  double Slope(double s) const { return dw + s * (d2w + s * half_b3); }
   /// P'' = w'' + B3 s, rising (B3 >= 0).
   double Curvature(double s) const { return d2w + b3 * s; }
-  double w, dw, d2w, half_d2w, b3, sixth_b3;
+  double w, dw, d2w, half_d2w, b3, half_b3, sixth_b3, inverse_b3;
 };
 
 /// The root of P in [low, high], where P is increasing, P(low) < 0 <=
@@ -63,7 +78,8 @@ double NarrowRoot(const UpperCubic& cubic, double low, double high) {
     (f < 0 ? f_low : f_high) = f;
   };
   if (cubic.b3 > 0) {
-    if (const double inflection = -cubic.d2w / cubic.b3; inflection > low && inflection < high) {
+    if (const double inflection = -cubic.d2w * cubic.inverse_b3;
+        inflection > low && inflection < high) {
       include(inflection);
     }
   }
@@ -90,9 +106,10 @@ double NarrowRoot(const UpperCubic& cubic, double low, double high) {
 /// of the way further. The bracket is then usually tight from the start:
 /// at Ω = 0.6 the evaluations of w fell from 10.5 to 10.0 per impact and
 /// the search's arithmetic by a quarter (docs/performance.md).
-double CertifiedStep(const Point& p, double b3, double hint) {
+double CertifiedStep(const Point& p, const ThirdBound& bound, double hint) {
   if (p.w >= 0) return 0.0;
-  const UpperCubic cubic(p, b3);
+  const UpperCubic cubic(p, bound);
+  const double b3 = bound.b3;
   double pieces[2];
   int count = 0;
   // Critical points: P'(s) = w' + w'' s + B3 s²/2 = 0.
@@ -100,7 +117,7 @@ double CertifiedStep(const Point& p, double b3, double hint) {
     const double discriminant = p.d2w * p.d2w - 2.0 * b3 * p.dw;
     if (discriminant > 0) {
       const double root = std::sqrt(discriminant);
-      for (double s : {(-p.d2w - root) / b3, (-p.d2w + root) / b3}) {
+      for (double s : {(-p.d2w - root) * bound.inverse, (-p.d2w + root) * bound.inverse}) {
         if (s > 0) pieces[count++] = s;
       }
     }
@@ -255,8 +272,9 @@ double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds,
 /// about T: 2 s_T − h, plus the margin's share. Without this, the search
 /// approached the root in shrinking certified steps (two or three more
 /// evaluations per flight) and, near grazing, by bisection.
-std::optional<double> CertainCrossing(const Signal& w, const Point& p, double certified, double b3,
-                                      double t_end, double margin, const EventOptions& options) {
+std::optional<double> CertainCrossing(const Signal& w, const Point& p, double certified,
+                                      const ThirdBound& bound, double t_end, double margin,
+                                      const EventOptions& options) {
   // The Taylor quadratic's first positive root, where it rises.
   const double a2 = 0.5 * p.d2w;
   double s_taylor;
@@ -273,13 +291,13 @@ std::optional<double> CertainCrossing(const Signal& w, const Point& p, double ce
   if (!(s_taylor > certified && rise > 0)) return std::nullopt;
   const double far = 2.0 * s_taylor - certified + 2.0 * margin / rise;
   if (p.t + far > t_end) return std::nullopt;
-  const double lower = p.w + far * (p.dw + far * (a2 - far * b3 / 6.0));
-  auto slope_bound = [&](double s) { return p.dw + s * (p.d2w - 0.5 * b3 * s); };
+  const double lower = p.w + far * (p.dw + far * (a2 - far * bound.sixth));
+  auto slope_bound = [&](double s) { return p.dw + s * (p.d2w - bound.half * s); };
   const double slope = std::min(slope_bound(certified), slope_bound(far));
   if (!(lower >= margin && slope > 0)) return std::nullopt;
   const Point a{p.t + certified, -kInfinity, 0.0, 0.0};
   const Point b{p.t + far, kInfinity, 0.0, 0.0};
-  return RefineRoot(w, a, b, p.t + s_taylor, slope, b3 * far + std::abs(p.d2w), options);
+  return RefineRoot(w, a, b, p.t + s_taylor, slope, bound.b3 * far + std::abs(p.d2w), options);
 }
 
 /// The first crossing in (a, b], or none, by certified bisection.
@@ -321,7 +339,8 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
   if (constant + (bounds[0] - std::abs(constant)) < -kUnreachableMargin * w.Scale()) {
     return std::nullopt;
   }
-  const double b2 = bounds[2], b3 = bounds[3];
+  const double b2 = bounds[2];
+  const ThirdBound b3(bounds[3]);
   const double margin = std::max(kCertainMargin * bounds[0], options.resolution);
   Point p = Evaluate(w, t_begin);
   if (const double exit = SurfaceExitStep(w, p, bounds, options); exit > 0) {
