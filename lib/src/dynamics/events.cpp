@@ -275,6 +275,12 @@ double SurfaceExitStep(const Signal& w, const Point& p, const double* bounds,
 std::optional<double> CertainCrossing(const Signal& w, const Point& p, double certified,
                                       const ThirdBound& bound, double t_end, double margin,
                                       const EventOptions& options) {
+  // The lower bound of w' must be positive at the step's end: three
+  // products, and most steps fail it, so it comes before the Taylor root's
+  // square root and divisions.
+  auto slope_bound = [&](double s) { return p.dw + s * (p.d2w - bound.half * s); };
+  const double slope_at_step = slope_bound(certified);
+  if (!(slope_at_step > 0)) return std::nullopt;
   // The Taylor quadratic's first positive root, where it rises.
   const double a2 = 0.5 * p.d2w;
   double s_taylor;
@@ -292,8 +298,7 @@ std::optional<double> CertainCrossing(const Signal& w, const Point& p, double ce
   const double far = 2.0 * s_taylor - certified + 2.0 * margin / rise;
   if (p.t + far > t_end) return std::nullopt;
   const double lower = p.w + far * (p.dw + far * (a2 - far * bound.sixth));
-  auto slope_bound = [&](double s) { return p.dw + s * (p.d2w - bound.half * s); };
-  const double slope = std::min(slope_bound(certified), slope_bound(far));
+  const double slope = std::min(slope_at_step, slope_bound(far));
   if (!(lower >= margin && slope > 0)) return std::nullopt;
   const Point a{p.t + certified, -kInfinity, 0.0, 0.0};
   const Point b{p.t + far, kInfinity, 0.0, 0.0};
