@@ -1,7 +1,7 @@
 #pragma once
 /// \file large_buffer_allocator.hpp
 /// A std::allocator for buffers that grow to many megabytes (the records of
-/// a long run): above kThreshold bytes the buffer is aligned to 2 MiB and
+/// a long run): from kThreshold bytes on, the buffer is aligned to 2 MiB and
 /// offered to the kernel as transparent huge pages, so that filling it
 /// faults once per 2 MiB instead of once per 4 KiB page. A run of 10^5
 /// forcing periods recording its impacts and stroboscopic points took some
