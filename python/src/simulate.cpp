@@ -165,6 +165,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   result["status"] = ToString(summary.status);
   result["chatter_jumps"] = summary.chatter_jumps;
   result["landings"] = summary.landings;
+  result["chatter_cuts"] = summary.chatter_cuts;
   result["stuck_time"] = summary.stuck_time;
   result["seconds"] = summary.elapsed_seconds;
   result["final_state"] = py::dict(py::arg("t") = state.t, py::arg("x") = state.x,
@@ -179,7 +180,7 @@ void BindSimulate(py::module_& module) {
              py::arg("x0") = py::none(), py::arg("v0") = py::none(), py::arg("record_from") = 0.0,
              py::arg("dt") = 0.0, py::arg("chatter") = "accumulation",
              py::arg("chatter_span") = 1e-4, py::arg("chatter_threshold") = 1e-4,
-             py::arg("bounce_height_resolution") = 1e-10,
+             py::arg("bounce_height_resolution") = SimulationOptions{}.bounce_height_resolution,
              py::arg("max_events_per_period") = 100'000, py::arg("max_events") = 200'000'000,
              py::arg("events") = false,
              R"(Simulates from (x0, v0) at t = 0 (rest by default) to t_end, exactly.
@@ -195,9 +196,10 @@ Nothing is recorded before record_from. Returns a dict of numpy arrays:
   strobe    the state at every t = k T (forcing phase 0), as samples
   sticking  (k, 2) [begin, end] of each interval held at the stop
 and status ('reached end', 'event limit reached', 'work bound reached: ...', ...),
-chatter_jumps, landings (arrivals at the stop too low to be impacts), stuck_time,
-seconds, final_state. bounce_height_resolution and max_events_per_period are the
-micro-bounce rule and the work bound of docs/theory.md §4. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
+chatter_jumps, chatter_cuts (elastic chatter cut at a short bounce), landings (arrivals
+at the stop too low to be impacts), stuck_time,
+seconds, final_state. bounce_height_resolution (the rounding, by default) and max_events_per_period are
+the height resolution and the work bound of docs/theory.md §4. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
 }
 
 }  // namespace impactkit::python

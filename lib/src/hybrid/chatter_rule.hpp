@@ -1,73 +1,135 @@
 #pragma once
 /// \file chatter_rule.hpp (private)
-/// When an arrival at the stop is an impact, and when a sequence of impacts
-/// ends (docs/theory.md §4): the rules the simulator and the sticking map
-/// share, so that an orbit and a simulation of it end their chatter at the
-/// same instant.
+/// When an arrival at the stop is an impact, and how a sequence of impacts
+/// ends (docs/theory.md §4): the rules the simulator, the sticking map and
+/// the impact map share, so that an orbit and a simulation of it agree on
+/// which arrivals are impacts and end their chatter at the same instant.
 ///
-/// Heights are compared with the resolution of the event search: a bounce
-/// of speed u off the stop under an acceleration a towards it rises u²/(2a).
-/// Below `bounce_height_resolution` times the length scale L of the gap
-/// signal (the sum of its coefficients' magnitudes, the scale of its
-/// rounding) the flight is not resolved: an arrival that low lands (contact,
-/// no impact) and a rebound that low ends the chatter at once. The state
-/// error of either is at most that height in x_c and √(2 a h) in v_c. This
-/// is the only rule that ends elastic chatter (r = 1), whose bounces decay
-/// only through the energy damping takes in flight (u_k ~ 1/k: the sequence
-/// never accumulates).
+/// Heights are compared with the rounding of the gap: a bounce of speed u
+/// off the stop under an acceleration a towards it rises u²/(2a). Below
+/// `bounce_height_resolution` (64 ulps by default) times the length scale
+/// L of the gap (the sum of the magnitudes it is computed from) its sign
+/// is rounding: an arrival that low is a landing (contact, no impact).
+///
+/// A sequence of impacts with r < 1 is followed impact by impact while its
+/// bounces are resolved, and its tail summed by the chatter map (SumTail)
+/// once that sum is exact to the rounding of time or the bounces fall below
+/// the height resolution. Elastic chatter (r = 1, or r so near 1 that
+/// following it would take more than kMaxExactBounces impacts) never
+/// accumulates: it is cut at its first bounce shorter than `chatter_span`
+/// of the time scale, and counted (SimulationSummary::chatter_cuts).
 
 #include <cmath>
 #include <limits>
-#include <optional>
 
+#include "impactkit/dynamics/events.hpp"
+#include "impactkit/dynamics/flow.hpp"
+#include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/hybrid/mode.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 
 namespace impactkit {
 
+/// How a sequence of impacts goes on after one of them.
+enum class ChatterDecision {
+  kGoesOn,   ///< keep following impacts
+  kEndsNow,  ///< at rest on the stop from this impact (r = 0, or the threshold rule)
+  kSumTail,  ///< the rest summed by ChatterRule::SumTail
+  kCut,      ///< elastic chatter cut at a short bounce: not an accumulation point
+};
+
+/// Where the tail of a chatter sequence ends.
+struct ChatterTail {
+  double end = 0.0;         ///< the accumulation point, or where the bounces stop accumulating
+  bool accumulates = true;  ///< false: the contact force turned first (the mass leaves from rest)
+  bool cut = false;         ///< the chatter map's bound on bounces was reached
+  int bounces = 0;          ///< bounces followed by the chatter map
+};
+
+/// The length scale L of stop `stop`'s gap on a flight from (x, v): the
+/// gap's rounding comes from the state and the forced response, of which
+/// the gap signal's own coefficients (`gap`.Scale()) can be far smaller,
+/// for a mass barely moving off the stop while the others swing.
+double GapLengthScale(const HybridSystem& hybrid, int stop, const Eigen::VectorXd& x,
+                      const Eigen::VectorXd& v, const Signal& gap);
+
+/// The event search for an arrival at a stop on a gap of length scale L:
+/// a rise of the gap above 0 by more than its rounding (ChatterRule::
+/// kRounding × L) is an event, so that every crossing resolved in double
+/// precision is found and judged by ChatterRule::IsLanding.
+EventOptions ArrivalSearch(EventOptions base, double length_scale);
+
 class ChatterRule {
  public:
-  ChatterRule(const SimulationOptions& options, double restitution, double time_scale)
-      : options_(options), restitution_(restitution), time_scale_(time_scale) {}
+  /// `contact`: the contact mass's response in free flight (the tail's
+  /// error estimate uses its damping).
+  ChatterRule(const SimulationOptions& options, double restitution, double time_scale,
+              const ContactResponse& contact = {})
+      : options_(options), restitution_(restitution), time_scale_(time_scale), contact_(contact) {}
 
   /// An arrival at speed `speed` >= 0 with the gap's second derivative
-  /// `acceleration` (either sign), on a gap signal of length scale
-  /// `length_scale`: true when its height is unresolved (a landing, or a
-  /// grazing touch when the acceleration leads away from the stop).
+  /// `acceleration` (either sign), on a gap of length scale `length_scale`:
+  /// true when its height is unresolved (a landing, or a grazing touch when
+  /// the acceleration leads away from the stop).
   bool IsLanding(double speed, double acceleration, double length_scale) const {
     return speed <= kSpeedNoise * length_scale / time_scale_ ||
            Unresolved(speed, std::abs(acceleration), length_scale);
   }
 
-  /// After the reset of an impact at `te` of speed `speed` (rebound
-  /// `rebound` = r·speed, `previous` the impact before), with the contact
-  /// mass's acceleration `acceleration` towards the stop and its rate
-  /// `jerk` after the reset: the time the chatter ends (the mass at rest on
-  /// the stop there), or nothing to keep simulating impacts.
-  std::optional<double> EndsAt(double te, double previous, double speed, double rebound,
-                               double acceleration, double jerk, double length_scale) const;
-  /// False when EndsAt returns nothing for every acceleration towards the
-  /// stop up to `bound` (and any jerk): each way it ends chatter needs the
-  /// acceleration above a least value that falls with the rebound. Most
-  /// impacts rebound far too fast, and the simulator then skips computing
-  /// the acceleration and its rate (8 % of an impact's instructions).
-  bool MayEnd(double te, double previous, double rebound, double bound, double length_scale) const;
+  /// After the reset of an impact at `te` with rebound speed `rebound`
+  /// (`previous` the impact before), the contact mass's acceleration
+  /// towards the stop being `acceleration`: how the sequence goes on.
+  /// Every answer but kGoesOn holds for every larger acceleration too, so
+  /// that the simulator can decide from a bound (MayEnd) without computing
+  /// the acceleration at most impacts.
+  ChatterDecision Decide(double te, double previous, double rebound, double acceleration,
+                         double length_scale) const;
+  /// False when Decide returns kGoesOn for every acceleration up to `bound`.
+  bool MayEnd(double te, double previous, double rebound, double bound, double length_scale) const {
+    return Decide(te, previous, rebound, bound, length_scale) != ChatterDecision::kGoesOn;
+  }
+
+  /// The chatter map: the bounces after an impact at `te` with rebound
+  /// `rebound`, the other masses following the stuck flow, on which
+  /// `release` is −Fs. Each bounce is solved with the acceleration's
+  /// Taylor polynomial to second order at its start, and the damping and
+  /// stiffness of the contact mass's own motion to first order; once the remaining span's closed
+  /// form (Budd & Dux with its first-order correction) is exact to the rounding of time, it is
+  /// summed at once (docs/theory.md §4).
+  ChatterTail SumTail(const Signal& release, const ContactResponse& contact, double te,
+                      double rebound) const;
+
+  /// The rounding of a time on the system's time scale: kRounding τ (not of
+  /// the absolute time, so that an orbit and a simulation of it, at times
+  /// a whole number of periods apart, end their chatter alike).
+  double TimeRounding() const { return kRounding * time_scale_; }
+
+  /// The rounding relative to a computed value's scale: 64 ulps.
+  static constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
 
  private:
   bool Unresolved(double speed, double acceleration, double length_scale) const {
     return speed * speed <= 2.0 * acceleration * options_.bounce_height_resolution * length_scale;
   }
-  /// The remaining span of a chatter sequence after an impact of `speed`.
-  double Span(double speed, double acceleration) const;
-  bool PredictionHolds(double speed, double acceleration, double jerk, double longest) const;
+  /// True when the chatter map from a rebound `rebound` under acceleration
+  /// `acceleration` errs less than following the bounces would.
+  bool TailIsExact(double rebound, double acceleration, double length_scale) const;
+  /// True where following the bounces down to the height resolution would
+  /// take more than kMaxExactBounces impacts.
+  bool TooManyBounces(double rebound, double acceleration, double length_scale) const;
   /// Speeds below this many ulps of the gap's velocity scale L / τ are
   /// rounding: where the acceleration is zero to rounding too (a release's
   /// tangency) no height test can tell them from rest.
   static constexpr double kSpeedNoise = 64 * std::numeric_limits<double>::epsilon();
-  static constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+  /// Elastic chatter is cut where following it would take more impacts.
+  static constexpr double kMaxExactBounces = 1e4;
+  /// The chatter map's bound on the bounces it follows one by one.
+  static constexpr int kMaxTailBounces = 100'000;
 
   const SimulationOptions& options_;
   double restitution_;
   double time_scale_;
+  ContactResponse contact_;
 };
 
 }  // namespace impactkit

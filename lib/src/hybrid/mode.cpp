@@ -103,6 +103,16 @@ double Mode::Acceleration(int stop, double t, const Eigen::VectorXd& x, const Ei
   return a_c;
 }
 
+ContactResponse Mode::Contact(int stop) const {
+  const int c = dof_index_[stop];
+  const Eigen::VectorXd response = inverse_mass_ * stiffness_rows_.col(moving_[c]);
+  double coupling = 0.0;
+  for (Eigen::Index j = 0; j < response.size(); ++j) {
+    if (j != c) coupling = std::max(coupling, std::abs(response(j)));
+  }
+  return {inverse_mass_rows_[stop](c), damping_responses_[stop](moving_[c]), response(c), coupling};
+}
+
 double Mode::ContactForce(int stop, double t, const Eigen::VectorXd& x_moving,
                           const Eigen::VectorXd& v_moving) const {
   const LinearOutput& f = *contact_forces_[stop];

@@ -61,10 +61,14 @@ bool SimulationOptions::IsValid(std::string* error) const {
 }
 
 std::string SimulationSummary::BriefReport() const {
+  // Cuts are named only where there were any: each is a sequence that did
+  // not end at its accumulation point (docs/theory.md §4).
+  const std::string cuts = chatter_cuts > 0 ? fmt::format(" ({} cut)", chatter_cuts) : "";
   return fmt::format(
-      "{}: {} impacts, {} landings, {} chatter sequences ended, {} releases, stuck {:.6g} "
+      "{}: {} impacts, {} landings, {} chatter sequences ended{}, {} releases, stuck {:.6g} "
       "time units, {:.3g} s",
-      ToString(status), impacts, landings, chatter_jumps, releases, stuck_time, elapsed_seconds);
+      ToString(status), impacts, landings, chatter_jumps, cuts, releases, stuck_time,
+      elapsed_seconds);
 }
 
 /// The hybrid system (both modes' flows, decomposed once) and the options.
@@ -103,7 +107,8 @@ class HybridRun {
         force_scratch_(hybrid_.GetSystem().Dof()),
         acceleration_scratch_(hybrid_.GetSystem().Dof()) {
     for (int k = 0; k < hybrid.StopCount(); ++k) {
-      rules_.emplace_back(options, hybrid.GetStop(k).Restitution(), hybrid.TimeScale());
+      rules_.emplace_back(options, hybrid.GetStop(k).Restitution(), hybrid.TimeScale(),
+                          hybrid.Free().Contact(k));
     }
   }
 
@@ -124,6 +129,7 @@ class HybridRun {
   void ApplyImpact(int stop, double te, double speed, double arrival_acceleration);
   double AccelerationBound(int stop, double arrival_acceleration) const;
   bool OverWorkBound();
+  /// GapLengthScale of stop `stop` from the current state.
   double LengthScale(int stop) const;
   /// Where the current phase's search stops if no event comes first: t_end,
   /// or kPhaseSlice forcing periods on, so that a run without events still
@@ -134,7 +140,7 @@ class HybridRun {
   static constexpr double kPhaseSlice = 1000;
   EventOptions Search(int stop) const;
   EventOptions HeldSearch(const Signal& release) const;
-  void JumpToAccumulation(int stop, double te, double t_star);
+  void EndChatter(int stop, double te, double rebound, ChatterDecision decision);
   void LandAtStop(int stop);
   std::int64_t Events() const {
     return summary_.impacts + summary_.landings + summary_.releases + summary_.chatter_jumps;
@@ -156,7 +162,7 @@ class HybridRun {
   Eigen::VectorXd force_scratch_, acceleration_scratch_;
   Eigen::VectorXd phase_transient_;  ///< the current phase's z0 (reused storage)
   static constexpr int kMaxStalledPhases = 1000;
-  static constexpr double kRounding = 64 * std::numeric_limits<double>::epsilon();
+  static constexpr double kRounding = ChatterRule::kRounding;
   int stalled_phases_ = 0;
   int last_event_stop_ = 0;         ///< the stop of the last event (FirstEvent's order)
   double window_begin_ = 0.0;       ///< start of the work bound's current window
@@ -287,25 +293,17 @@ void HybridRun::MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, d
   mode.Expand(x, v, &state_.x, &state_.v);
 }
 
-/// The length scale of the flight from the current state for stop `stop`:
-/// the rounding of its gap comes from the state and the forced response
-/// (the gap signal's own coefficients can be far smaller, for a mass
-/// barely moving off the stop while the others swing).
 double HybridRun::LengthScale(int stop) const {
-  const double per_radian = hybrid_.TimeScale() / (2 * std::numbers::pi);
-  return std::abs(hybrid_.GetStop(stop).Position()) + state_.x.lpNorm<Eigen::Infinity>() +
-         state_.v.lpNorm<Eigen::Infinity>() * per_radian + witnesses_[stop].Scale();
+  return GapLengthScale(hybrid_, stop, state_.x, state_.v, witnesses_[stop]);
 }
 
 /// The event search's options for the flight to stop `stop` from the
-/// current state: gap heights below the bounce resolution are not resolved
-/// (chatter_rule.hpp), and one that leaves the stop from rest starts where
-/// the gap and its slope are 0 in truth, to the rounding of the length
-/// scale.
+/// current state (ArrivalSearch: crossings above the gap's rounding); one
+/// that leaves the stop from rest starts where the gap and its slope are 0
+/// in truth, to the rounding of the length scale.
 EventOptions HybridRun::Search(int stop) const {
   const Stop& s = hybrid_.GetStop(stop);
-  EventOptions events = events_;
-  events.resolution = options_.bounce_height_resolution * length_scales_[stop];
+  EventOptions events = ArrivalSearch(events_, length_scales_[stop]);
   if (state_.x(s.Dof()) == s.Position() && state_.v(s.Dof()) == 0.0) {
     events.start_noise = kRounding * length_scales_[stop];
   }
@@ -314,13 +312,13 @@ EventOptions HybridRun::Search(int stop) const {
 
 /// The release search's options on a held phase's witness: it starts where
 /// the contact force may be 0 to the rounding of its terms, and a dip of
-/// the force below 0 that returns within the bounce resolution of its scale
-/// is no release (a mass at rest on the stop with no force, at an
-/// antiresonance, would otherwise be certified piece by tiny piece).
+/// the force below 0 that returns within that rounding is no release (a
+/// mass at rest on the stop with no force, at an antiresonance, would
+/// otherwise be certified piece by tiny piece).
 EventOptions HybridRun::HeldSearch(const Signal& release) const {
   EventOptions events = events_;
   events.start_noise = kRounding * release.Scale();
-  events.resolution = options_.bounce_height_resolution * release.Scale();
+  events.resolution = kRounding * release.Scale();
   return events;
 }
 
@@ -392,30 +390,43 @@ void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_ac
                            length_scales_[stop])) {
     return;
   }
-  // The acceleration after the reset (the rebound's), which the chatter
-  // prediction models, towards the stop.
+  // The acceleration after the reset (the rebound's) towards the stop.
   double jerk;
   const double acceleration = mode.Acceleration(stop, te, state_.x, state_.v, &jerk,
                                                 &force_scratch_, &acceleration_scratch_);
-  const std::optional<double> t_star = rules_[stop].EndsAt(
-      te, previous, speed, rebound, s.Sign() * acceleration, s.Sign() * jerk, length_scales_[stop]);
-  if (t_star) JumpToAccumulation(stop, te, std::min(t_end_, *t_star));
+  const ChatterDecision decision =
+      rules_[stop].Decide(te, previous, rebound, s.Sign() * acceleration, length_scales_[stop]);
+  if (decision != ChatterDecision::kGoesOn) EndChatter(stop, te, rebound, decision);
 }
 
-void HybridRun::JumpToAccumulation(int stop, double te, double t_star) {
+/// The chatter sequence at stop `stop` ends after its impact at te: at
+/// once, at a cut (counted), or where the chatter map puts the end of its
+/// tail, if the tail accumulates (else the impacts go on). The other masses
+/// follow the stuck subsystem to that end (a chatter segment, not
+/// sticking); there x_c = xs, v_c = 0, and the mass sticks if the stop
+/// pushes on it.
+void HybridRun::EndChatter(int stop, double te, double rebound, ChatterDecision decision) {
+  const Mode& mode = hybrid_.Holding(state_.held);
   const Mode& held = hybrid_.Holding(state_.held | StopBit(stop));
-  const Stop& s = hybrid_.GetStop(stop);
+  const Eigen::VectorXd z0 =
+      held.Flow().Transient(te, held.Reduced(state_.x), held.Reduced(state_.v));
+  double t_star = te;
+  if (decision == ChatterDecision::kSumTail) {
+    held.Flow().Output(*held.Witness(stop), te, z0, &witnesses_[stop]);
+    const ChatterTail tail =
+        rules_[stop].SumTail(witnesses_[stop], mode.Contact(stop), te, rebound);
+    if (!tail.accumulates) return;
+    if (tail.cut) ++summary_.chatter_cuts;
+    t_star = std::min(t_end_, tail.end);
+  }
+  if (decision == ChatterDecision::kCut) ++summary_.chatter_cuts;
   if (t_star > te) {
-    const Eigen::VectorXd z0 =
-        held.Flow().Transient(te, held.Reduced(state_.x), held.Reduced(state_.v));
-    // Not sticking yet: the impacts accumulate until t*, where sticking (if
-    // the contact force holds the mass) begins.
     observer_.OnSegment(Segment(held.Flow(), te, z0, te, t_star, SegmentMode::kChatter,
                                 held.Moving(), held.HeldPositions()));
     MoveTo(held, te, z0, t_star);
   }
   state_.t = t_star;
-  state_.v(s.Dof()) = 0.0;
+  state_.v(hybrid_.GetStop(stop).Dof()) = 0.0;
   ++summary_.chatter_jumps;
   observer_.OnChatter(te, t_star);
   LandAtStop(stop);

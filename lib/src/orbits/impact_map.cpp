@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "dynamics/subsystem.hpp"
+#include "hybrid/chatter_rule.hpp"
 #include "impactkit/dynamics/events.hpp"
 
 namespace impactkit {
@@ -31,10 +32,7 @@ bool ImpactMapOptions::IsValid(std::string* error) const {
       *error = fmt::format("max_flight_periods must be finite and > 0, got {}", max_flight_periods);
     return false;
   }
-  if (!(min_speed >= 0 && std::isfinite(min_speed))) {
-    if (error) *error = fmt::format("min_speed must be finite and >= 0, got {}", min_speed);
-    return false;
-  }
+  if (!simulation.IsValid(error)) return false;
   if (stop < 0) {
     if (error) *error = fmt::format("the map's section stop must be >= 0, got {}", stop);
     return false;
@@ -136,20 +134,25 @@ Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof, int stop
   return flow.Output(coordinate, eta(TimeIndex()), z0);
 }
 
-std::optional<double> ImpactMap::NextImpact(const Eigen::VectorXd& z0, double t, double t_end,
-                                            int* stop) const {
+std::optional<ImpactMap::Arrival> ImpactMap::NextArrival(const HybridState& from,
+                                                         const Eigen::VectorXd& z0, double t_end,
+                                                         int* stop) const {
   const LinearFlow& flow = hybrid_->FreeFlow();
-  const EventOptions events{1e-13, hybrid_->TimeScale()};
-  std::optional<double> first;
+  const EventOptions events{options_.simulation.event_time_tolerance, hybrid_->TimeScale()};
+  std::optional<Arrival> first;
   // The other stops first (a clearance's next impact is on its other side):
   // the search of the stop just left then ends at their crossing.
-  const int stops = hybrid_->StopCount(), from = *stop;
+  const int stops = hybrid_->StopCount(), from_stop = *stop;
   for (int i = 1; i <= stops; ++i) {
-    const int k = (from + i) % stops;
-    const Signal gap = flow.Output(hybrid_->Gap(k), t, z0);
-    const std::optional<double> te = FirstUpcrossing(gap, t, first.value_or(t_end), events);
-    if (!te || (first && *te >= *first)) continue;
-    first = te;
+    const int k = (from_stop + i) % stops;
+    const Signal gap = flow.Output(hybrid_->Gap(k), from.t, z0);
+    const double scale = GapLengthScale(*hybrid_, k, from.x, from.v, gap);
+    const std::optional<double> te =
+        FirstUpcrossing(gap, from.t, first ? first->t : t_end, ArrivalSearch(events, scale));
+    if (!te || (first && *te >= first->t)) continue;
+    double value, slope, curvature;
+    gap.ValueSlopeCurvature(*te, &value, &slope, &curvature);
+    first = Arrival{*te, curvature, scale};
     *stop = k;
   }
   return first;
@@ -166,33 +169,38 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next
   hybrid_->GetStop(stop).Reset(v_after);
 
   const Eigen::VectorXd z0 = flow.Transient(t, before.x, v_after);
-  const auto te =
-      NextImpact(z0, t, t + options_.max_flight_periods * system.ForcingPeriod(), next_stop);
-  if (!te) {
+  const HybridState after{t, before.x, v_after};
+  const std::optional<Arrival> found =
+      NextArrival(after, z0, t + options_.max_flight_periods * system.ForcingPeriod(), next_stop);
+  if (!found) {
     *status = MapStatus::kNoImpact;
     return false;
   }
+  const double te = found->t;
   const Stop& arrival = hybrid_->GetStop(*next_stop);
   const int c = arrival.Dof();
   Eigen::VectorXd x, v;
-  flow.State(t, z0, *te, &x, &v);
+  flow.State(t, z0, te, &x, &v);
   x(c) = arrival.Position();
   const double speed = arrival.SpeedTowards(v(c));
-  if (!(speed > options_.min_speed)) {
-    const Eigen::VectorXd f = hybrid_->VectorField(*te, x, v);
+  // The simulator's rule (hybrid/chatter_rule.hpp): an arrival whose
+  // height is unresolved is a landing there, so no impact here.
+  const ChatterRule rule(options_.simulation, arrival.Restitution(), hybrid_->TimeScale());
+  if (!(speed > 0) || rule.IsLanding(speed, found->curvature, found->length_scale)) {
+    const Eigen::VectorXd f = hybrid_->VectorField(te, x, v);
     *status = arrival.SpeedTowards(f(n + c)) > 0 ? MapStatus::kChatter : MapStatus::kGrazing;
     return false;
   }
-  *next = ToEta(*te, x, v, *next_stop);
+  *next = ToEta(te, x, v, *next_stop);
   if (!jacobian) return true;
 
   // G = ∂y(t')/∂η at fixed t': the reset, then the flow from (y+, τ).
-  const Eigen::MatrixXd transition = flow.Transition(*te - t);
+  const Eigen::MatrixXd transition = flow.Transition(te - t);
   Eigen::MatrixXd g = transition * ResetInEta(stop);
   g.col(n - 1) = -transition * hybrid_->VectorField(t, before.x, v_after);
   // Saltation at the next impact (x_c(t') = xs: the sign of the stop's
   // side cancels).
-  const Eigen::VectorXd f_arrival = hybrid_->VectorField(*te, x, v);
+  const Eigen::VectorXd f_arrival = hybrid_->VectorField(te, x, v);
   const Eigen::RowVectorXd dte = -g.row(c) / v(c);
   const Eigen::MatrixXd dy = g + f_arrival * dte;
   jacobian->resize(2 * n, 2 * n);

@@ -59,7 +59,8 @@ class StickingMap::Cycle {
         n_(hybrid.GetSystem().Dof()),
         c_(hybrid.GetSystem().SoleStop("the sticking map").dof),
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
-        rule_(options.simulation, hybrid.GetStop(0).Restitution(), hybrid.TimeScale()) {
+        rule_(options.simulation, hybrid.GetStop(0).Restitution(), hybrid.TimeScale(),
+              hybrid.Free().Contact(0)) {
     const Eigen::MatrixXd inverse_mass = hybrid.GetSystem().mass.inverse();
     constraint_direction_ = inverse_mass.col(c_) / inverse_mass(c_, c_);
     const LinearOutput release =
@@ -118,7 +119,7 @@ class StickingMap::Cycle {
   double clearance_ = 0.0;  ///< the cycle's so far (with contacts)
   const ChatterRule rule_;
   double arrival_acceleration_ = 0.0;  ///< the gap's curvature at the last arrival
-  double gap_scale_ = 1.0;             ///< and the gap signal's length scale
+  double gap_scale_ = 1.0;             ///< and the gap's length scale (GapLengthScale)
   Eigen::VectorXd x_, v_;
   Eigen::MatrixXd dy_;     ///< ∂y/∂s of the current state
   Eigen::RowVectorXd dt_;  ///< ∂t/∂s of the current time
@@ -186,7 +187,9 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
       return std::nullopt;
     }
   }
-  const std::optional<double> te = FirstUpcrossing(gap, begin, deadline_, events_);
+  const double scale = GapLengthScale(hybrid_, 0, x_, v_, gap);
+  const std::optional<double> te =
+      FirstUpcrossing(gap, begin, deadline_, ArrivalSearch(events_, scale));
   if (!te) {
     *status = from_release ? StickingMapStatus::kNoImpact : StickingMapStatus::kNoChatter;
     return std::nullopt;
@@ -194,7 +197,7 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
   if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, begin, *te));
   double value, slope;
   gap.ValueSlopeCurvature(*te, &value, &slope, &arrival_acceleration_);
-  gap_scale_ = gap.Scale();
+  gap_scale_ = scale;
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.State(t0, z0, *te, &x_, &v_);
@@ -232,8 +235,9 @@ double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, doubl
 
 /// The simulator's rules at an arrival (hybrid/chatter_rule.hpp): a landing
 /// ends the chatter at once and is no impact; an impact is recorded and
-/// reset, and the chatter ends where the rule says. True if it ends, at
-/// *t_star.
+/// reset, and the chatter ends where the rule says: at once, or at the end
+/// of its tail by the chatter map, if the tail accumulates. True if it
+/// ends, at *t_star.
 bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, StickingCycle* cycle,
                                             double* t_star) {
   const Stop& stop = hybrid_.GetStop(0);
@@ -252,11 +256,18 @@ bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, Sticking
   double jerk;
   Eigen::VectorXd force(n_), acceleration(n_);
   const double a = hybrid_.ContactAcceleration(0, te, x_, v_, &jerk, &force, &acceleration);
-  const std::optional<double> end = rule_.EndsAt(te, previous, speed, -v_(c_), a, jerk, gap_scale_);
-  if (end) *t_star = *end;
-  return end.has_value();
+  const ChatterDecision decision = rule_.Decide(te, previous, -v_(c_), a, gap_scale_);
+  if (decision != ChatterDecision::kSumTail) return decision != ChatterDecision::kGoesOn;
+  const LinearFlow& flow = hybrid_.StuckFlow(0);
+  const Signal release = flow.Output(
+      hybrid_.Release(0), te, flow.Transient(te, WithoutIndex(x_, c_), WithoutIndex(v_, c_)));
+  const ChatterTail tail = rule_.SumTail(release, hybrid_.Free().Contact(0), te, -v_(c_));
+  *t_star = tail.end;
+  return tail.accumulates;
 }
 
+/// From the impact at te that ends the chatter, the stuck flow: through
+/// the chatter's tail to its end t*, then stuck to the release.
 StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
                                                       StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();

@@ -19,6 +19,21 @@
 
 namespace impactkit {
 
+/// How a stop's mass responds near its stop: at rest there its
+/// acceleration towards the stop is `compliance` × Fs (compliance =
+/// (M_FF⁻¹)_cc, the masses that move held to the constraint's reaction);
+/// its own velocity v_c and displacement x_c − xs change that by
+/// −`damping` v_c ((M_FF⁻¹ C_FF)_cc) and −`stiffness` (x_c − xs)
+/// ((M_FF⁻¹ K_FF)_cc), and the others' accelerations by at most `coupling`
+/// |x_c − xs| (max over j ≠ c of |(M_FF⁻¹ K_FF)_jc|). The chatter map
+/// (hybrid/chatter_rule.hpp) needs them.
+struct ContactResponse {
+  double compliance = 1.0;
+  double damping = 0.0;
+  double stiffness = 0.0;
+  double coupling = 0.0;
+};
+
 class Mode {
  public:
   /// Throws InvalidInput if the masses that move have no bounded steady
@@ -60,6 +75,8 @@ class Mode {
   double AccelerationChange(int stop, const Eigen::MatrixBase<Derived>& dv) const {
     return -damping_responses_[stop].dot(dv);
   }
+  /// Stop `stop`'s mass's response near its stop (the mass moving).
+  ContactResponse Contact(int stop) const;
   /// Fs of a held stop at t, from the moving masses' state.
   double ContactForce(int stop, double t, const Eigen::VectorXd& x_moving,
                       const Eigen::VectorXd& v_moving) const;

@@ -23,15 +23,17 @@
 ///       an arrival whose bounce height is unresolved is a landing: v_c <- 0,
 ///           no impact (docs/theory.md §4); then as after chatter, below
 ///       otherwise v_c(te+) <- -r v_c(te-);  observer.OnImpact(...)
-///       if chatter is predicted to accumulate (Budd & Dux: after impact speed
-///           u = r v and acceleration a > 0 towards the stop, the remaining
-///           impacts end at t* = te + 2u / (a (1 - r))) and t* - te is small
-///           on the system's time scale, or (threshold method) the last
-///           inter-impact time is below the threshold, or the rebound is a
-///           micro-bounce (unresolved; elastic chatter's end):
-///         jump: the other masses follow the stuck subsystem to t* (a
-///               chatter segment, not sticking),
-///               x_c = xs, v_c = 0; observer.OnChatter(te, t*)
+///       chatter (hybrid/chatter_rule.hpp), r < 1: once the rebound's
+///           height is unresolved, or the chatter map is exact to the
+///           rounding of time from here (docs/theory.md §4):
+///         the chatter map sums the remaining bounces under the contact
+///               mass's acceleration along the stuck flow (Budd & Dux, with
+///               the acceleration's variation and the damping) to t*;
+///         the other masses follow the stuck subsystem to t* (a chatter
+///               segment, not sticking), x_c = xs, v_c = 0;
+///               observer.OnChatter(te, t*)
+///       elastic chatter (r near 1) is cut at a short bounce (counted);
+///           the threshold method ends at a short interval between impacts
 ///       if v_c = 0 at the stop: held (the stop joins the mode) if its
 ///           contact force Fs > 0 there
 ///
@@ -43,6 +45,7 @@
 /// stopped, with the reason in the summary).
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -67,23 +70,26 @@ std::string ToString(ChatterMethod method);
 
 struct SimulationOptions {
   ChatterMethod chatter = ChatterMethod::kAccumulation;
-  /// kAccumulation: jump once the predicted remaining chatter time is below
-  /// this fraction of the system's shortest time scale (min of 2π/Ω and
-  /// 2π/ω_max). Smaller is more faithful and slower.
+  /// Elastic chatter (r >= 0.99862, whose bounces shrink too slowly to be
+  /// followed to the rounding floor, and never accumulate when r = 1) is cut
+  /// at its first bounce 2u/a shorter than this fraction of the system's
+  /// shortest time scale τ (min of 2π/Ω and 2π/ω_max): the mass is then at
+  /// the stop to within a (chatter_span τ)²/8. Each cut is counted
+  /// (SimulationSummary::chatter_cuts). Chatter with r below that is not
+  /// cut: its tail is summed by the chatter map (docs/theory.md §4).
   double chatter_span = 1e-4;
   /// kThreshold: inter-impact interval (time units) below which the mass
   /// is taken to stick.
   double chatter_threshold = 1e-4;
   /// Event times are refined until the bracket is below this (time units).
   double event_time_tolerance = 1e-13;
-  /// The micro-bounce rule (docs/theory.md §4): a bounce of the contact mass
-  /// whose height u² / (2a) (speed u off the stop, acceleration a > 0
-  /// towards it) is below this fraction of the flight's length scale is
-  /// contact, not flight: an arrival that low is a landing (no impact), a
-  /// rebound that low ends the chatter. Elastic chatter (r = 1), whose
-  /// bounces never accumulate, also ends at a bounce shorter than
-  /// chatter_span of the time scale.
-  double bounce_height_resolution = 1e-10;
+  /// The height resolution (docs/theory.md §4): an arrival at the stop
+  /// whose bounce height u² / (2|a|) is below this fraction of the gap's
+  /// length scale L (the magnitudes it is computed from) is contact, not
+  /// flight: a landing (counted), and a rebound that low ends a chatter
+  /// sequence through the chatter map. The default, 64 ulps, is the rounding
+  /// of the gap: every arrival resolved in double precision is an impact.
+  double bounce_height_resolution = 64 * std::numeric_limits<double>::epsilon();
   /// The work bound: a run that needs more events than this within one
   /// forcing period stops with status kWorkLimit instead of crawling.
   std::int64_t max_events_per_period = 100'000;
@@ -109,9 +115,14 @@ struct SimulationSummary {
   SimulationStatus status = SimulationStatus::kReachedEnd;
   std::int64_t impacts = 0;        ///< impacts with the stop
   std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
-  std::int64_t releases = 0;       ///< ends of sticking
-  /// Arrivals at the stop at zero speed or from below the bounce height
-  /// resolution: landings (sticking or a touch), not impacts.
+  /// Of those, the ones cut without accumulating (elastic chatter at a
+  /// short bounce, SimulationOptions::chatter_span, or the chatter map's
+  /// bound on bounces): each leaves the mass within a (chatter_span τ)²/8
+  /// of the stop.
+  std::int64_t chatter_cuts = 0;
+  std::int64_t releases = 0;  ///< ends of sticking
+  /// Arrivals at the stop at zero speed or from below the height resolution
+  /// (rounding, by default): landings (sticking or a touch), not impacts.
   std::int64_t landings = 0;
   /// Total time stuck at the stop, each sticking phase from the
   /// accumulation point of the chatter that led to it (the chatter's tail

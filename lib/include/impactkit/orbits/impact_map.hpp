@@ -32,16 +32,20 @@
 
 #include "impactkit/dynamics/flow.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
 
 namespace impactkit {
 
 /// What happened when the map was applied.
 enum class MapStatus {
-  kOk,         ///< p impacts followed, result valid
-  kNoImpact,   ///< no further impact within max_flight_periods: an impact was lost
-  kGrazing,    ///< an impact with speed below min_speed, the mass moving away after it
-  kChatter,    ///< an impact with speed below min_speed pressed into the stop: chatter/sticking
+  kOk,        ///< p impacts followed, result valid
+  kNoImpact,  ///< no further impact within max_flight_periods: an impact was lost
+  /// an arrival too slow to be an impact (its height unresolved: the
+  /// simulator's rule), the mass moving away after it
+  kGrazing,
+  /// such an arrival with the mass pressed into the stop: chatter/sticking
+  kChatter,
   kOtherStop,  ///< the p-th impact is at another stop than the section's
 };
 
@@ -50,8 +54,11 @@ std::string ToString(MapStatus status);
 struct ImpactMapOptions {
   /// A flight longer than this many forcing periods counts as a lost impact.
   double max_flight_periods = 64.0;
-  /// Impacts slower than this (velocity units) end the map (grazing or chatter).
-  double min_speed = 1e-8;
+  /// The arrival rule: an arrival whose bounce height is unresolved
+  /// (SimulationOptions::bounce_height_resolution, the rounding by
+  /// default) is no impact and ends the map (grazing or chatter), as the
+  /// simulator makes it a landing.
+  SimulationOptions simulation;
   /// The section: the stop (an index into System::stops) whose impacts η
   /// describes, where P_I^p starts and must end.
   int stop = 0;
@@ -143,10 +150,17 @@ class ImpactMap {
   /// false with `status` set when it fails.
   bool Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
             Eigen::MatrixXd* jacobian, MapStatus* status) const;
-  /// The first impact at any stop in (t, t_end] of the flight from z0; *stop
-  /// is the stop the flight leaves on entry, the one it reaches on return.
-  std::optional<double> NextImpact(const Eigen::VectorXd& z0, double t, double t_end,
-                                   int* stop) const;
+  /// The first arrival at any stop in (t, t_end] of the flight from the
+  /// state `from` at t (z0 its transient), with the gap's curvature there
+  /// and its length scale (what the arrival rule judges); *stop is the stop
+  /// the flight leaves on entry, the one it reaches on return.
+  struct Arrival {
+    double t = 0.0;
+    double curvature = 0.0;
+    double length_scale = 1.0;
+  };
+  std::optional<Arrival> NextArrival(const HybridState& from, const Eigen::VectorXd& z0,
+                                     double t_end, int* stop) const;
   /// The flow's transient coordinates just after the impact η at `stop`.
   Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta, int stop) const;
   /// ∂y(τ+)/∂η: the embedding of η at `stop` into y(τ−) (x_c = xs fixed, τ
