@@ -110,7 +110,9 @@ TEST_CASE("analytic and finite-difference Jacobians agree, and match the strobos
 TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]") {
   SECTION("a flight with no further impact") {
     const System s = PaperSystem(4.0);  // far above resonance: tiny response
-    const ImpactMap map(s, ImpactMapOptions{4.0, 1e-8});
+    ImpactMapOptions options;
+    options.max_flight_periods = 4.0;
+    const ImpactMap map(s, options);
     Eigen::VectorXd eta(4);
     eta << 0.0, 0.0, 0.0, 0.01;
     const MapResult r = map.Apply(eta, 1, true);
@@ -119,8 +121,8 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
   }
   SECTION("a chatter sequence: impacts accumulate at the stop") {
     // At Ω = 0.2 every period ends in complete chatter (docs/simulation.md):
-    // the map from its first impact follows the geometric sequence until the
-    // impact speed falls below min_speed, and says chatter.
+    // the map from its first impact follows the geometric sequence until an
+    // arrival's height is unresolved (a landing), and says chatter.
     const System s = PaperSystem(0.2);
     const Simulator simulator(s);
     HybridState state = RestState(s);
@@ -133,6 +135,41 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     CHECK(r.status == MapStatus::kChatter);
     CHECK(r.impacts_done > 20);
     CHECK(r.jacobian.size() == 0);
+  }
+  SECTION("the map and the simulator judge arrivals by one rule") {
+    // With a coarse height resolution (1e-7 of the gap's scale) both end a
+    // chatter sequence early: the simulator sums its tail after the first
+    // impact whose rebound is unresolved, and the map meets the next
+    // arrival as a landing. The same impacts, the same count.
+    const System s = PaperSystem(0.2);
+    SimulationOptions coarse;
+    coarse.bounce_height_resolution = 1e-7;
+    const Simulator simulator(s, coarse);
+    HybridState state = RestState(s);
+    simulator.Run(state, 100 * s.ForcingPeriod());
+    struct Sequence : Observer {
+      ImpactRecorder impacts;
+      bool ended = false;
+      void OnImpact(const Impact& impact) override {
+        if (!ended) impacts.OnImpact(impact);
+      }
+      void OnChatter(double, double) override { ended = true; }
+      bool ShouldStop() const override { return ended; }
+    } sequence;
+    simulator.Run(state, 101 * s.ForcingPeriod(), sequence);
+    REQUIRE(sequence.ended);
+    const ImpactLog& simulated = sequence.impacts.Impacts();
+    REQUIRE(simulated.size() > 5);
+    ImpactMapOptions options;
+    options.simulation = coarse;
+    const ImpactMap map(s, options);
+    const ImpactView first = simulated.front();
+    const MapResult r = map.Apply(map.ToEta(first.t, first.x, first.v), 200, false);
+    CHECK(r.status == MapStatus::kChatter);
+    REQUIRE(r.impacts_done == static_cast<int>(simulated.size()) - 1);
+    for (int k = 0; k < r.impacts_done; ++k) {
+      CHECK_THAT(r.path[k](map.TimeIndex()), Catch::Matchers::WithinAbs(simulated[k + 1].t, 1e-9));
+    }
   }
   SECTION("bad impact states and p") {
     const ImpactMap map(PaperSystem(0.9));

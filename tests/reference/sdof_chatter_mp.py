@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""Independent reference for the accumulation point of complete chatter of a
+single-degree-of-freedom impact oscillator, in 50-digit arithmetic (mpmath),
+written from the model alone (no impactkit code):
+
+    m x'' + c x' + k x = A cos(Ω t)   while x < xs,   v -> -r v at x = xs.
+
+From a release (x = xs, v = 0 where A cos Ωt = k xs, the force falling) the
+free flight is the closed form x = X cos(Ωt − φ) + e^{−ζ s}(B cos ω_d s + C
+sin ω_d s); each impact is its first root after the last one (bracketed on
+a grid of the flight, refined to 50 digits); the bounces are followed until
+their speed is below 1e-25, and Budd & Dux's 2 r u / (a (1 − r)) adds the
+remaining (< 1e-24) time. Prints, for each Ω given, the accumulation phase,
+the release phase and the stuck duration (all mod T), and the number of
+impacts.
+
+    sdof_chatter_mp.py m c k A xs r OMEGA...
+"""
+import sys
+
+import mpmath as mp
+
+mp.mp.dps = 50
+
+
+def flight(m, c, k, a_force, omega, t0, x0, v0):
+    """x(t), v(t), acc(t) of the free flight from (x0, v0) at t0."""
+    wn2 = k / m
+    zeta = c / (2 * m)
+    wd = mp.sqrt(wn2 - zeta**2)
+    denom = mp.sqrt((k - m * omega**2) ** 2 + (c * omega) ** 2)
+    amp = a_force / denom
+    phi = mp.atan2(c * omega, k - m * omega**2)
+
+    def xp(t):
+        return amp * mp.cos(omega * t - phi)
+
+    def vp(t):
+        return -amp * omega * mp.sin(omega * t - phi)
+
+    b = x0 - xp(t0)
+    cc = (v0 - vp(t0) + zeta * b) / wd
+
+    def x(t):
+        s = t - t0
+        return xp(t) + mp.exp(-zeta * s) * (b * mp.cos(wd * s) + cc * mp.sin(wd * s))
+
+    def v(t):
+        s = t - t0
+        e = mp.exp(-zeta * s)
+        return vp(t) + e * (
+            (-zeta * b + wd * cc) * mp.cos(wd * s) + (-zeta * cc - wd * b) * mp.sin(wd * s)
+        )
+
+    return x, v
+
+
+def next_impact(x, xs, t0, guess_span, period):
+    """The first t > t0 with x(t) = xs, crossing upwards."""
+    g = lambda t: x(t) - xs
+    steps = 400
+    h = guess_span / steps
+    t = t0 + h * mp.mpf("1e-6")
+    prev = g(t)
+    for _ in range(steps * 8):
+        t_next = t + h
+        cur = g(t_next)
+        if prev < 0 and cur >= 0:
+            return mp.findroot(g, (t, t_next), solver="anderson")
+        t, prev = t_next, cur
+        if t - t0 > 4 * period:
+            break
+    return None
+
+
+def main():
+    m, c, k, a_force, xs, r = (mp.mpf(v) for v in sys.argv[1:7])
+    for omega_text in sys.argv[7:]:
+        omega = mp.mpf(omega_text)
+        period = 2 * mp.pi / omega
+        release = mp.acos(k * xs / a_force) / omega
+        t, x0, v0 = release, xs, mp.mpf(0)
+        impacts = 0
+        span = period
+        while True:
+            x, v = flight(m, c, k, a_force, omega, t, x0, v0)
+            te = next_impact(x, xs, t, span, period)
+            if te is None:
+                print("no impact")
+                return
+            u = v(te)
+            impacts += 1
+            accel = (a_force * mp.cos(omega * te) - k * xs - c * (-r * u)) / m
+            span = 4 * r * u / accel if accel > 0 else period
+            t, x0, v0 = te, xs, -r * u
+            if u < mp.mpf("1e-25"):
+                accumulation = te + 2 * r * u / (accel * (1 - r))
+                break
+        next_release = release + period * mp.ceil((accumulation - release) / period)
+        stuck = next_release - accumulation
+        phase = accumulation - period * mp.floor(accumulation / period)
+        print(
+            f"omega {omega_text}: accumulation phase {mp.nstr(phase, 20)}, release phase "
+            f"{mp.nstr(release, 20)}, stuck duration {mp.nstr(stuck, 20)}, impacts {impacts}"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,75 @@
+// Sticking from the true accumulation point (issue 41, item 2): complete
+// chatter of a single mass near the end of its sticking family, where the
+// acceleration at the stop is small and the bounces' tail long. Expected
+// values from tests/reference/sdof_chatter_mp.py, a 50-digit computation
+// written from the model alone (every bounce found on the closed-form
+// flight until its speed is below 1e-25):
+//
+//     sdof_chatter_mp.py 1 0.1 1 1.2 0.3 0.6 0.4615 0.4618 0.46181 0.4618117 0.461812
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
+
+using namespace impactkit;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+System SingleMass(double k, double c, double a, double omega, double xs, double r) {
+  return GeneralSystem(Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, c),
+                       Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, a), omega,
+                       xs, r);
+}
+
+struct Reference {
+  double omega, accumulation_phase, stuck_duration;
+};
+
+}  // namespace
+
+TEST_CASE("sticking begins at the accumulation point of its chatter, near the family's end too",
+          "[sticking][chatter-accumulation]") {
+  const Reference references[] = {
+      {0.4615, 2.7737142191864462157, 0.082441949075347859594},
+      {0.4618, 2.8427030160751137219, 0.011597702099026524362},
+      {0.46181, 2.8502546921771492174, 0.0039842191777758940984},
+      {0.4618117, 2.8528737203333183499, 0.0013546841285390819498},
+      {0.461812, 2.8538550161420706058, 0.00037153417021657108423},
+  };
+  for (const Reference& expected : references) {
+    INFO("omega " << expected.omega);
+    const System system = SingleMass(1.0, 0.1, 1.2, expected.omega, 0.3, 0.6);
+    const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
+    REQUIRE(seed);
+    StickingOrbitOptions options;
+    options.releases = seed->releases;
+    options.q = seed->q;
+    StickingOrbit orbit;
+    REQUIRE(FindStickingOrbit(system, seed->state, options, &orbit).termination ==
+            Termination::kConverged);
+    CHECK_THAT(orbit.stick_phases[0], WithinAbs(expected.accumulation_phase, 1e-9));
+    // The floor: each impact's time is rounded to ~ε L / u, and the
+    // accumulation point moves by 2/(a(1 − r)) times a speed's error (the
+    // sequence's sensitivity, 1e3 here): a few 1e-11 (docs/theory.md §4).
+    CHECK_THAT(orbit.stuck_durations[0],
+               WithinAbs(expected.stuck_duration, std::max(1e-8 * expected.stuck_duration, 2e-10)));
+  }
+}
+
+TEST_CASE("the stuck time per period of a sticking single mass is the exact one",
+          "[simulate][chatter-accumulation]") {
+  // The issue's second system: stuck 7.4563728878455695 per period (the
+  // 50-digit computation above: release where 0.9 cos Ωt = 1.3 xs, the
+  // accumulation point of the chatter before it).
+  const System system = SingleMass(1.3, 0.06, 0.9, 0.25, 0.2, 0.6);
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, 50 * system.ForcingPeriod());
+  const SimulationSummary summary = simulator.Run(state, 52 * system.ForcingPeriod());
+  CHECK_THAT(summary.stuck_time / 2, WithinAbs(7.4563728878455695, 1e-9));
+  CHECK(summary.chatter_cuts == 0);
+}
