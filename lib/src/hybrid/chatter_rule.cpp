@@ -134,10 +134,11 @@ bool ChatterRule::TailIsExact(double rebound, double acceleration, double length
   const double bounce = 2.0 * rebound / acceleration;
   const double r = restitution_;
   const double span = bounce * r / (1.0 - r);
-  const double neglected = span * std::pow(rate * bounce, 4) *
-                           (1.0 + length_scale * time_rate * time_rate / acceleration);
+  const double relative = rate * bounce, squared = relative * relative;
+  const double neglected =
+      span * squared * squared * (1.0 + length_scale * time_rate * time_rate / acceleration);
   const double timing = kEpsilon * length_scale / rebound;
-  const double pull = contact_.coupling * 2.0 * std::pow(rebound, 3) /
+  const double pull = contact_.coupling * 2.0 * rebound * rebound * rebound /
                       (3.0 * acceleration * acceleration * (1.0 - r * r * r));
   return neglected <= std::max(TimeRounding(), timing) &&
          pull <= kRounding * length_scale * time_rate;
