@@ -151,8 +151,12 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
     if (before != branch.points.rend()) {
       rate = std::abs(*before->orbit.contacts.clearance / (before->parameter - point.parameter));
     }
+    const double speed = std::sqrt(2.0 * std::abs(curvature) * rate * offset);
+    // A touch with no curvature or no clearance rate gives no impact to
+    // start from (a speed of 0 is no impact state).
+    if (!(speed > 0)) return {};
     Eigen::VectorXd v = at.v;
-    v(touched.dof) = touched.Sign() * std::sqrt(2.0 * std::abs(curvature) * rate * offset);
+    v(touched.dof) = touched.Sign() * speed;
     orbit.p = branch.p + 1;
     orbit.map.stop = contacts.clearance_stop;
     eta = map->ToEta(at.t, at.x, v, contacts.clearance_stop);
