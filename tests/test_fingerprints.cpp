@@ -24,7 +24,12 @@
 // derivative bounds came from its amplitude times powers of |λ| (the same
 // bound, rounded otherwise: dynamics/mode_clock.hpp); and all of them when
 // the certified step's bracket began from the search's previous step; and
-// the branch again when the step's divisions by B3 became products with 1/B3.
+// the branch again when the step's divisions by B3 became products with 1/B3;
+// and the Ω = 0.2 and both general simulations and the branch when chatter
+// tails came to be summed by the chatter map (hybrid/chatter_rule.hpp) and
+// arrivals judged at the rounding floor: the sticking runs end their chatter
+// at another impact and time; the Ω = 0.6, 1.4 and 1.75 runs, whose flights
+// never chatter, kept every bit.
 
 #include <catch2/catch.hpp>
 #include <cstdint>
@@ -134,12 +139,12 @@ TEST_CASE("Simulations are bit-identical to the recorded fingerprints", "[finger
     std::uint64_t expected;
   };
   const Case cases[] = {
-      {PaperSystem(0.2), 0xc33f918d2c099ed5ull},      // chatter and sticking every period
+      {PaperSystem(0.2), 0xf1c61b81da0319e0ull},      // chatter and sticking every period
       {PaperSystem(0.6), 0x264f5c5a71c36143ull},      // P(2,1)
       {PaperSystem(1.4), 0x93b5f748ba1b2fbaull},      // P(1,1)
       {PaperSystem(1.75), 0x314ca623363cacdull},      // chaotic
-      {GeneralThreeDof(0.5), 0x631a42d691a87441ull},  // general matrices, stop on mass 2
-      {GeneralThreeDof(1.1), 0xe14d669f4f4b6cdull},
+      {GeneralThreeDof(0.5), 0x6c50e5c19605195full},  // general matrices, stop on mass 2
+      {GeneralThreeDof(1.1), 0x91bbe1e9d08c5455ull},
   };
   for (const Case& c : cases) {
     const std::uint64_t hash = SimulationHash(c.system, 1e5);
@@ -189,5 +194,5 @@ TEST_CASE("A continued branch is bit-identical to the recorded fingerprint", "[f
     hash.Add(special.monitor);
   }
   INFO("branch: " << branch.points.size() << " points, 0x" << std::hex << hash.Value());
-  CHECK(hash.Value() == 0x9d1511701b56fafcull);
+  CHECK(hash.Value() == 0x7912e13c158a16a1ull);
 }
