@@ -139,7 +139,10 @@ class StickingCurve {
   }
 
   /// [U_s U_μ], U_μ by central differences (Newton needs only an
-  /// approximate one; the map has no closed-form parameter derivative).
+  /// approximate one; the map has no closed-form parameter derivative),
+  /// one-sided within h of the family's end, where the map fails on the
+  /// far side: without that the corrector failed there, and the branch
+  /// stopped a difference step (1e-6) short of its end.
   bool Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian) const {
     Eigen::VectorXd u, plus, minus;
     Eigen::MatrixXd u_s;
@@ -148,9 +151,15 @@ class StickingCurve {
     Eigen::VectorXd xp = x, xm = x;
     xp(m_) += h;
     xm(m_) -= h;
-    if (!Residual(xp, &plus, nullptr) || !Residual(xm, &minus, nullptr)) return false;
+    const bool has_plus = Residual(xp, &plus, nullptr), has_minus = Residual(xm, &minus, nullptr);
+    if (!has_plus && !has_minus) return false;
     jacobian->resize(m_, m_ + 1);
-    *jacobian << u_s, (plus - minus) / (2 * h);
+    if (has_plus && has_minus) {
+      *jacobian << u_s, (plus - minus) / (2 * h);
+    } else {
+      *jacobian << u_s,
+          has_plus ? Eigen::VectorXd((plus - u) / h) : Eigen::VectorXd((u - minus) / h);
+    }
     return true;
   }
 
