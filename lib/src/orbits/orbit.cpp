@@ -215,8 +215,8 @@ namespace {
 
 /// U's rounding in units of ε ‖D P_I^p‖∞ max(1, ‖η‖∞): the map carries
 /// each entry of η, rounded, through D P_I^p, plus its event times' own
-/// rounding (measured: max |U| at closed-form orbits 0.05 to 0.1 of one
-/// unit for v from 7e-5 down to 7e-10; docs/theory.md §5b).
+/// rounding (measured: max |U| at the orbits found 0.04 to 0.35 of one
+/// unit for v from 7e-5 down to 7e-9; docs/theory.md §5b).
 constexpr double kFloorRoundings = 8.0;
 
 /// The orbit through a fixed point η of the map. The analytic D P_I^p is
