@@ -104,6 +104,12 @@ struct OrbitPeriod {
 OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
                             double tolerance = 1e-8);
 
+/// What max |U| cannot fall below at an impact state η exact to rounding,
+/// D P_I^p = `jacobian` (~1/v near grazing): the map carries each entry of
+/// η, rounded, through D P_I^p, plus its event times' own rounding:
+/// 8 ε ‖jacobian‖∞ max(1, ‖η‖∞) (docs/theory.md §5b).
+double ResidualFloor(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& eta);
+
 /// Summary::iterations counts Newton iterations plus LM and fixed-time
 /// Newton iterations if used.
 struct OrbitSummary : Summary {
