@@ -179,7 +179,12 @@ inline std::vector<SdofP11> SdofP11Solutions(const SdofParameters& p) {
   // qa u² + qb u + qc = 0.
   const double qa = d(0) * d(0) + d(1) * d(1) / (p.omega * p.omega);
   const double qb = 2.0 * p.xs * d(0);
-  const double qc = p.xs * p.xs - x * x;
+  // xs² − X² as a product: near grazing (X → xs, the small root u → 0) the
+  // difference of squares would add the rounding of both squares; this
+  // leaves X's own (a few ulps), ~3e-8 relative in u at Ω_g − Ω = 1e-8 for
+  // tests/test_orbit_grazing.cpp's system (u ~ 7e-10). The roots below
+  // are cancellation-free.
+  const double qc = (p.xs - x) * (p.xs + x);
   const double disc = qb * qb - 4.0 * qa * qc;
   std::vector<SdofP11> out;
   if (!(qa > 0.0) || disc < 0.0) return out;
@@ -228,7 +233,9 @@ inline Eigen::Matrix2d SdofP11Jacobian(const SdofParameters& p, const SdofP11& o
 }
 
 /// Eigenvalues of a 2 x 2 matrix: tr/2 ± sqrt(tr²/4 - det), ordered by
-/// decreasing modulus (then decreasing imaginary part).
+/// decreasing modulus (then decreasing imaginary part). The smaller of two
+/// real ones cancels when |tr| ≫ sqrt|det| (near grazing, |λ1| ~ 1/v):
+/// use SdofP11Determinant / λ1 there.
 inline std::array<std::complex<double>, 2> Eigenvalues2(const Eigen::Matrix2d& j) {
   const double half_tr = 0.5 * j.trace(), det = j.determinant();
   const std::complex<double> root = std::sqrt(std::complex<double>(half_tr * half_tr - det));
@@ -238,6 +245,15 @@ inline std::array<std::complex<double>, 2> Eigenvalues2(const Eigen::Matrix2d& j
     std::swap(l[0], l[1]);
   }
   return l;
+}
+
+/// det DP at a P(1,1) orbit, exactly: det DP = det(∂G/∂(τ,u)) / det(∂G/∂(τ',u'))
+/// with det ∂G/∂(τ',u') = −u' and det ∂G/∂(τ,u) = r det Φ(T) · (first entry
+/// of S z + y_p'(τ)) = r e^{−cT/m} (−r u), so det DP = r² e^{−cT/m} u/u' =
+/// r² e^{−cT/m}: the product of the multipliers, free of the 1/u entries'
+/// cancellation.
+inline double SdofP11Determinant(const SdofParameters& p) {
+  return p.r * p.r * std::exp(-p.c / p.m * p.Period());
 }
 
 /// The result of sampling x(t) over the open flight (τ, τ+T).

@@ -663,9 +663,12 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
     }
   }
   const ImpactMap* map = problem.MapAt(mu);
-  const double residual =
-      DescribeOrbit(*map, start.orbit.eta, options.orbit.p, options.orbit.q).residual;
-  Require(residual <= 1e3 * options.orbit.newton.residual_tolerance,
+  const PeriodicOrbit described =
+      DescribeOrbit(*map, start.orbit.eta, options.orbit.p, options.orbit.q);
+  const double residual = described.residual;
+  // Near grazing FindOrbit accepts an orbit up to U's rounding floor: so here.
+  Require(residual <= std::max(1e3 * options.orbit.newton.residual_tolerance,
+                               ResidualFloor(described.jacobian, described.eta)),
           fmt::format("the start is not a P({},{}) orbit: residual {:.2e}", options.orbit.p,
                       options.orbit.q, residual));
   // A P(2,2) that is P(1,1) traversed twice is followed as P(1,1): as P(2,2)

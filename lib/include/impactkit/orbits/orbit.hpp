@@ -7,9 +7,15 @@
 ///
 /// solved by Newton–Raphson through KINSOL with the analytic (or the paper's
 /// finite-difference) Jacobian, falling back on Levenberg–Marquardt through
-/// Ceres from poor seeds. Stability: the eigenvalues of D P_I^p at the fixed
-/// point (the multipliers); the orbit is stable when all lie inside the unit
-/// circle. Unstable orbits are found as readily as stable ones.
+/// Ceres from poor seeds. Near grazing (an impact's speed v → 0, D P_I ~
+/// 1/v) neither can converge: U has a square root's domain and cannot be
+/// evaluated below its rounding ε ‖D P_I‖. There the orbit is solved as p
+/// flights between impacts at fixed times (multiple shooting, regular at
+/// grazing, docs/theory.md §5b) and accepted when U at it is within that
+/// rounding floor; the summary says so. Stability: the eigenvalues of
+/// D P_I^p at the fixed point (the multipliers); the orbit is stable when
+/// all lie inside the unit circle. Unstable orbits are found as readily as
+/// stable ones.
 
 #include <Eigen/Dense>
 #include <complex>
@@ -39,6 +45,10 @@ struct OrbitOptions {
   NewtonOptions newton;
   /// Try Levenberg–Marquardt (Ceres) when Newton does not converge.
   bool least_squares_fallback = true;
+  /// Then try the fixed-time formulation (regular where an impact's speed
+  /// vanishes), with the impacts' stops of the guess (for p > 1 the map
+  /// must follow p impacts from the guess).
+  bool shooting_fallback = true;
   ImpactMapOptions map;
   bool IsValid(std::string* error) const;
 };
@@ -94,17 +104,31 @@ struct OrbitPeriod {
 OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
                             double tolerance = 1e-8);
 
-/// Summary::iterations counts Newton iterations plus LM iterations if used.
+/// What max |U| cannot fall below at an impact state η exact to rounding,
+/// D P_I^p = `jacobian` (~1/v near grazing): the map carries each entry of
+/// η, rounded, through D P_I^p, plus its event times' own rounding:
+/// 8 ε ‖jacobian‖∞ max(1, ‖η‖∞) (docs/theory.md §5b).
+double ResidualFloor(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& eta);
+
+/// Summary::iterations counts Newton iterations plus LM and fixed-time
+/// Newton iterations if used.
 struct OrbitSummary : Summary {
   bool used_fallback = false;  ///< Levenberg–Marquardt was needed
   double residual = 0.0;       ///< max |U| at the returned point
+  /// The fixed-time formulation found the orbit; then `residual` is
+  /// accepted up to `residual_floor` instead of newton.residual_tolerance.
+  bool used_shooting = false;
+  double shooting_residual = 0.0;  ///< max |W| of the fixed-time equations, when used
+  /// max(residual_tolerance, 8 ε ‖D P_I^p‖∞ max(1, ‖η‖∞)): U's rounding
+  /// when η is exact to rounding (docs/theory.md §5b), when used.
+  double residual_floor = 0.0;
   std::string BriefReport() const;
 };
 
 /// Solves U(η) = 0 from `guess` (an impact state: v_c > 0). Throws
 /// InvalidInput for bad options, system or guess. A solution where the map
-/// fails (an impact of speed ~0: a grazing orbit) is no orbit: kFailure,
-/// with the reason in the summary's message.
+/// fails (an impact slower than options.map.min_speed: a grazing orbit) is
+/// no orbit: kFailure, with the reason in the summary's message.
 OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
                        const OrbitOptions& options, PeriodicOrbit* orbit);
 

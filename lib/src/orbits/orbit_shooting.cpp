@@ -1,0 +1,110 @@
+#include "orbits/orbit_shooting.hpp"
+
+#include <utility>
+
+#include "dynamics/subsystem.hpp"
+
+namespace impactkit {
+
+ShootingProblem::ShootingProblem(const HybridSystem& hybrid, const ImpactMap& map,
+                                 std::vector<int> stops, int q)
+    : hybrid_(hybrid), map_(map), stops_(std::move(stops)), q_(q), n_(hybrid.GetSystem().Dof()) {}
+
+Eigen::VectorXd ShootingProblem::Eta(const Eigen::VectorXd& z, int k) const {
+  return z.segment(2 * n_ * k, 2 * n_);
+}
+
+Eigen::VectorXd ShootingProblem::Pack(const std::vector<Eigen::VectorXd>& etas) const {
+  Eigen::VectorXd z(2 * n_ * Impacts());
+  for (int k = 0; k < Impacts(); ++k) z.segment(2 * n_ * k, 2 * n_) = etas[k];
+  return z;
+}
+
+Eigen::VectorXd ShootingProblem::WithPhase(Eigen::VectorXd z) const {
+  const double tau = z(map_.TimeIndex());
+  const double shift = hybrid_.GetSystem().Phase(tau) - tau;
+  for (int k = 0; k < Impacts(); ++k) z(2 * n_ * k + map_.TimeIndex()) += shift;
+  return z;
+}
+
+double ShootingProblem::EndTime(const Eigen::VectorXd& z, int k) const {
+  const int next = (k + 1) % Impacts();
+  const double shift = next == 0 ? q_ * hybrid_.GetSystem().ForcingPeriod() : 0.0;
+  return z(2 * n_ * next + map_.TimeIndex()) + shift;
+}
+
+Eigen::MatrixXd ShootingProblem::Embedding(int stop) const {
+  const int c = hybrid_.GetStop(stop).Dof();
+  Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
+  for (int j = 0, i = 0; j < n_; ++j) {
+    if (j != c) embedding(j, i++) = 1.0;
+  }
+  embedding.bottomRightCorner(n_, n_).setIdentity();
+  return embedding;
+}
+
+ShootingProblem::Flight ShootingProblem::Fly(const Eigen::VectorXd& z, int k,
+                                             bool with_derivatives) const {
+  const LinearFlow& flow = hybrid_.FreeFlow();
+  const HybridState before = map_.ToState(Eta(z, k), stops_[k]);
+  Eigen::VectorXd v_after = before.v;
+  hybrid_.GetStop(stops_[k]).Reset(v_after);
+  Flight flight;
+  flight.end.t = EndTime(z, k);
+  flow.State(before.t, flow.Transient(before.t, before.x, v_after), flight.end.t, &flight.end.x,
+             &flight.end.v);
+  if (!with_derivatives) return flight;
+  // G as in ImpactMap's step: the reset, the flow, and the start time's
+  // column −e^{S s} f(y+, τ) (moving the start moves the whole flight).
+  const Eigen::MatrixXd transition = flow.Transition(flight.end.t - before.t);
+  flight.g = transition * hybrid_.GetStop(stops_[k]).ResetJacobian(n_) * Embedding(stops_[k]);
+  flight.g.col(map_.TimeIndex()) = -transition * hybrid_.VectorField(before.t, before.x, v_after);
+  flight.f = hybrid_.VectorField(flight.end.t, flight.end.x, flight.end.v);
+  return flight;
+}
+
+bool ShootingProblem::Residual(const Eigen::VectorXd& z, Eigen::VectorXd* w) const {
+  w->resize(z.size());
+  for (int k = 0; k < Impacts(); ++k) {
+    const int next = (k + 1) % Impacts();
+    const Flight flight = Fly(z, k, false);
+    const HybridState target = map_.ToState(Eta(z, next), stops_[next]);
+    w->segment(2 * n_ * k, n_) = flight.end.x - target.x;
+    w->segment(2 * n_ * k + n_, n_) = flight.end.v - target.v;
+  }
+  return w->allFinite();
+}
+
+bool ShootingProblem::Jacobian(const Eigen::VectorXd& z, Eigen::MatrixXd* jacobian) const {
+  const int size = 2 * n_;
+  jacobian->setZero(z.size(), z.size());
+  for (int k = 0; k < Impacts(); ++k) {
+    const int next = (k + 1) % Impacts();
+    const Flight flight = Fly(z, k, true);
+    // W_k depends on η_k through the flight, on η_{k+1} through the end
+    // time (the flight's rate) and the target state.
+    jacobian->block(size * k, size * k, size, size) += flight.g;
+    auto by_next = jacobian->block(size * k, size * next, size, size);
+    by_next -= Embedding(stops_[next]);
+    by_next.col(map_.TimeIndex()) += flight.f;
+  }
+  return jacobian->allFinite();
+}
+
+Eigen::MatrixXd ShootingProblem::MapJacobian(const Eigen::VectorXd& z) const {
+  Eigen::MatrixXd product = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+  for (int k = 0; k < Impacts(); ++k) {
+    const Flight flight = Fly(z, k, true);
+    const int c = hybrid_.GetStop(stops_[(k + 1) % Impacts()]).Dof();
+    const Eigen::RowVectorXd dte = -flight.g.row(c) / flight.end.v(c);
+    const Eigen::MatrixXd dy = flight.g + flight.f * dte;
+    Eigen::MatrixXd step(2 * n_, 2 * n_);
+    step.topRows(n_ - 1) = WithoutRow(dy.topRows(n_), c);
+    step.row(n_ - 1) = dte;
+    step.bottomRows(n_) = dy.bottomRows(n_);
+    product = step * product;
+  }
+  return product;
+}
+
+}  // namespace impactkit
