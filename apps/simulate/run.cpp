@@ -100,8 +100,8 @@ Provenance ProvenanceOf(const SimulateRequest& request, const System& system) {
 
 /// Runs to t_end with a progress line; a run that cannot reach t_end is a
 /// failure, since its window would be silently short.
-double Advance(const Simulator& simulator, HybridState& state, double t_end,
-               const std::string& stage, Observer* recorders) {
+SimulationSummary Advance(const Simulator& simulator, HybridState& state, double t_end,
+                          const std::string& stage, Observer* recorders) {
   ProgressLine progress(stage, state.t, t_end, simulator.GetSystem().ForcingPeriod());
   ObserverList observers;
   observers.Add(progress);
@@ -111,11 +111,13 @@ double Advance(const Simulator& simulator, HybridState& state, double t_end,
     throw std::runtime_error(fmt::format("the {} stopped at t = {:.6g}, before t = {:.6g}: {}",
                                          stage, state.t, t_end, ToString(summary.status)));
   }
-  return summary.elapsed_seconds;
+  return summary;
 }
 
-WindowAnalysis Analyse(const WindowRecorders& recorders, const Window& window) {
+WindowAnalysis Analyse(const WindowRecorders& recorders, const Window& window,
+                       const SimulationSummary& recording) {
   WindowAnalysis analysis;
+  analysis.chatter_cuts = recording.chatter_cuts;
   const ImpactLog& impacts = recorders.steady.Impacts();
   analysis.impacts_per_period = static_cast<double>(impacts.size()) / window.periods;
   analysis.sticking_fraction = recorders.sticking.TotalTime() / (window.end - window.begin);
@@ -151,13 +153,15 @@ void RunSimulate(const SimulateRequest& request) {
 
   const Window window = WindowOf(request, system);
   HybridState state = initial_state;
-  double elapsed = Advance(simulator, state, window.begin, "transient", nullptr);
+  double elapsed = Advance(simulator, state, window.begin, "transient", nullptr).elapsed_seconds;
   std::optional<double> sample_interval;
   if (outputs.NeedsSeries()) sample_interval = window.period / request.samples_per_period;
   WindowRecorders recorders(window, sample_interval);
-  elapsed += Advance(simulator, state, window.end, "recording", &recorders.all);
+  const SimulationSummary recording =
+      Advance(simulator, state, window.end, "recording", &recorders.all);
+  elapsed += recording.elapsed_seconds;
 
-  const WindowAnalysis analysis = Analyse(recorders, window);
+  const WindowAnalysis analysis = Analyse(recorders, window, recording);
   const SimulateResult result{request,  system,        window, recorders,
                               analysis, initial_state, state,  elapsed};
   outputs.Write(result);

@@ -8,6 +8,7 @@
 /// so that stroboscopic points fall at forcing phase 0; then summarise the
 /// window and write what was asked for.
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -66,6 +67,9 @@ struct WindowAnalysis {
   double impacts_per_period = 0.0;
   double sticking_fraction = 0.0;  ///< time stuck / window length
   long chatter_sequences = 0;
+  /// Of those, the ones cut without accumulating (elastic chatter at a
+  /// short bounce: SimulationSummary::chatter_cuts), over the window.
+  std::int64_t chatter_cuts = 0;
   MotionPeriod motion;
   int searched_q = 0;  ///< periods up to this q were looked for
 };

@@ -120,9 +120,16 @@ std::string SummaryText(const SimulateResult& result) {
                               window.begin, window.end, window.first_period,
                               window.first_period + window.periods, window.period));
   line("impacts:", ImpactLine(result));
-  line("sticking:", fmt::format("{:.3g}% of the window, {} chatter sequence{}",
+  // A cut chatter sequence did not end at its accumulation point: say so
+  // where there were any (docs/theory.md §4).
+  const std::string cuts =
+      analysis.chatter_cuts > 0
+          ? fmt::format(" ({} cut at a short bounce without accumulating: elastic chatter)",
+                        analysis.chatter_cuts)
+          : "";
+  line("sticking:", fmt::format("{:.3g}% of the window, {} chatter sequence{}{}",
                                 100.0 * analysis.sticking_fraction, analysis.chatter_sequences,
-                                analysis.chatter_sequences == 1 ? "" : "s"));
+                                analysis.chatter_sequences == 1 ? "" : "s", cuts));
   line("motion:", DescribeMotion(analysis));
   line("run time:", fmt::format("{:.3g} s", result.elapsed_seconds));
   line("wrote:", WrittenFiles(result.request));
@@ -144,6 +151,7 @@ std::string SummaryJson(const SimulateResult& result, const Provenance& provenan
                      {"per_forcing_period", result.analysis.impacts_per_period}};
   json["sticking_fraction"] = result.analysis.sticking_fraction;
   json["chatter_sequences"] = result.analysis.chatter_sequences;
+  json["chatter_cuts"] = result.analysis.chatter_cuts;
   json["motion"] = MotionJson(result.analysis);
   json["final_state"] = StateJson(result.final_state);
   json["elapsed_seconds"] = result.elapsed_seconds;

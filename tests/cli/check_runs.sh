@@ -89,6 +89,18 @@ run_sticking() {
   grep -q ',1,[a-z_]*$' "$work/series.csv" || fail "no stuck sample in a sticking motion"
   grep -q ',1,stick$' "$work/series.csv" || fail "no stick row in a sticking motion"
   grep -q ',0,release$' "$work/series.csv" || fail "no release row in a sticking motion"
+  # Its chatter accumulates: no cut is reported. Elastic chatter (r = 1: a
+  # damped mass pressed into the stop, bouncing without accumulating) is
+  # cut at a short bounce, and the summary and the JSON say how often.
+  ! grep -q ' cut at a short bounce' "$work/stdout" || fail "a cut reported: $(cat "$work/stdout")"
+  printf '%s\n' '{"mass":[[1]],"stiffness":[[1]],"damping":[[2]],"forcing":[1],"omega":0.05,' \
+    '"xs":0.2,"r":1}' >"$work/elastic.json"
+  "$impactkit" simulate --system "$work/elastic.json" --transient 2 --periods 2 \
+    --json "$work/elastic-summary.json" >"$work/stdout"
+  grep -q '^sticking: .* cut at a short bounce without accumulating' "$work/stdout" ||
+    fail "elastic chatter: no cut reported: $(cat "$work/stdout")"
+  python3 -c 'import json, sys; sys.exit(json.load(open(sys.argv[1]))["chatter_cuts"] < 2)' \
+    "$work/elastic-summary.json" || fail "elastic chatter: chatter_cuts not in the JSON"
 }
 
 run_plot() {
