@@ -151,7 +151,6 @@ ChatterTail ChatterRule::SumTail(const Signal& release, const ContactResponse& c
   ChatterTail tail;
   double t = te, u = rebound;
   for (int k = 0; k < kMaxTailBounces; ++k) {
-    tail.bounces = k;
     tail.end = t;
     double w, dw, d2w;
     release.ValueSlopeCurvature(t, &w, &dw, &d2w);
@@ -189,7 +188,6 @@ ChatterTail ChatterRule::SumTail(const Signal& release, const ContactResponse& c
   }
   tail.end = t;
   tail.cut = true;
-  tail.bounces = kMaxTailBounces;
   return tail;
 }
 

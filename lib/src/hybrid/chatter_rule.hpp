@@ -13,9 +13,9 @@
 ///
 /// A sequence of impacts with r < 1 is followed impact by impact while its
 /// bounces are resolved, and its tail summed by the chatter map (SumTail)
-/// once that sum is exact to the rounding of time or the bounces fall below
-/// the height resolution. Elastic chatter (r = 1, or r so near 1 that
-/// following it would take more than kMaxExactBounces impacts) never
+/// once that sum is more accurate than following them, or the bounces fall
+/// below the height resolution. Elastic chatter (r = 1, or r so near 1 that
+/// following it would take more than 10^4 impacts) never
 /// accumulates: it is cut at its first bounce shorter than `chatter_span`
 /// of the time scale, and counted (SimulationSummary::chatter_cuts).
 
@@ -40,10 +40,11 @@ enum class ChatterDecision {
 
 /// Where the tail of a chatter sequence ends.
 struct ChatterTail {
-  double end = 0.0;         ///< the accumulation point, or where the bounces stop accumulating
-  bool accumulates = true;  ///< false: the contact force turned first (the mass leaves from rest)
-  bool cut = false;         ///< the chatter map's bound on bounces was reached
-  int bounces = 0;          ///< bounces followed by the chatter map
+  double end = 0.0;  ///< the accumulation point (when it accumulates)
+  /// False where the force at the stop turns, or a bounce does not come
+  /// back, before the bounces accumulate: the impacts then go on exactly.
+  bool accumulates = true;
+  bool cut = false;  ///< the chatter map's bound on bounces was reached
 };
 
 /// The length scale L of stop `stop`'s gap on a flight from (x, v): the
@@ -114,15 +115,10 @@ class ChatterRule {
   /// True when the chatter map from a rebound `rebound` under acceleration
   /// `acceleration` errs less than following the bounces would.
   bool TailIsExact(double rebound, double acceleration, double length_scale) const;
-  /// True where following the bounces down to the height resolution would
-  /// take more than kMaxExactBounces impacts.
-  bool TooManyBounces(double rebound, double acceleration, double length_scale) const;
   /// Speeds below this many ulps of the gap's velocity scale L / τ are
   /// rounding: where the acceleration is zero to rounding too (a release's
   /// tangency) no height test can tell them from rest.
   static constexpr double kSpeedNoise = 64 * std::numeric_limits<double>::epsilon();
-  /// Elastic chatter is cut where following it would take more impacts.
-  static constexpr double kMaxExactBounces = 1e4;
   /// The chatter map's bound on the bounces it follows one by one.
   static constexpr int kMaxTailBounces = 100'000;
 
