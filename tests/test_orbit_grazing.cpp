@@ -121,8 +121,8 @@ TEST_CASE("below the rounding floor a near-grazing impact is a landing, and no o
   const SdofP11 exact = ClosedFormOrbit(Parameters(kGrazingOmega - delta));
   CHECK(exact.u * exact.u / (2 * 0.7) < 64 * std::numeric_limits<double>::epsilon() * 0.2);
   PeriodicOrbit orbit;
-  const OrbitSummary summary = FindOrbit(SystemB(kGrazingOmega - delta),
-                                         Eigen::Vector2d(exact.tau, exact.u), {}, &orbit);
+  const OrbitSummary summary =
+      FindOrbit(SystemB(kGrazingOmega - delta), Eigen::Vector2d(exact.tau, exact.u), {}, &orbit);
   CHECK(summary.termination != Termination::kConverged);
 }
 
