@@ -32,4 +32,4 @@ def test_python_md_blocks_run_as_shown(monkeypatch):
     printed, count = run_blocks("docs/python.md", monkeypatch)
     assert count >= 8
     assert "r (coefficient of restitution) must be in [0, 1], got 1.5" in printed
-    assert "no convergence: residual 1.28e+00 after 1 iterations" in printed
+    assert "no convergence: residual 1.28e+00 after 2 iterations" in printed
