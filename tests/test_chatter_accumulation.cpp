@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
@@ -58,6 +59,34 @@ TEST_CASE("sticking begins at the accumulation point of its chatter, near the fa
     CHECK_THAT(orbit.stuck_durations[0],
                WithinAbs(expected.stuck_duration, std::max(1e-8 * expected.stuck_duration, 2e-10)));
   }
+}
+
+TEST_CASE("the single mass's sticking family ends where its chatter stops accumulating",
+          "[sticking][continuation][chatter-accumulation]") {
+  // The 50-digit computation's bisection on whether the chatter after the
+  // release accumulates before the next one:
+  //     sdof_chatter_mp.py 1 0.1 1 1.2 0.3 0.6 --end 0.46181203 0.4618121
+  //     family end between 0.4618120395456123 and 0.4618120395456791
+  // Near the end the last bounces rise ~1e-14, the landing rule's
+  // resolution (64 ulps of the gap's scale): the family runs on by the Ω
+  // over which such a bounce decides the end, 7e-9 here (docs/theory.md §4).
+  constexpr double kEnd = 0.46181203954564;
+  const System system = SingleMass(1.0, 0.1, 1.2, 0.45, 0.3, 0.6);
+  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
+  REQUIRE(seed);
+  StickingOrbitOptions orbit_options;
+  orbit_options.releases = seed->releases;
+  orbit_options.q = seed->q;
+  StickingOrbit start;
+  REQUIRE(FindStickingOrbit(system, seed->state, orbit_options, &start).termination ==
+          Termination::kConverged);
+  StickingBranchOptions options;
+  options.lower = 0.44;
+  options.upper = 0.47;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
+  CHECK_THAT(branch.points.back().parameter, WithinAbs(kEnd, 1e-8));
+  CHECK(branch.special_points.back().point.parameter == branch.points.back().parameter);
 }
 
 TEST_CASE("the stuck time per period of a sticking single mass is the exact one",

@@ -15,6 +15,12 @@ the release phase and the stuck duration (all mod T), and the number of
 impacts.
 
     sdof_chatter_mp.py m c k A xs r OMEGA...
+    sdof_chatter_mp.py m c k A xs r --end LOW HIGH
+
+The second form locates the end of the sticking family between LOW (the
+chatter after a release accumulates while the stop pushes) and HIGH (it
+does not: a bounce does not come back, or the force has turned at an
+impact) by bisection to 1e-13.
 """
 import sys
 
@@ -73,29 +79,53 @@ def next_impact(x, xs, t0, guess_span, period):
     return None
 
 
+def chatter(m, c, k, a_force, xs, r, omega):
+    """The accumulation point of the chatter after the release at Ω and its
+    number of impacts, or None if it does not accumulate before the next
+    release (past the family's end the mass leaves the stop instead)."""
+    period = 2 * mp.pi / omega
+    release = mp.acos(k * xs / a_force) / omega
+    t, x0, v0 = release, xs, mp.mpf(0)
+    impacts = 0
+    span = period
+    while True:
+        x, v = flight(m, c, k, a_force, omega, t, x0, v0)
+        te = next_impact(x, xs, t, span, period)
+        if te is None or te > release + period:
+            return None
+        u = v(te)
+        impacts += 1
+        accel = (a_force * mp.cos(omega * te) - k * xs - c * (-r * u)) / m
+        span = 4 * r * u / accel if accel > 0 else period
+        t, x0, v0 = te, xs, -r * u
+        if u < mp.mpf("1e-25"):
+            return te + 2 * r * u / (accel * (1 - r)), impacts
+
+
+def locate_end(m, c, k, a_force, xs, r, low, high):
+    while high - low > mp.mpf("1e-13"):
+        mid = (low + high) / 2
+        if chatter(m, c, k, a_force, xs, r, mid) is None:
+            high = mid
+        else:
+            low = mid
+    print(f"family end between {mp.nstr(low, 16)} and {mp.nstr(high, 16)}")
+
+
 def main():
     m, c, k, a_force, xs, r = (mp.mpf(v) for v in sys.argv[1:7])
+    if sys.argv[7] == "--end":
+        locate_end(m, c, k, a_force, xs, r, mp.mpf(sys.argv[8]), mp.mpf(sys.argv[9]))
+        return
     for omega_text in sys.argv[7:]:
         omega = mp.mpf(omega_text)
         period = 2 * mp.pi / omega
         release = mp.acos(k * xs / a_force) / omega
-        t, x0, v0 = release, xs, mp.mpf(0)
-        impacts = 0
-        span = period
-        while True:
-            x, v = flight(m, c, k, a_force, omega, t, x0, v0)
-            te = next_impact(x, xs, t, span, period)
-            if te is None:
-                print("no impact")
-                return
-            u = v(te)
-            impacts += 1
-            accel = (a_force * mp.cos(omega * te) - k * xs - c * (-r * u)) / m
-            span = 4 * r * u / accel if accel > 0 else period
-            t, x0, v0 = te, xs, -r * u
-            if u < mp.mpf("1e-25"):
-                accumulation = te + 2 * r * u / (accel * (1 - r))
-                break
+        found = chatter(m, c, k, a_force, xs, r, omega)
+        if found is None:
+            print(f"omega {omega_text}: no sticking")
+            continue
+        accumulation, impacts = found
         next_release = release + period * mp.ceil((accumulation - release) / period)
         stuck = next_release - accumulation
         phase = accumulation - period * mp.floor(accumulation / period)

@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -327,6 +328,16 @@ class StickingMarch {
   void LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
                           const Eigen::VectorXd& b, const StickingOrbit& orbit_b);
   void End(StickingBranchEnd end, std::string message);
+  /// Moves the last point to the family's end: bisection in μ between it
+  /// and `beyond_` (a trial μ with no orbit of the family), each μ solved
+  /// at fixed μ from the last point inside and judged as the march judges a
+  /// point, to locate_tolerance. The march's own last point lies up to
+  /// min_step short of the end, where the stuck duration still varies as a
+  /// fractional power of the distance to it (theory.md §4).
+  void LocateEnd();
+  /// The point of the family at μ, from the state of the last point, or
+  /// none if μ is past an end.
+  std::optional<StickingBranchPoint> PointAt(double mu) const;
   /// What ended the family at the last point, given what the failed trials
   /// beyond it `reported`: the monitor whose extrapolated zero lies nearest,
   /// within kExtrapolationReach (a trial's status can come from beyond the
@@ -342,6 +353,8 @@ class StickingMarch {
   StickingBranch& branch_;
   Eigen::VectorXd x_, tangent_, previous_;
   StickingOrbit orbit_, previous_orbit_;
+  /// μ of the last trial that was blocked (NaN if none since the last point).
+  double beyond_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 std::optional<Eigen::VectorXd> StickingMarch::Try(double step,
@@ -358,7 +371,10 @@ std::optional<Eigen::VectorXd> StickingMarch::Try(double step,
   } else {
     corrected = curve_.Correct(predicted, tangent_, tangent_.dot(x_) + step);
   }
-  if (curve_.TakeNoSticking()) *blocked = StickingEvent::kNoSticking;
+  if (curve_.TakeNoSticking()) {
+    *blocked = StickingEvent::kNoSticking;
+    beyond_ = mu;
+  }
   if (!corrected) return std::nullopt;
   if ((*corrected - predicted).norm() > 0.5 * step && !beyond) return std::nullopt;
   return corrected;
@@ -377,6 +393,37 @@ std::optional<StickingEvent> StickingMarch::EndingEvent(
 void StickingMarch::End(StickingBranchEnd end, std::string message) {
   branch_.end = end;
   branch_.end_message = std::move(message);
+}
+
+std::optional<StickingBranchPoint> StickingMarch::PointAt(double mu) const {
+  Eigen::VectorXd guess = x_;
+  guess(guess.size() - 1) = mu;
+  const Eigen::VectorXd e_mu = Eigen::VectorXd::Unit(curve_.Size(), curve_.Size() - 1);
+  const std::optional<Eigen::VectorXd> x = curve_.Correct(guess, e_mu, mu);
+  curve_.TakeNoSticking();
+  if (!x) return std::nullopt;
+  std::optional<StickingBranchPoint> point = curve_.Describe(*x);
+  if (!point || Violation(point->orbit) || ImpactChange(orbit_, point->orbit)) return std::nullopt;
+  return point;
+}
+
+void StickingMarch::LocateEnd() {
+  if (!std::isfinite(beyond_) || PointAt(beyond_)) return;  // no bracket
+  double inside = StickingCurve::Mu(x_), outside = beyond_;
+  std::optional<StickingBranchPoint> last;
+  while (std::abs(outside - inside) > options_.locate_tolerance) {
+    const double mid = 0.5 * (inside + outside);
+    if (std::optional<StickingBranchPoint> point = PointAt(mid)) {
+      inside = mid;
+      last = std::move(point);
+    } else {
+      outside = mid;
+    }
+  }
+  if (!last) return;
+  x_ << last->orbit.state, last->parameter;
+  orbit_ = last->orbit;
+  branch_.points.push_back(*std::move(last));
 }
 
 void StickingMarch::LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
@@ -425,6 +472,7 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
     }
     if (step < options_.min_step) {
       if (const std::optional<StickingEvent> ending = EndingEvent(blocked)) {
+        LocateEnd();
         branch_.special_points.push_back({*ending, branch_.points.back()});
         return End(EndOf(*ending), branch_.special_points.back().Describe(options_.parameter));
       }
@@ -439,6 +487,7 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
       if (!violation) violation = ImpactChange(orbit_, point->orbit);
       if (violation) {
         blocked = violation;
+        beyond_ = point->parameter;
         step *= 0.5;
         continue;
       }
@@ -461,6 +510,7 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
     branch_.points.push_back(*point);
     if (progress) progress(*point);
     blocked.reset();
+    beyond_ = std::numeric_limits<double>::quiet_NaN();
     step = std::min(1.5 * step, options_.max_step);
   }
   End(StickingBranchEnd::kMaxPoints, fmt::format("{} points", options_.max_points));

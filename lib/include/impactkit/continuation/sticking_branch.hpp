@@ -28,10 +28,12 @@
 ///     impact exists — the first impact after a release slows to 0, and
 ///     beyond it jumps to a later time;
 /// each approached from the branch side by halving the step until it falls
-/// below min_step: the last point is the located end, named by the monitor
-/// (Fs(t*), clearance, hold margin, first impact speed) whose linear
-/// extrapolation from the last two points reaches 0 first, within 1e-3 in
-/// arclength, or else by what the failed trials beyond it showed.
+/// below min_step, named by the monitor (Fs(t*), clearance, hold margin,
+/// first impact speed) whose linear extrapolation from the last two points
+/// reaches 0 first, within 1e-3 in arclength, or else by what the failed
+/// trials beyond it showed; then located by bisection in μ between the last
+/// point and the failed trial beyond it, each μ solved at fixed μ, to
+/// locate_tolerance: the last point is the located end.
 /// Fold and period doubling of the release map (a section multiplier
 /// through +1 or −1; test functions Π(λ_i − 1), Π(λ_i + 1)) are located by
 /// bisection in arclength and reported; the branch goes on through them.
@@ -59,7 +61,8 @@ struct StickingBranchOptions {
   double min_step = 1e-8;
   double max_step = 0.02;
   int max_points = 10000;
-  /// A bifurcation's parameter is located to this (bisection in arclength).
+  /// A bifurcation's parameter (bisection in arclength) and the family's
+  /// end (bisection in μ) are located to this.
   double locate_tolerance = 1e-9;
   /// Releases k, q, Newton tolerances and the map's options.
   StickingOrbitOptions orbit;
