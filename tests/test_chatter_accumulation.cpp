@@ -69,7 +69,7 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   //     family end between 0.4618120395456123 and 0.4618120395456791
   // Near the end the last bounces rise ~1e-14, the landing rule's
   // resolution (64 ulps of the gap's scale): the family runs on by the Ω
-  // over which such a bounce decides the end, 7e-9 here (docs/theory.md §4).
+  // over which such a bounce decides the end, 7e-9 here (docs/theory.md §5a).
   constexpr double kEnd = 0.46181203954564;
   const System system = SingleMass(1.0, 0.1, 1.2, 0.45, 0.3, 0.6);
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);

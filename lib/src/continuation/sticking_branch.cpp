@@ -333,7 +333,7 @@ class StickingMarch {
   /// at fixed μ from the last point inside and judged as the march judges a
   /// point, to locate_tolerance. The march's own last point lies up to
   /// min_step short of the end, where the stuck duration still varies as a
-  /// fractional power of the distance to it (theory.md §4).
+  /// fractional power of the distance to it (theory.md §5a).
   void LocateEnd();
   /// The point of the family at μ, from the state of the last point, or
   /// none if μ is past an end.
