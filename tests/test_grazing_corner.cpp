@@ -94,9 +94,10 @@ std::pair<Branch, double> BranchWith(const std::string& second, double value, do
   for (double shift : {0.0, 2e-3, -2e-3, 1e-2, -1e-2}) {
     const System system = At(PaperSystem(omega + shift), second, value);
     PeriodicOrbit orbit;
-    if (FindOrbit(system, eta, options.orbit, &orbit).termination != Termination::kConverged) {
-      continue;
-    }
+    // An orbit whose impact is below the arrival resolution (at the corner
+    // itself) is no start: the map the branch follows cannot see it.
+    const OrbitSummary found = FindOrbit(system, eta, options.orbit, &orbit);
+    if (found.termination != Termination::kConverged || found.unresolved_impacts > 0) continue;
     Branch branch = ContinueBranch({system, orbit, {}}, options);
     double best = 1e300;
     for (const SpecialPoint& s : branch.special_points) {

@@ -72,6 +72,8 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
   j["residual"] = orbit.residual;
   j["iterations"] = summary.iterations;
   j["least_squares_fallback"] = summary.used_fallback;
+  j["fixed_time_formulation"] = summary.used_shooting;
+  j["unresolved_impacts"] = summary.unresolved_impacts;
   j["impacts"] = nlohmann::json::array();
   for (const OrbitImpact& i : orbit.impacts) {
     j["impacts"].push_back(

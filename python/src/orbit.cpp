@@ -59,6 +59,11 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
     return FindOrbit(system, guess, options, &orbit);
   });
   if (summary.termination != Termination::kConverged) ThrowNumericalError(summary.BriefReport());
+  // The orbit holds, but a simulation does not see all its impacts: say so.
+  if (summary.unresolved_impacts > 0 &&
+      PyErr_WarnEx(PyExc_RuntimeWarning, summary.BriefReport().c_str(), 1) != 0) {
+    throw py::error_already_set();
+  }
   return orbit;
 }
 
@@ -123,6 +128,8 @@ last impact of a simulation from rest (transient forcing periods, then a
 window) is the seed, at whichever stop it is, and p and q default to the
 period it shows.
 Raises ValueError for bad input, NumericalError when Newton does not converge.
+Warns (RuntimeWarning) when an impact of the orbit is below the arrival
+resolution: near a grazing, a simulation sees a touch there, not an impact.
 Releases the GIL.)");
 }
 

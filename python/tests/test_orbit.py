@@ -1,7 +1,10 @@
 """impactkit.find_orbit against a long simulation that settles on the orbit,
 and the analytic multipliers against the finite-difference ones."""
 
+import warnings
+
 import numpy as np
+import pytest
 
 import impactkit
 
@@ -40,3 +43,19 @@ def test_analytic_and_finite_difference_multipliers_agree(paper_orbit):
     fd = impactkit.find_orbit(system, p=1, q=1, seed=orbit.eta, jacobian="finite_difference")
     np.testing.assert_allclose(np.sort_complex(fd.multipliers),
                                np.sort_complex(orbit.multipliers), rtol=0, atol=1e-6)
+
+
+def test_an_impact_below_the_arrival_resolution_is_warned_of():
+    # One mass 1e-7 below the grazing of its P(1,1) (tests/test_orbit_grazing.cpp):
+    # the impact, speed 7.4e-9, rises 4e-17 above the stop, which a
+    # simulation cannot resolve; the orbit is returned with a warning.
+    system = impactkit.System.general([[2.0]], [[0.1]], [[3.0]], [1.2],
+                                      omega=3.674043151526545, xs=0.05, r=0.75)
+    with pytest.warns(RuntimeWarning, match="below the arrival resolution"):
+        orbit = impactkit.find_orbit(system, seed=[0.8509, 7.4e-9])
+    np.testing.assert_allclose(orbit.impact_velocities[0], 7.4228e-9, rtol=1e-4)
+    farther = impactkit.System.general([[2.0]], [[0.1]], [[3.0]], [1.2],
+                                       omega=3.674033251526545, xs=0.05, r=0.75)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        impactkit.find_orbit(farther, seed=[0.8509130733897027, 7.422846623612595e-07])

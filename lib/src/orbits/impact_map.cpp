@@ -158,46 +158,59 @@ std::optional<ImpactMap::Arrival> ImpactMap::NextArrival(const HybridState& from
   return first;
 }
 
+std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorXd& eta, int stop,
+                                                            double t_end) const {
+  ValidateEta(eta, stop);
+  const LinearFlow& flow = hybrid_->FreeFlow();
+  FlightEnd end;
+  end.start = ToState(eta, stop);
+  hybrid_->GetStop(stop).Reset(end.start.v);
+  const Eigen::VectorXd z0 = flow.Transient(end.start.t, end.start.x, end.start.v);
+  end.stop = stop;
+  const std::optional<Arrival> found = NextArrival(end.start, z0, t_end, &end.stop);
+  if (!found) return std::nullopt;
+  const Stop& arrival = hybrid_->GetStop(end.stop);
+  const int c = arrival.Dof();
+  end.state.t = found->t;
+  flow.State(end.start.t, z0, found->t, &end.state.x, &end.state.v);
+  end.state.x(c) = arrival.Position();
+  const double speed = arrival.SpeedTowards(end.state.v(c));
+  // The simulator's rule (hybrid/chatter_rule.hpp): an arrival whose
+  // height is unresolved is a landing there, so no impact here.
+  const ChatterRule rule(options_.simulation, arrival.Restitution(), hybrid_->TimeScale());
+  end.impact = speed > 0 && !rule.IsLanding(speed, found->curvature, found->length_scale);
+  const Eigen::VectorXd f = hybrid_->VectorField(found->t, end.state.x, end.state.v);
+  end.pressed = arrival.SpeedTowards(f(GetSystem().Dof() + c)) > 0;
+  return end;
+}
+
 bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
                      Eigen::MatrixXd* jacobian, MapStatus* status) const {
   const System& system = GetSystem();
   const LinearFlow& flow = hybrid_->FreeFlow();
   const int n = system.Dof();
-  const HybridState before = ToState(eta, stop);
-  const double t = before.t;
-  Eigen::VectorXd v_after = before.v;
-  hybrid_->GetStop(stop).Reset(v_after);
-
-  const Eigen::VectorXd z0 = flow.Transient(t, before.x, v_after);
-  const HybridState after{t, before.x, v_after};
-  const std::optional<Arrival> found =
-      NextArrival(after, z0, t + options_.max_flight_periods * system.ForcingPeriod(), next_stop);
-  if (!found) {
+  const double t = eta(TimeIndex());
+  const std::optional<FlightEnd> end =
+      FirstArrival(eta, stop, t + options_.max_flight_periods * system.ForcingPeriod());
+  if (!end) {
     *status = MapStatus::kNoImpact;
     return false;
   }
-  const double te = found->t;
-  const Stop& arrival = hybrid_->GetStop(*next_stop);
-  const int c = arrival.Dof();
-  Eigen::VectorXd x, v;
-  flow.State(t, z0, te, &x, &v);
-  x(c) = arrival.Position();
-  const double speed = arrival.SpeedTowards(v(c));
-  // The simulator's rule (hybrid/chatter_rule.hpp): an arrival whose
-  // height is unresolved is a landing there, so no impact here.
-  const ChatterRule rule(options_.simulation, arrival.Restitution(), hybrid_->TimeScale());
-  if (!(speed > 0) || rule.IsLanding(speed, found->curvature, found->length_scale)) {
-    const Eigen::VectorXd f = hybrid_->VectorField(te, x, v);
-    *status = arrival.SpeedTowards(f(n + c)) > 0 ? MapStatus::kChatter : MapStatus::kGrazing;
+  if (!end->impact) {
+    *status = end->pressed ? MapStatus::kChatter : MapStatus::kGrazing;
     return false;
   }
+  *next_stop = end->stop;
+  const double te = end->state.t;
+  const Eigen::VectorXd &x = end->state.x, &v = end->state.v;
+  const int c = hybrid_->GetStop(*next_stop).Dof();
   *next = ToEta(te, x, v, *next_stop);
   if (!jacobian) return true;
 
   // G = ∂y(t')/∂η at fixed t': the reset, then the flow from (y+, τ).
   const Eigen::MatrixXd transition = flow.Transition(te - t);
   Eigen::MatrixXd g = transition * ResetInEta(stop);
-  g.col(n - 1) = -transition * hybrid_->VectorField(t, before.x, v_after);
+  g.col(n - 1) = -transition * hybrid_->VectorField(t, end->start.x, end->start.v);
   // Saltation at the next impact (x_c(t') = xs: the sign of the stop's
   // side cancels).
   const Eigen::VectorXd f_arrival = hybrid_->VectorField(te, x, v);

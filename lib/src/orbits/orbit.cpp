@@ -156,7 +156,12 @@ PeriodicOrbit OrbitThrough(const ImpactMap& map, const std::vector<Eigen::Vector
             [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
   orbit.multipliers = lambda;
   orbit.stable = lambda.size() == 0 || std::abs(lambda(0)) < 1.0;
-  orbit.contacts = MeasureOrbitContacts(map, orbit.eta, p);
+  std::vector<Eigen::VectorXd> path = etas;
+  path.push_back(etas.front());
+  path.back()(map.TimeIndex()) += q * system.ForcingPeriod();
+  std::vector<int> path_stops = stops;
+  path_stops.push_back(stops.front());
+  orbit.contacts = MeasureOrbitContacts(map, path, path_stops);
   return orbit;
 }
 
@@ -207,12 +212,18 @@ bool OrbitOptions::IsValid(std::string* error) const {
 }
 
 std::string OrbitSummary::BriefReport() const {
-  const std::string shooting =
-      used_shooting ? fmt::format(
-                          " (fixed-time formulation, max|W| {:.2e}; residual accepted "
-                          "below the map's rounding floor {:.2e})",
-                          shooting_residual, residual_floor)
-                    : "";
+  std::string shooting;
+  if (unresolved_impacts > 0) {
+    shooting = fmt::format(
+        " (fixed-time formulation, residual max|W|; {} impact(s) below the arrival resolution: "
+        "a simulation sees a grazing touch there)",
+        unresolved_impacts);
+  } else if (used_shooting) {
+    shooting = fmt::format(
+        " (fixed-time formulation, max|W| {:.2e}; residual accepted below the map's rounding "
+        "floor {:.2e})",
+        shooting_residual, residual_floor);
+  }
   return fmt::format("{}: residual {:.2e} after {} iterations{}{}, {:.3g} s{}",
                      ToString(termination), residual, iterations,
                      used_fallback ? " (Levenberg-Marquardt fallback)" : "", shooting, seconds,
@@ -309,9 +320,38 @@ std::optional<std::vector<Eigen::VectorXd>> ImpactsFrom(const ImpactMap& map,
   return etas;
 }
 
+/// How many impacts of the fixed-time solution the map cannot follow
+/// (below the arrival rule's resolution), each flight searched on its own
+/// up to its impact; a reason to reject it if a flight meets a stop before
+/// its impact.
+int UnresolvedImpacts(const ImpactMap& map, const std::vector<Eigen::VectorXd>& etas,
+                      const std::vector<int>& stops, int q, std::string* contact) {
+  // An arrival within this fraction of a period of the impact is the
+  // impact itself (the search places a crossing at speed u to ~ε L/u).
+  constexpr double kSameImpact = 1e-6;
+  const int p = static_cast<int>(etas.size());
+  const double period = map.GetSystem().ForcingPeriod(), margin = kSameImpact * period;
+  int unresolved = 0;
+  for (int k = 0; k < p; ++k) {
+    const double t_impact =
+        k + 1 < p ? etas[k + 1](map.TimeIndex()) : etas[0](map.TimeIndex()) + q * period;
+    const std::optional<ImpactMap::FlightEnd> end =
+        map.FirstArrival(etas[k], stops[k], t_impact + margin);
+    if (end && end->state.t < t_impact - margin) {
+      *contact = fmt::format("flight {} meets stop {} at t = {:.10g}, before its impact at {:.10g}",
+                             k + 1, end->stop + 1, end->state.t, t_impact);
+      return 0;
+    }
+    if (!end || !end->impact) ++unresolved;
+  }
+  return unresolved;
+}
+
 /// The fixed-time solution z is an orbit if every impact moves towards its
-/// stop (W also has virtual solutions, v <= 0) and the map returns from η_0
-/// to within U's rounding floor (W ignores contacts between impacts).
+/// stop (W also has virtual solutions, v <= 0), no flight meets a stop
+/// before its impact (W ignores contacts between impacts), and, when every
+/// impact is resolved, the map returns from η_0 to within U's rounding
+/// floor.
 void AcceptShooting(const ShootingProblem& problem, const ImpactMap& map,
                     const OrbitOptions& options, const Eigen::VectorXd& z, OrbitSummary* summary,
                     PeriodicOrbit* orbit) {
@@ -330,15 +370,22 @@ void AcceptShooting(const ShootingProblem& problem, const ImpactMap& map,
   Eigen::MatrixXd jacobian = problem.MapJacobian(z);
   summary->residual_floor =
       std::max(options.newton.residual_tolerance, ResidualFloor(jacobian, etas[0]));
-  const MapResult image = map.Apply(etas[0], options.p, false);
-  if (image.status != MapStatus::kOk) {
-    return reject(fmt::format("the map from it fails after {} of {} impacts: {}",
-                              image.impacts_done, options.p, ToString(image.status)));
-  }
-  summary->residual = FixedPointResidual(map, etas[0], options.q, image);
-  if (summary->residual > summary->residual_floor) {
-    return reject(fmt::format("the map does not return to it, max|U| = {:.3g} above {:.3g}",
-                              summary->residual, summary->residual_floor));
+  std::string contact;
+  summary->unresolved_impacts = UnresolvedImpacts(map, etas, stops, options.q, &contact);
+  if (!contact.empty()) return reject(contact);
+  if (summary->unresolved_impacts > 0) {
+    summary->residual = summary->shooting_residual;
+  } else {
+    const MapResult image = map.Apply(etas[0], options.p, false);
+    if (image.status != MapStatus::kOk) {
+      return reject(fmt::format("the map from it fails after {} of {} impacts: {}",
+                                image.impacts_done, options.p, ToString(image.status)));
+    }
+    summary->residual = FixedPointResidual(map, etas[0], options.q, image);
+    if (summary->residual > summary->residual_floor) {
+      return reject(fmt::format("the map does not return to it, max|U| = {:.3g} above {:.3g}",
+                                summary->residual, summary->residual_floor));
+    }
   }
   *orbit = OrbitThrough(map, etas, stops, options.q, std::move(jacobian), summary->residual);
 }

@@ -63,19 +63,27 @@ OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& 
     throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
                                    image.impacts_done, p, ToString(image.status)));
   }
+  std::vector<Eigen::VectorXd> path{eta};
+  path.insert(path.end(), image.path.begin(), image.path.end());
+  std::vector<int> stops{map.SectionStop()};
+  stops.insert(stops.end(), image.stops.begin(), image.stops.end());
+  return MeasureOrbitContacts(map, path, stops);
+}
+
+OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const std::vector<Eigen::VectorXd>& path,
+                                   const std::vector<int>& stops) {
   const System& system = map.GetSystem();
+  const int p = static_cast<int>(path.size()) - 1;
   OrbitContacts contacts;
   contacts.contact_min = contacts.contact_max = system.stops[map.SectionStop()].position;
   contacts.slowest_depth = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd from = eta;
-  int from_stop = map.SectionStop();
   for (int k = 0; k < p; ++k) {
-    const Eigen::VectorXd& to = image.path[k];
+    const Eigen::VectorXd &from = path[k], &to = path[k + 1];
     const double t1 = to(map.TimeIndex());
-    MeasureFlight(map, from, from_stop, t1, k, &contacts);
-    const StopParameters& arrival = system.stops[image.stops[k]];
+    MeasureFlight(map, from, stops[k], t1, k, &contacts);
+    const StopParameters& arrival = system.stops[stops[k + 1]];
     double value, speed, acceleration;
-    map.FlightCoordinate(from, arrival.dof, from_stop)
+    map.FlightCoordinate(from, arrival.dof, stops[k])
         .ValueSlopeCurvature(t1, &value, &speed, &acceleration);
     // The depth of a parabola x_c'' = a through the impact; infinite when
     // a = 0 (the mass would run on into the stop: no nearby event).
@@ -86,8 +94,6 @@ OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& 
       contacts.slowest_impact = (k + 1) % p;
       contacts.slowest_pressed = arrival.Sign() * acceleration > 0;
     }
-    from = to;
-    from_stop = image.stops[k];
   }
   return contacts;
 }

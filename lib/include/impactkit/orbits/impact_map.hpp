@@ -133,6 +133,21 @@ class ImpactMap {
     return FlightState(eta, t, SectionStop());
   }
   HybridState FlightState(const Eigen::VectorXd& eta, double t, int stop) const;
+  /// How the flight after the impact η at `stop` first meets a stop, up to
+  /// t_end: where the event search finds an arrival, and whether the
+  /// simulator's arrival rule makes it an impact.
+  struct FlightEnd {
+    HybridState start;  ///< just after the impact η (its reset applied)
+    HybridState state;  ///< just before the arrival, x_c = the stop's position
+    int stop = 0;
+    /// False for an arrival whose height is unresolved (a landing, or a
+    /// grazing touch): what the map reports as kChatter or kGrazing.
+    bool impact = true;
+    bool pressed = false;  ///< the free acceleration there leads into the stop
+  };
+  /// None if the flight reaches no stop by t_end (to the search's
+  /// resolution). Throws InvalidInput as ValidateEta.
+  std::optional<FlightEnd> FirstArrival(const Eigen::VectorXd& eta, int stop, double t_end) const;
   /// Index of τ in η (N - 1).
   int TimeIndex() const { return GetSystem().Dof() - 1; }
   /// The impact speed s v_c of η at `stop` (> 0 for an impact state).

@@ -122,6 +122,12 @@ struct OrbitSummary : Summary {
   /// max(residual_tolerance, 8 ε ‖D P_I^p‖∞ max(1, ‖η‖∞)): U's rounding
   /// when η is exact to rounding (docs/theory.md §5b), when used.
   double residual_floor = 0.0;
+  /// Impacts of the orbit (found by the fixed-time formulation) whose
+  /// height u²/(2|a|) is below the arrival rule's resolution: a simulation
+  /// or the map sees a grazing touch (or a landing) there, not an impact,
+  /// and cannot follow the orbit, so `residual` is max |W| instead
+  /// (docs/theory.md §5b).
+  int unresolved_impacts = 0;
   std::string BriefReport() const;
 };
 

@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 #include <optional>
+#include <vector>
 
 #include "impactkit/orbits/impact_map.hpp"
 
@@ -51,5 +52,9 @@ struct OrbitContacts {
 /// the certified search of events.hpp. Throws InvalidInput if the map
 /// cannot follow p impacts from eta.
 OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& eta, int p);
+/// The same along known impacts: `path` η_0 … η_p (η_p = η_0 a whole number
+/// of periods on) at `stops` s_0 … s_p, where the map need not resolve them.
+OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const std::vector<Eigen::VectorXd>& path,
+                                   const std::vector<int>& stops);
 
 }  // namespace impactkit
