@@ -38,8 +38,7 @@ SdofP11 ClosedFormOrbit(const SdofParameters& p) {
   return roots.front();
 }
 
-/// Relative errors against the closed form; `other` is the second
-/// multiplier's error relative to its own floor (below).
+/// Errors against the closed form: τ's absolute, the others relative.
 struct Errors {
   double tau, speed, leading, other;
 };
@@ -62,13 +61,9 @@ Errors SolveAndCompare(double delta, const Eigen::Vector2d& guess) {
   const double other = testing::SdofP11Determinant(p) / leading;
   REQUIRE(orbit.multipliers.size() == 2);
   CHECK(std::abs(orbit.multipliers(0).imag()) == 0.0);
-  // Any eigensolver on DP places λ2 only to ~ε ‖DP‖ (and DP's entries carry
-  // v's relative error times 1/v): 1e-6 relative, or that floor.
-  const double floor = 1e-6 * std::abs(other) +
-                       16.0 * std::numeric_limits<double>::epsilon() * orbit.jacobian.norm();
   return {orbit.eta(0) - expected.tau, orbit.eta(1) / expected.u - 1.0,
           orbit.multipliers(0).real() / leading - 1.0,
-          std::abs(orbit.multipliers(1) - other) / floor};
+          std::abs(orbit.multipliers(1) / other - 1.0)};
 }
 
 }  // namespace
@@ -106,7 +101,10 @@ TEST_CASE("FindOrbit finds near-grazing P(1,1) orbits, Ω_g − Ω = 1e-3 … 1e
       // (closed_form_sdof.hpp); the multipliers inherit it (λ1 ∝ 1/v).
       CHECK(std::abs(e.speed) <= 1e-6);
       CHECK(std::abs(e.leading) <= 1e-6);
-      CHECK(e.other <= 1.0);
+      // An eigensolver on DP (norm ~1/δ) would place λ2 only to ~ε ‖DP‖
+      // absolutely (2e-7 at δ = 1e-8, where λ2 ~ 4e-10); FindOrbit takes
+      // it from the split monodromy's pencil.
+      CHECK(std::abs(e.other) <= 1e-6);
     }
   }
 }

@@ -9,6 +9,7 @@
 #include <memory>
 #include <utility>
 
+#include "impactkit/orbits/grazing_limit.hpp"
 #include "orbits/orbit_shooting.hpp"
 
 namespace impactkit {
@@ -132,6 +133,70 @@ JacobianComparison CompareJacobians(const ImpactMap& map, const Eigen::VectorXd&
 
 namespace {
 
+/// Sorted largest first.
+Eigen::VectorXcd SortedByModulus(Eigen::VectorXcd lambda) {
+  std::sort(lambda.begin(), lambda.end(),
+            [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
+  return lambda;
+}
+
+/// The finite eigenvalues of the pencil [A u; n −v] − λ diag(I, 0), largest
+/// first: by the matrix determinant lemma those of M(v) = A + u n / v,
+/// from O(1) entries however small v is.
+Eigen::VectorXcd PencilMultipliers(const SpeedSplitMonodromy& split, double speed) {
+  const Eigen::Index n = split.regular.rows();
+  Eigen::MatrixXd a(n + 1, n + 1), b = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  a << split.regular, split.singular, split.normal, -speed;
+  b.topLeftCorner(n, n).setIdentity();
+  const Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> pencil(a, b, false);
+  // The one infinite eigenvalue (β = 0 to rounding) is the smallest |β|/|α|.
+  const Eigen::VectorXcd alphas = pencil.alphas();
+  const Eigen::VectorXd betas = pencil.betas();
+  Eigen::Index infinite = 0;
+  (betas.array().abs() / alphas.array().abs()).minCoeff(&infinite);
+  Eigen::VectorXcd lambda(n);
+  for (Eigen::Index i = 0, k = 0; i <= n; ++i) {
+    if (i != infinite) lambda(k++) = alphas(i) / betas(i);
+  }
+  return SortedByModulus(lambda);
+}
+
+/// The multipliers of D P_I^p = `jacobian`, largest first. Near grazing
+/// (an impact's speed v → 0) D P_I^p ~ A + u n / v (grazing_limit.hpp) has
+/// norm ~1/v, and an eigensolver on it places each multiplier only to
+/// ~ε ‖D P_I^p‖ absolutely: the small ones are lost (λ2 ~ 4e-10 against
+/// an error ~2e-7 at v = 7e-10). Where that error exceeds 1e-9 of the
+/// smallest, all but the largest come from the split monodromy's pencil
+/// at the slowest impact (one stop; docs/theory.md §5b).
+Eigen::VectorXcd Multipliers(const ImpactMap& map, const std::vector<Eigen::VectorXd>& etas,
+                             const std::vector<int>& stops, int q,
+                             const Eigen::MatrixXd& jacobian) {
+  Eigen::VectorXcd lambda =
+      SortedByModulus(Eigen::EigenSolver<Eigen::MatrixXd>(jacobian).eigenvalues());
+  constexpr double kRelativeAccuracy = 1e-9;
+  const double error = std::numeric_limits<double>::epsilon() * jacobian.norm();
+  if (lambda.size() < 2 || map.GetSystem().StopCount() != 1 ||
+      !(error > kRelativeAccuracy * std::abs(lambda(lambda.size() - 1)))) {
+    return lambda;
+  }
+  // The contacts from the slowest impact on, within q periods.
+  const int p = static_cast<int>(etas.size());
+  int slowest = 0;
+  for (int k = 1; k < p; ++k) {
+    if (map.Speed(etas[k], stops[k]) < map.Speed(etas[slowest], stops[slowest])) slowest = k;
+  }
+  std::vector<HybridState> contacts;
+  for (int k = 0; k < p; ++k) {
+    const int at = (slowest + k) % p;
+    contacts.push_back(map.ToState(etas[at], stops[at]));
+    if (at < slowest) contacts.back().t += q * map.GetSystem().ForcingPeriod();
+  }
+  const Eigen::VectorXcd pencil = PencilMultipliers(SplitMonodromy(map.GetSystem(), contacts, q),
+                                                    map.Speed(etas[slowest], stops[slowest]));
+  lambda.tail(lambda.size() - 1) = pencil.tail(pencil.size() - 1);
+  return lambda;
+}
+
 /// The orbit through the impacts `etas` (η_0 … η_{p−1}, at `stops`) with
 /// D P_I^p = `jacobian` and max |U| = `residual`.
 PeriodicOrbit OrbitThrough(const ImpactMap& map, const std::vector<Eigen::VectorXd>& etas,
@@ -151,10 +216,8 @@ PeriodicOrbit OrbitThrough(const ImpactMap& map, const std::vector<Eigen::Vector
     const double t = etas[k](map.TimeIndex());
     orbit.impacts.push_back({t, system.Phase(t), map.Speed(etas[k], stops[k]), stops[k]});
   }
-  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(orbit.jacobian).eigenvalues();
-  std::sort(lambda.begin(), lambda.end(),
-            [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
-  orbit.multipliers = lambda;
+  orbit.multipliers = Multipliers(map, etas, stops, q, orbit.jacobian);
+  const Eigen::VectorXcd& lambda = orbit.multipliers;
   orbit.stable = lambda.size() == 0 || std::abs(lambda(0)) < 1.0;
   std::vector<Eigen::VectorXd> path = etas;
   path.push_back(etas.front());
