@@ -179,8 +179,8 @@ void RunBasinsCommand(const BasinsRequest& request) {
                    static_cast<double>(outcome->cells.size()));
   }
   if (out) {
-    out->Write(CommentLines(provenance.Text()) +
-               fmt::format("{},{},attractor,{}\n", o.coordinate1, o.coordinate2, kCellColumns));
+    out->Write(
+        CsvHead({o.coordinate1, o.coordinate2, "attractor", kCellColumns}, provenance.Text()));
     const std::size_t k = task.Values1().size();
     for (const GridCell& cell : outcome->cells) {
       out->Write(fmt::format("{},{},{},{}\n", task.Values1()[cell.index % k],

@@ -212,8 +212,7 @@ void RunMapCommand(const MapRequest& request) {
   }
   fmt::print("result:  {}\n", classes);
   if (out) {
-    out->Write(CommentLines(provenance.Text()) +
-               fmt::format("{},{},{}\n", o.row.parameter, o.parameter2, kCellColumns));
+    out->Write(CsvHead({o.row.parameter, o.parameter2, kCellColumns}, provenance.Text()));
     const std::size_t k = task.Values1().size();
     for (const GridCell& cell : outcome->cells) {
       out->Write(fmt::format("{},{},{}\n", task.Values1()[cell.index % k],

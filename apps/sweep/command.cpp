@@ -177,10 +177,9 @@ void RunSweepCommand(const SweepRequest& request) {
     }
   }
   if (summary) {
-    summary->Write(CommentLines(provenance));
-    summary->Write(
-        "param,kind,p,q,range_xN,range_x1,range_xN_min,range_x1_min,impacts,v_min,v_max,"
-        "lyapunov,restarted\n");
+    summary->Write(CsvHead({"param", "kind", "p", "q", "range_xN", "range_x1", "range_xN_min",
+                            "range_x1_min", "impacts", "v_min", "v_max", "lyapunov", "restarted"},
+                           provenance));
     for (const SweepPoint& point : result.points) summary->Write(SummaryRow(point));
   }
   if (plot) plot->Write(RenderStackedPng(SweepCharts(system, options, result), 1000, 900));
