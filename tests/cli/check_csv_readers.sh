@@ -30,6 +30,8 @@ run map --from 0.6 --to 0.7 --steps 2 --param2 r --from2 0.6 --to2 0.7 --steps2 
   --transient 10 --record 5 --threads 1 --out map.csv
 run basins --omega 2 --coord x2 --from -1 --to 0.1 --steps 2 --coord2 v2 --from2 -1 --to2 1 \
   --steps2 2 --transient 10 --record 5 --threads 1 --out basins.csv
+# The main job's own tables: its Fig. 3 sweep, and a branch as `continue` writes it.
+run paper --quick --out paper
 
 kinds=(series impacts branch branch.pd1 sticking curve sweep sweep-summary impactmap returnmap
   resonance map basins)
@@ -37,8 +39,9 @@ for kind in "${kinds[@]}"; do
   [[ -s $work/$kind.csv ]] || fail "$kind.csv was not written"
 done
 [[ $(ls "$work"/*.csv | wc -l) -eq ${#kinds[@]} ]] || fail "CSVs not in the list: $(ls "$work")"
+tables=("$work"/*.csv "$work/paper/fig3-sweep.csv" "$work/paper/branch-main.csv")
 
-"$python" - "$work"/*.csv <<'PY' || fail "a reader's recipe failed (above)"
+"$python" - "${tables[@]}" <<'PY' || fail "a reader's recipe failed (above)"
 import sys
 import warnings
 
