@@ -21,9 +21,10 @@ mkdir -p "$figures" "$data"
   --plot "$figures/fig7_sticking.png" | sed 's/^/    /'
 # Runs of equal motion: first and last Ω of each.
 echo "motions (first Ω - last Ω: kind P(p,q)):"
-awk -F, 'NR > 2 {
-  label = $2 ($3 == "nan" ? "" : " P(" $3 "," $4 ")")
-  if (label != last) { if (NR > 3) printf "    %s - %s: %s\n", first, prev, last; first = $1; last = label }
+# (Line 1 is the header, then the provenance comments, then the rows.)
+awk -F, '!/^#/ && ++row > 1 {
+  label = $2 ($3 == "" ? "" : " P(" $3 "," $4 ")")
+  if (label != last) { if (row > 2) printf "    %s - %s: %s\n", first, prev, last; first = $1; last = label }
   prev = $1 }
   END { printf "    %s - %s: %s\n", first, prev, last }' "$data/fig7-summary.csv"
 
@@ -51,7 +52,7 @@ terms+=", '$data/fig7-sticking-branch.csv' using 1:(\$7 > 0 ? \$9 : 1/0) with li
 terms+=" lc rgb '#d62728' title 'sticking P(inf,1): first impact'"
 first=1
 for file in "${branches[@]}"; do
-  header=$(sed -n 2p "$file" | tr ',' '\n')
+  header=$(head -1 "$file" | tr ',' '\n')
   while read -r column name; do
     [[ $name =~ ^v[0-9]+$ ]] || continue
     title=$([[ $first == 1 ]] && echo "P(n,1) branches (impact map)" || echo "")

@@ -18,7 +18,7 @@ for w in $omegas; do
   "$impactkit" impactmap --omega "$w" --transient 500 --periods 5000 --out "$data/fig8_$w.csv" \
     >/dev/null
   largest=$("$impactkit" lyapunov --omega "$w" --impacts 4000 | sed -n 's/^largest: *\([^ ]*\).*/\1/p')
-  echo "Ω = $w: $(($(wc -l <"$data/fig8_$w.csv") - 2)) impacts, largest Lyapunov exponent $largest"
+  echo "Ω = $w: $(($(grep -vc '^#' "$data/fig8_$w.csv") - 1)) impacts, largest Lyapunov exponent $largest"
 done
 
 # One panel per Ω, 4 rows of 3, as the paper lays them out.

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <set>
@@ -223,4 +225,72 @@ TEST_CASE("a checkpoint returns what it recorded and refuses another run", "[gri
   CHECK_THROWS_WITH(Checkpoint(directory, "run two", 3), Catch::Contains("another run"));
   CHECK_THROWS_WITH(Checkpoint(directory, "run one", 4), Catch::Contains("another run"));
   std::filesystem::remove_all(directory);
+}
+
+namespace {
+
+std::string ReadBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+}  // namespace
+
+TEST_CASE("a checkpoint unit edited, cut or emptied is computed again, a damaged run.txt refused",
+          "[grid]") {
+  namespace fs = std::filesystem;
+  const fs::path directory = fs::temp_directory_path() / "impactkit-test-checkpoint-damage";
+  fs::remove_all(directory);
+  auto cell = [](int index) {
+    GridCell c;
+    c.index = index;
+    c.kind = MotionKind::kPeriodic;
+    c.p = c.q = 1;
+    c.max_v = 0.25 * index;
+    return c;
+  };
+  {
+    Checkpoint checkpoint(directory, "run", 5);
+    for (int unit = 0; unit < 5; ++unit) checkpoint.Record(unit, {cell(unit)});
+  }
+  auto unit_file = [&](int unit) { return directory / ("unit-" + std::to_string(unit) + ".txt"); };
+  std::string edited = ReadBytes(unit_file(1));
+  edited.replace(edited.find("periodic"), 8, "chaotic");  // still a cell that parses
+  WriteBytes(unit_file(1), edited);
+  const std::string whole = ReadBytes(unit_file(2));
+  WriteBytes(unit_file(2), whole.substr(0, whole.size() - 5));      // cut inside its checksum
+  WriteBytes(unit_file(3), whole.substr(0, whole.find('\n') + 1));  // its checksum line gone
+  WriteBytes(unit_file(4), "");
+
+  const Checkpoint reopened(directory, "run", 5);
+  REQUIRE(reopened.Finished().size() == 1);
+  CHECK(Same(reopened.Finished().at(0).front(), cell(0)));
+  REQUIRE(reopened.Damaged().size() == 4);
+  const std::vector<std::string> reasons = {
+      "its CRC-32 does not match its contents", "its last line is no CRC-32: cut short or added to",
+      "its last line is no CRC-32: cut short or added to", "empty"};
+  for (int k = 0; k < 4; ++k) {
+    const DamagedUnit& damaged = reopened.Damaged()[k];
+    CHECK(damaged.unit == k + 1);
+    CHECK(damaged.file == unit_file(k + 1));
+    CHECK(damaged.reason == reasons[k]);
+  }
+
+  // A unit recorded again replaces the damaged file.
+  Checkpoint(directory, "run", 5).Record(1, {cell(1)});
+  const Checkpoint repaired(directory, "run", 5);
+  CHECK(Same(repaired.Finished().at(1).front(), cell(1)));
+  CHECK(repaired.Damaged().size() == 3);
+
+  // run.txt with one byte changed is damaged, not another run's.
+  std::string run = ReadBytes(directory / "run.txt");
+  run[0] = run[0] == 'r' ? 'R' : 'r';
+  WriteBytes(directory / "run.txt", run);
+  CHECK_THROWS_WITH(Checkpoint(directory, "run", 5),
+                    Catch::Contains("run.txt is damaged") && !Catch::Contains("another run"));
+  fs::remove_all(directory);
 }

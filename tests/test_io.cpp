@@ -465,9 +465,11 @@ TEST_CASE("CsvWriter: provenance, header, and values that read back exactly", "[
   }
   const std::vector<std::string> lines = Lines(ReadText(path));
   REQUIRE(lines.size() == 3 + rows.size());
-  CHECK(lines[0] == "# impactkit test");
-  CHECK(lines[1] == "# parameters: omega=1.4 xs=0.1");
-  CHECK(lines[2] == "t,x1,x2,v1");
+  // The header first: numpy.genfromtxt(names=True) names the columns by the
+  // first line, comment or not.
+  CHECK(lines[0] == "t,x1,x2,v1");
+  CHECK(lines[1] == "# impactkit test");
+  CHECK(lines[2] == "# parameters: omega=1.4 xs=0.1");
   // Exact: the writer prints the shortest decimal that reads back to the same
   // double and strtod rounds correctly, so every bit must survive.
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -587,7 +589,7 @@ TEST_CASE("OutputSet: every file appears on Commit, or none does", "[io]") {
       CHECK(ReadText(dir / "keep.csv") == "old\n");  // nothing before Commit
       outputs.Commit();
     }
-    CHECK(ReadText(dir / "keep.csv") == "# test\nt,x\n0.5,1.5\n");
+    CHECK(ReadText(dir / "keep.csv") == "t,x\n# test\n0.5,1.5\n");
     CHECK(ReadText(dir / "result.json") == "{}\n");
     CHECK(dir.Entries() == std::vector<std::string>{"keep.csv", "result.json"});
   }

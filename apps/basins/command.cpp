@@ -179,8 +179,8 @@ void RunBasinsCommand(const BasinsRequest& request) {
                    static_cast<double>(outcome->cells.size()));
   }
   if (out) {
-    out->Write(CommentLines(provenance.Text()) +
-               fmt::format("{},{},attractor,{}\n", o.coordinate1, o.coordinate2, kCellColumns));
+    out->Write(
+        CsvHead({o.coordinate1, o.coordinate2, "attractor", kCellColumns}, provenance.Text()));
     const std::size_t k = task.Values1().size();
     for (const GridCell& cell : outcome->cells) {
       out->Write(fmt::format("{},{},{},{}\n", task.Values1()[cell.index % k],
@@ -192,7 +192,8 @@ void RunBasinsCommand(const BasinsRequest& request) {
     json->Write(
         SummaryJson(provenance, task, result, static_cast<std::int64_t>(outcome->cells.size())));
   }
-  if (plot) plot->Write(RenderClassMapPng(ChartOf(task, result, outcome->cells)));
+  if (plot)
+    plot->Write(RenderClassMap(ChartOf(task, result, outcome->cells), ImageFormatOf(plot->Path())));
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.json, &request.plot}) {
     if (!path->empty()) fmt::print("wrote:   {}\n", *path);
@@ -262,9 +263,10 @@ void AddBasinsCommand(CLI::App& app) {
       ->type_name("FILE.json")
       ->check(OutputPath())
       ->group(output);
-  command->add_option("--plot", request->plot, "PNG colour map of the basins (needs gnuplot)")
-      ->type_name("FILE.png")
+  command->add_option("--plot", request->plot, "Colour map of the basins (needs gnuplot)")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group(output);
   command->callback([request] { RunBasinsCommand(*request); });
 }

@@ -88,6 +88,12 @@ class Collector {
       : task_(task), label_(options.label) {
     if (!options.checkpoint.empty()) {
       checkpoint_ = std::make_unique<Checkpoint>(options.checkpoint, task.Identity(), task.Units());
+      for (const DamagedUnit& damaged : checkpoint_->Damaged()) {
+        fmt::print(
+            stderr,
+            "impactkit: warning: checkpoint unit {} is damaged ({}: {}); computing it again\n",
+            damaged.unit, damaged.file.string(), damaged.reason);
+      }
     }
     std::vector<bool> finished(task.Units(), false);
     if (checkpoint_) {

@@ -4,8 +4,9 @@
 /// units shared among threads, and under `mpirun` among processes too, with
 /// dynamic load balancing (a unit is handed out when a worker asks, so
 /// expensive sticking units do not hold up cheap ones); finished units
-/// recorded in a checkpoint directory when asked; a progress line with the
-/// time left. Rank 0 collects every cell and alone writes; the cells do not
+/// recorded in a checkpoint directory when asked (a damaged unit there is
+/// computed again, with a warning line on stderr naming it); a progress line
+/// with the time left. Rank 0 collects every cell and alone writes; the cells do not
 /// depend on the number of threads or ranks, so neither do the files.
 ///
 /// MPI is only transport here (grid_mpi.hpp); no MPI type leaves the apps.
@@ -52,7 +53,8 @@ struct GridOutcome {
 };
 
 /// Runs `task`. On the writer (rank 0): every cell; elsewhere nothing.
-/// Throws InvalidInput (a checkpoint of another run), OutputError.
+/// Throws InvalidInput (a checkpoint of another run, a damaged run.txt),
+/// OutputError.
 std::optional<GridOutcome> DriveGrid(const GridTask& task, const GridDriveOptions& options,
                                      const GridProcesses& processes);
 

@@ -5,6 +5,7 @@
 /// work, so that a bad path fails first, and all moved into place together
 /// at the end, so that a failure or an interruption changes no file.
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <string>
 
@@ -17,7 +18,13 @@ namespace impactkit::cli {
 /// empty (the option was not given). Throws OutputError.
 AtomicOutputFile* AddIfAsked(OutputSet& outputs, const std::filesystem::path& path);
 
-/// Renders `chart` (RenderPng) into `file`. Throws PlotError or OutputError.
-void WriteChartPng(AtomicOutputFile& file, const LineChart& chart);
+/// Renders `chart` (RenderChart) into `file`, in the format its extension
+/// names. Throws PlotError or OutputError.
+void WriteChart(AtomicOutputFile& file, const LineChart& chart);
+
+/// The check of a --plot FILE: a path whose extension names a format
+/// (ImageFormatOf), so that a figure the tool cannot write is refused
+/// before any work.
+CLI::Validator FigurePath();
 
 }  // namespace impactkit::cli

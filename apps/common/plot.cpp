@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -20,8 +21,10 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
+#include <utility>
 
 #include "common/provenance.hpp"
+#include "impactkit/core/errors.hpp"
 
 extern char** environ;  // POSIX: the environment gnuplot inherits
 
@@ -127,21 +130,52 @@ std::string PlotCommand(const LineChart& chart, const std::vector<fs::path>& fil
   return fmt::format("plot {}\n", fmt::join(clauses, ", \\\n     "));
 }
 
-/// The settings every chart shares: terminal, output, grid, key placement.
-std::string Preamble(int width, int height, const fs::path& output, std::string_view key) {
+/// Each format with the extension that names it.
+constexpr std::array<std::pair<ImageFormat, std::string_view>, 3> kExtensions = {
+    {{ImageFormat::kPng, ".png"}, {ImageFormat::kPdf, ".pdf"}, {ImageFormat::kSvg, ".svg"}}};
+
+/// `stem` with the extension of `format`: gnuplot's output file.
+std::string ImageName(std::string_view stem, ImageFormat format) {
+  const auto named = std::find_if(kExtensions.begin(), kExtensions.end(),
+                                  [&](const auto& entry) { return entry.first == format; });
+  return fmt::format("{}{}", stem, named->second);
+}
+
+/// The gnuplot terminal of `format` for a width x height pixel image.
+std::string Terminal(ImageFormat format, int width, int height) {
+  switch (format) {
+    case ImageFormat::kPdf:
+      // A point per pixel (cairo's 72 per inch): text and lines keep the
+      // proportions of the PNG.
+      return fmt::format("set terminal pdfcairo size {}in,{}in font \"Sans,11\" noenhanced\n",
+                         width / 72.0, height / 72.0);
+    case ImageFormat::kSvg:
+      return fmt::format("set terminal svg size {},{} font \"Sans,11\" noenhanced\n", width,
+                         height);
+    case ImageFormat::kPng:
+      break;
+  }
   // pngcairo draws antialiased lines and real dashes; the gd-based png
   // terminal is the fallback that every gnuplot build has.
   return fmt::format(
-      "set encoding utf8\n"
       "if (strstrt(GPVAL_TERMINALS, \"pngcairo\") > 0) {{\n"
       "  set terminal pngcairo size {0},{1} font \"Sans,11\" noenhanced\n"
       "}} else {{\n"
       "  set terminal png size {0},{1} noenhanced\n"
-      "}}\n"
-      "set output {2}\n"
+      "}}\n",
+      width, height);
+}
+
+/// The settings every chart shares: terminal, output, grid, key placement.
+std::string Preamble(ImageFormat format, int width, int height, const fs::path& output,
+                     std::string_view key) {
+  return fmt::format(
+      "set encoding utf8\n"
+      "{}"
+      "set output {}\n"
       "set grid\n"
-      "set key {3}\n",
-      width, height, Quoted(output.filename().string()), key);
+      "set key {}\n",
+      Terminal(format, width, height), Quoted(output.filename().string()), key);
 }
 
 /// gnuplot's first complaint, as the reason in our one-line error.
@@ -339,15 +373,55 @@ std::string WithText(const std::string& png, std::string_view keyword, std::stri
   return out + png.substr(kAfterHeader);
 }
 
-/// Runs the script and returns its PNG, which records the command line,
-/// keeping the source if asked.
+/// `text` with the characters XML gives a meaning escaped.
+std::string XmlEscaped(std::string_view text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+/// `svg` with `text` as the description of the document: its first <desc>
+/// element (gnuplot's "Produced by GNUPLOT ...") replaced.
+std::string WithDescription(const std::string& svg, std::string_view text) {
+  const std::size_t begin = svg.find("<desc>");
+  const std::size_t end = svg.find("</desc>", begin);
+  if (begin == std::string::npos || end == std::string::npos) {
+    throw PlotError("gnuplot's SVG has no <desc> element");
+  }
+  return svg.substr(0, begin) + "<desc>" + XmlEscaped(text) + svg.substr(end);
+}
+
+/// Runs the script and returns its image, which records the command line
+/// where the format has a place for it, keeping the source if asked.
 std::string Render(const TemporaryDirectory& directory, const fs::path& script,
-                   const fs::path& image) {
+                   const fs::path& output, ImageFormat format) {
   RunGnuplot(script, directory / "gnuplot.log");
-  std::string png = ReadFile(image);
-  if (png.empty()) throw PlotError("gnuplot produced no image");
+  std::string image = ReadFile(output);
+  if (image.empty()) throw PlotError("gnuplot produced no image");
   KeepSource(directory);
-  return WithText(png, "Description", CommandLineProvenance());
+  switch (format) {
+    case ImageFormat::kPng:
+      return WithText(image, "Description", CommandLineProvenance());
+    case ImageFormat::kSvg:
+      return WithDescription(image, CommandLineProvenance());
+    case ImageFormat::kPdf:
+      break;
+  }
+  return image;
 }
 
 }  // namespace
@@ -364,11 +438,23 @@ std::string ParameterLabel(std::string_view parameter) {
   return parameter == "omega" ? "Ω" : std::string(parameter);
 }
 
-std::string RenderClassMapPng(const ClassMap& map) {
+ImageFormat ImageFormatOf(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const auto& [format, name] : kExtensions) {
+    if (extension == name) return format;
+  }
+  throw InvalidInput(fmt::format(
+      "{}: a figure is a .png, .pdf or .svg file (the extension names the format), not {}",
+      path.string(), extension.empty() ? "a file without extension" : "'" + extension + "'"));
+}
+
+std::string RenderClassMap(const ClassMap& map, ImageFormat format) {
   RequireGnuplot();
   if (map.names.empty()) throw PlotError("a class map needs at least one class");
   const TemporaryDirectory directory;
-  const fs::path image = directory / "map.png";
+  const fs::path image = directory / ImageName("map", format);
   const fs::path cells = directory / "cells.dat";
   WriteFile(cells, CellData(map));
   std::vector<fs::path> overlays;
@@ -377,9 +463,9 @@ std::string RenderClassMapPng(const ClassMap& map) {
     WriteFile(overlays.back(), CurveData(map.overlays[i]));
   }
   const fs::path script_path = directory / "map.gp";
-  WriteFile(script_path, Preamble(map.width, map.height, image, "outside right") +
+  WriteFile(script_path, Preamble(format, map.width, map.height, image, "outside right") +
                              ClassMapScript(map, cells, overlays));
-  return Render(directory, script_path, image);
+  return Render(directory, script_path, image, format);
 }
 
 void RequireGnuplot() {
@@ -389,17 +475,18 @@ void RequireGnuplot() {
   }
 }
 
-std::string RenderPng(const LineChart& chart) {
-  return RenderStackedPng({chart}, chart.width, chart.height);
+std::string RenderChart(const LineChart& chart, ImageFormat format) {
+  return RenderStacked({chart}, chart.width, chart.height, format);
 }
 
-std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height) {
+std::string RenderStacked(const std::vector<LineChart>& charts, int width, int height,
+                          ImageFormat format) {
   RequireGnuplot();
   const TemporaryDirectory directory;
-  const fs::path image = directory / "chart.png";
+  const fs::path image = directory / ImageName("chart", format);
   const bool single = charts.size() == 1;
-  std::string script =
-      Preamble(width, height, image, single ? "outside bottom center horizontal" : "top right");
+  std::string script = Preamble(format, width, height, image,
+                                single ? "outside bottom center horizontal" : "top right");
   if (!single) script += fmt::format("set multiplot layout {},1\n", charts.size());
   for (std::size_t c = 0; c < charts.size(); ++c) {
     std::vector<fs::path> files;
@@ -412,7 +499,7 @@ std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, in
   if (!single) script += "unset multiplot\n";
   const fs::path script_path = directory / "chart.gp";
   WriteFile(script_path, script);
-  return Render(directory, script_path, image);
+  return Render(directory, script_path, image, format);
 }
 
 }  // namespace impactkit::cli

@@ -1,12 +1,14 @@
 #pragma once
 /// \file common/plot.hpp
 /// Line charts through gnuplot: the data and a script go to a private
-/// temporary directory, gnuplot renders a PNG there, and the bytes come
+/// temporary directory, gnuplot renders the image there, and the bytes come
 /// back to the caller, who writes them like any other output (whole or not
-/// at all). pngcairo is used when gnuplot has it, else the plain png terminal.
-/// Each PNG records the version and the command that drew it in an iTXt
-/// chunk with the keyword "Description" (what image viewers and PIL's
-/// `Image.info` show).
+/// at all). The output's extension names the format: PNG (pngcairo when
+/// gnuplot has it, else the plain png terminal), or the vector formats a
+/// journal takes, PDF (pdfcairo) and SVG. Each PNG records the version and
+/// the command that drew it in an iTXt chunk with the keyword "Description"
+/// (what image viewers and PIL's `Image.info` show), each SVG in its
+/// <desc> element; a PDF does not (gnuplot sets no PDF metadata).
 ///
 /// With IMPACTKIT_PLOT_SOURCE=DIR in the environment, each figure's script
 /// and data are also copied into DIR/<n>/ (n = 1, 2, ... per figure): a
@@ -15,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -28,6 +31,13 @@ class PlotError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// The format of a figure, named by its file's extension.
+enum class ImageFormat { kPng, kPdf, kSvg };
+
+/// The format `path`'s extension names: .png, .pdf or .svg, in any case.
+/// Throws InvalidInput for any other, naming the three.
+ImageFormat ImageFormatOf(const std::filesystem::path& path);
 
 /// A data set of a chart. A curve without data is drawn only in the key:
 /// a legend entry that stands for several curves (a branch's stretches,
@@ -73,7 +83,7 @@ struct LineChart {
   /// y starts at 0 (max - min, amplitudes: never negative).
   bool y_from_zero = false;
   std::vector<PointLabel> labels;
-  int width = 1000;  ///< pixels
+  int width = 1000;  ///< pixels (points in a PDF)
   int height = 600;
 };
 
@@ -85,8 +95,8 @@ std::string ParameterLabel(std::string_view parameter);
 /// so that a missing gnuplot is reported before the work, not after.
 void RequireGnuplot();
 
-/// The chart as PNG bytes. Throws PlotError.
-std::string RenderPng(const LineChart& chart);
+/// The chart as the bytes of a `format` image. Throws PlotError.
+std::string RenderChart(const LineChart& chart, ImageFormat format);
 
 /// A grid of cells coloured by class (a parameter map, a basin picture),
 /// with a legend that names every class: outside on the right, in as many
@@ -102,15 +112,17 @@ struct ClassMap {
   std::vector<std::string> names;   ///< per class, in legend order
   std::vector<std::string> colors;  ///< per class, "#rrggbb"
   std::vector<Curve> overlays;      ///< drawn over the cells (curves of `impactkit curve`)
-  int width = 1200;                 ///< pixels
+  int width = 1200;                 ///< pixels (points in a PDF)
   int height = 800;
 };
 
-/// The map as PNG bytes. Throws PlotError.
-std::string RenderClassMapPng(const ClassMap& map);
+/// The map as the bytes of a `format` image. Throws PlotError.
+std::string RenderClassMap(const ClassMap& map, ImageFormat format);
 
-/// Several charts stacked top to bottom in one PNG of width x height pixels
-/// (the charts' own sizes are ignored), as PNG bytes. Throws PlotError.
-std::string RenderStackedPng(const std::vector<LineChart>& charts, int width, int height);
+/// Several charts stacked top to bottom in one image of width x height
+/// pixels (the charts' own sizes are ignored), as the bytes of a `format`
+/// image. Throws PlotError.
+std::string RenderStacked(const std::vector<LineChart>& charts, int width, int height,
+                          ImageFormat format);
 
 }  // namespace impactkit::cli

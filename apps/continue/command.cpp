@@ -202,7 +202,7 @@ void RunContinue(const ContinueRequest& request) {
     written.push_back(request.json);
   }
   if (plot) {
-    WriteChartPng(*plot, BranchChart(branches));
+    WriteChart(*plot, BranchChart(branches));
     written.push_back(request.plot);
   }
   // All together, last: a failure above (a branch file that cannot be
@@ -279,10 +279,11 @@ void AddContinueCommand(CLI::App& app) {
       ->group("Output");
   command
       ->add_option("--plot", request->plot,
-                   "PNG: impact velocities against the parameter, stable solid, unstable "
+                   "Figure: impact velocities against the parameter, stable solid, unstable "
                    "dashed, special points marked (needs gnuplot)")
-      ->type_name("FILE.png")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group("Output");
   command->callback([request] { RunContinue(*request); });
 }

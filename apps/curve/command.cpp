@@ -290,7 +290,7 @@ void RunCurve(const CurveRequest& request) {
   if (json) {
     json->Write(CurvesJson(curves, provenance.Json(), SystemToJson(system)).dump(2) + "\n");
   }
-  if (plot) WriteChartPng(*plot, CurveChart(curves));
+  if (plot) WriteChart(*plot, CurveChart(curves));
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.json, &request.plot}) {
     if (!path->empty()) fmt::print("wrote:      {}\n", *path);
@@ -367,10 +367,11 @@ void AddCurveCommand(CLI::App& app) {
       ->group("Output");
   command
       ->add_option("--plot", request->plot,
-                   "PNG: the curve in the parameter plane, codimension-two points marked (needs "
+                   "Figure: the curve in the parameter plane, codimension-two points marked (needs "
                    "gnuplot)")
-      ->type_name("FILE.png")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group("Output");
   command->callback([request] { RunCurve(*request); });
 }

@@ -158,9 +158,8 @@ void RunDiagram(const DiagramRequest& request) {
     written.push_back(request.json);
   }
   if (plot) {
-    WriteChartPng(*plot,
-                  DiagramChart(swept, request.axis == "range" ? DiagramAxis::kRange
-                                                              : DiagramAxis::kImpactVelocity));
+    WriteChart(*plot, DiagramChart(swept, request.axis == "range" ? DiagramAxis::kRange
+                                                                  : DiagramAxis::kImpactVelocity));
     written.push_back(request.plot);
   }
   outputs.Commit();
@@ -240,10 +239,11 @@ void AddDiagramCommand(CLI::App& app) {
       ->group("Output");
   command
       ->add_option("--plot", request->plot,
-                   "PNG: the branches (stable solid, unstable dashed), nodes marked by type, "
+                   "Figure: the branches (stable solid, unstable dashed), nodes marked by type, "
                    "over the sweep's points (needs gnuplot)")
-      ->type_name("FILE.png")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group("Output");
   command->add_option("--axis", request->axis, "What --plot shows: velocity or range (of x_N)")
       ->capture_default_str()

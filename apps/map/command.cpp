@@ -212,8 +212,7 @@ void RunMapCommand(const MapRequest& request) {
   }
   fmt::print("result:  {}\n", classes);
   if (out) {
-    out->Write(CommentLines(provenance.Text()) +
-               fmt::format("{},{},{}\n", o.row.parameter, o.parameter2, kCellColumns));
+    out->Write(CsvHead({o.row.parameter, o.parameter2, kCellColumns}, provenance.Text()));
     const std::size_t k = task.Values1().size();
     for (const GridCell& cell : outcome->cells) {
       out->Write(fmt::format("{},{},{}\n", task.Values1()[cell.index % k],
@@ -224,7 +223,7 @@ void RunMapCommand(const MapRequest& request) {
   if (plot) {
     ClassMap chart = ChartOf(task, outcome->cells);
     chart.overlays = overlays;
-    plot->Write(RenderClassMapPng(chart));
+    plot->Write(RenderClassMap(chart, ImageFormatOf(plot->Path())));
   }
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.json, &request.plot}) {
@@ -267,9 +266,10 @@ void AddMapCommand(CLI::App& app) {
       ->group(output);
   command
       ->add_option("--plot", request->plot,
-                   "PNG colour map of the motion with a legend (needs gnuplot)")
-      ->type_name("FILE.png")
+                   "Colour map of the motion with a legend (needs gnuplot)")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group(output);
   command
       ->add_option(

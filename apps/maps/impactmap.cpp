@@ -63,7 +63,7 @@ void RunImpactMap(const ImpactMapRequest& request) {
     chart.x_label = fmt::format("phase at impact, t mod T (T = {:.6g})", system.ForcingPeriod());
     chart.y_label = ImpactSpeedLabel(system);
     chart.curves.push_back(points);
-    WriteChartPng(*plot, chart);
+    WriteChart(*plot, chart);
   }
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.plot}) {
@@ -85,9 +85,10 @@ void AddImpactMapCommand(CLI::App& app) {
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group("Output");
-  command->add_option("--plot", request->plot, "Plot phase against impact speed (PNG, gnuplot)")
-      ->type_name("FILE.png")
+  command->add_option("--plot", request->plot, "Plot phase against impact speed (needs gnuplot)")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group("Output");
   command->callback([request] { RunImpactMap(*request); });
 }

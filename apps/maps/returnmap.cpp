@@ -139,7 +139,7 @@ void RunReturnMap(const ReturnMapRequest& request) {
       }
       chart.curves.push_back(curve);
     }
-    WriteChartPng(*plot, chart);
+    WriteChart(*plot, chart);
   }
   // All files together, then the verdict: a fit that did not converge is
   // still written (its JSON records how it ended).
@@ -183,9 +183,10 @@ void AddReturnMapCommand(CLI::App& app) {
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group("Output");
-  command->add_option("--plot", request->plot, "Plot the return map (and the fit) as PNG")
-      ->type_name("FILE.png")
+  command->add_option("--plot", request->plot, "Plot the return map (and the fit) (needs gnuplot)")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group("Output");
   command
       ->add_option("--json", request->json,

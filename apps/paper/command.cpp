@@ -127,7 +127,7 @@ nlohmann::json ResonanceStage(const System& system, Folder& folder) {
     }
     chart.curves.push_back(std::move(c));
   }
-  WriteFile(folder, "fig2-resonance.png", RenderPng(chart));
+  WriteFile(folder, "fig2-resonance.png", RenderChart(chart, ImageFormat::kPng));
   return peaks;
 }
 
@@ -208,7 +208,8 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
     j.push_back(BranchJson(b));
   }
   WriteFile(folder, "diagram.json", DiagramJson(swept.diagram).dump(2) + "\n");
-  WriteFile(folder, "diagram.png", RenderPng(DiagramChart(swept, DiagramAxis::kImpactVelocity)));
+  WriteFile(folder, "diagram.png",
+            RenderChart(DiagramChart(swept, DiagramAxis::kImpactVelocity), ImageFormat::kPng));
   return j;
 }
 
@@ -292,7 +293,7 @@ nlohmann::json SweepStage(const System& paper, const SweepOptions& options,
                  std::vector<std::string>{period.kind, period.p, period.q});
   }
   WriteFile(folder, "fig3-bifurcation.png",
-            RenderStackedPng(SweepCharts(paper, options, sweep), 1000, 900));
+            RenderStacked(SweepCharts(paper, options, sweep), 1000, 900, ImageFormat::kPng));
   return regimes;
 }
 

@@ -94,7 +94,7 @@ void RunResonance(const ResonanceRequest& request) {
       }
       chart.curves.push_back(c);
     }
-    WriteChartPng(*plot, chart);
+    WriteChart(*plot, chart);
   }
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.plot}) {
@@ -128,9 +128,10 @@ void AddResonanceCommand(CLI::App& app) {
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group("Output");
-  command->add_option("--plot", request->plot, "Plot the curves (PNG, gnuplot)")
-      ->type_name("FILE.png")
+  command->add_option("--plot", request->plot, "Plot the curves (needs gnuplot)")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group("Output");
   command->callback([request] { RunResonance(*request); });
 }

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common/limits.hpp"
+#include "common/output.hpp"
 #include "common/system_options.hpp"
 #include "simulate/run.hpp"
 
@@ -85,9 +86,10 @@ void AddOutputOptions(CLI::App& command, SimulateRequest& request) {
       ->group(group);
   command
       .add_option("--plot", request.plot,
-                  "PNG of x1..xN against t over the window, stop marked (needs gnuplot)")
-      ->type_name("FILE.png")
+                  "Figure of x1..xN against t over the window, stop marked (needs gnuplot)")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group(group);
   command
       .add_option("--json", request.json,

@@ -102,7 +102,7 @@ void SimulateOutputs::Write(const SimulateResult& result) {
   // failure (gnuplot, a full disk) leaves no partial set of files either.
   if (series_) WriteSeries(result);
   if (impacts_) WriteImpacts(result);
-  if (plot_) WriteChartPng(*plot_, TimeSeriesChart(result));
+  if (plot_) WriteChart(*plot_, TimeSeriesChart(result));
   if (json_) json_->Write(SummaryJson(result, provenance_) + "\n");
   set_.Commit();
 }

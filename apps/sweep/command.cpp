@@ -177,13 +177,14 @@ void RunSweepCommand(const SweepRequest& request) {
     }
   }
   if (summary) {
-    summary->Write(CommentLines(provenance));
-    summary->Write(
-        "param,kind,p,q,range_xN,range_x1,range_xN_min,range_x1_min,impacts,v_min,v_max,"
-        "lyapunov,restarted\n");
+    summary->Write(CsvHead({"param", "kind", "p", "q", "range_xN", "range_x1", "range_xN_min",
+                            "range_x1_min", "impacts", "v_min", "v_max", "lyapunov", "restarted"},
+                           provenance));
     for (const SweepPoint& point : result.points) summary->Write(SummaryRow(point));
   }
-  if (plot) plot->Write(RenderStackedPng(SweepCharts(system, options, result), 1000, 900));
+  if (plot)
+    plot->Write(RenderStacked(SweepCharts(system, options, result), 1000, 900,
+                              ImageFormatOf(plot->Path())));
   // Committed last: a failure above leaves no partial set of files.
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.summary, &request.plot}) {
@@ -228,10 +229,11 @@ void AddSweepCommand(CLI::App& app) {
       ->group(output);
   command
       ->add_option("--plot", request->plot,
-                   "PNG of the paper's Fig. 3: max - min of the contact mass per period, and "
+                   "Figure like the paper's Fig. 3: max - min of the contact mass per period, and "
                    "impact velocity, against the parameter (needs gnuplot)")
-      ->type_name("FILE.png")
+      ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
+      ->check(FigurePath())
       ->group(output);
   command->callback([request] { RunSweepCommand(*request); });
 }

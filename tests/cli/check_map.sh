@@ -14,6 +14,12 @@
 #         of an uninterrupted run, computing only the cells not on record
 #         (their count is the report's); a checkpoint of another grid is
 #         refused with exit 2 and one line
+#     check_map.sh IMPACTKIT damaged
+#         a finished checkpoint with one unit edited (periodic -> chaotic),
+#         one cut short and one emptied: the rerun computes those three
+#         again, with one warning line naming each, and writes the CSV of
+#         an uninterrupted run; a run.txt edited by a byte is refused with
+#         exit 2 and one line saying it is damaged
 #     check_map.sh IMPACTKIT plot
 #         --plot with --curves (one curve in (omega, r), drawn; one in
 #         (omega, xs), skipped) writes a PNG; a curves file without
@@ -99,6 +105,43 @@ case $mode in
     [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] ||
       fail "another run's checkpoint: status $status, stderr $(cat "$work/stderr")"
     grep -q "belongs to another run" "$work/stderr" || fail "message: $(cat "$work/stderr")"
+    echo ok
+    ;;
+  damaged)
+    "$impactkit" "${grid[@]}" --out "$work/whole.csv" >/dev/null || fail "map failed"
+    "$impactkit" "${grid[@]}" --checkpoint "$work/cp" >/dev/null || fail "the checkpointed map failed"
+    edited=$(grep -l ' periodic ' "$work"/cp/unit-*.txt | head -1)
+    [[ -n $edited ]] || fail "no unit holds a periodic cell"
+    sed -i '0,/ periodic /s// chaotic /' "$edited"
+    others=($(ls "$work"/cp/unit-*.txt | grep -vx "$edited" | head -2))
+    # Their cells: every line but the checksum line of each.
+    recomputed=$(($(cat "$edited" "${others[@]}" | wc -l) - 3))
+    truncate -s 20 "${others[0]}"
+    : >"${others[1]}"
+    unit_of() { basename "$1" .txt | sed 's/unit-//'; }
+    damaged=$(for f in "$edited" "${others[@]}"; do unit_of "$f"; done | sort -n)
+    "$impactkit" "${grid[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" \
+      >"$work/stdout" 2>"$work/stderr" || fail "the resumed run failed: $(cat "$work/stderr")"
+    warned=$(sed -n 's/^impactkit: warning: checkpoint unit \([0-9]*\) is damaged (.*); computing it again$/\1/p' \
+      "$work/stderr")
+    [[ $warned == "$damaged" && $(wc -l <"$work/stderr") -eq 3 ]] ||
+      fail "expected a warning for each of units $(echo $damaged), got: $(cat "$work/stderr")"
+    expected="($recomputed computed, $((65 - recomputed)) resumed from the checkpoint)"
+    grep -qF "$expected" "$work/stdout" || fail "expected '$expected': $(cat "$work/stdout")"
+    same_but_command "$work/whole.csv" "$work/resumed.csv" || fail "the resumed CSV differs"
+    # The units computed again are on record, whole.
+    "$impactkit" "${grid[@]}" --checkpoint "$work/cp" >"$work/stdout" 2>"$work/stderr" ||
+      fail "the second resume failed"
+    [[ ! -s $work/stderr ]] || fail "warned again: $(cat "$work/stderr")"
+    grep -qF "(0 computed, 65 resumed" "$work/stdout" || fail "not all resumed: $(cat "$work/stdout")"
+    # A damaged run.txt says whose units these are: refused, as damaged.
+    sed -i 's/units=15/units=16/' "$work/cp/run.txt"
+    status=0
+    "$impactkit" "${grid[@]}" --checkpoint "$work/cp" >"$work/stdout" 2>"$work/stderr" ||
+      status=$?
+    [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] ||
+      fail "a damaged run.txt: status $status, stderr $(cat "$work/stderr")"
+    grep -q "run.txt is damaged" "$work/stderr" || fail "message: $(cat "$work/stderr")"
     echo ok
     ;;
   plot)

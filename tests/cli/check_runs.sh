@@ -5,6 +5,7 @@
 #     check_runs.sh outputs    IMPACTKIT IMPACT_SPEEDS   CSV columns and contents
 #     check_runs.sh sticking   IMPACTKIT                 a chatter-and-sticking run
 #     check_runs.sh plot       IMPACTKIT                 the PNG (skipped, 77, without gnuplot)
+#     check_runs.sh vector-plot IMPACTKIT                .pdf and .svg give PDF and SVG figures
 #     check_runs.sh examples   IMPACTKIT DIR             every system file in DIR runs
 #     check_runs.sh unwritable IMPACTKIT                 an output that cannot be written
 #     check_runs.sh failed-plot IMPACTKIT                gnuplot fails: no file of the set is written
@@ -116,6 +117,38 @@ run_plot() {
   [[ $width -eq 1000 && $height -eq 600 ]] || fail "PNG is ${width}x${height}, expected 1000x600"
 }
 
+# --plot by extension: a PDF (its page as many points as the PNG has
+# pixels) or an SVG (well-formed, of the PNG's size, its <desc> the
+# command), for a chart, a stacked chart (sweep) and a class map (map).
+run_vector_plot() {
+  command -v gnuplot >/dev/null || fail "gnuplot is not installed"
+  cd "$work"
+  "$impactkit" simulate --omega 1.4 --periods 5 --plot sim.pdf >/dev/null || fail "simulate failed"
+  "$impactkit" simulate --omega 1.4 --periods 5 --plot sim.svg >/dev/null || fail "simulate failed"
+  "$impactkit" sweep --from 0.6 --to 0.7 --steps 3 --transient 10 --record 5 --plot sweep.SVG \
+    >/dev/null || fail "sweep failed"
+  "$impactkit" map --from 0.6 --to 0.7 --steps 2 --param2 r --from2 0.6 --to2 0.7 --steps2 2 \
+    --transient 10 --record 5 --threads 1 --plot map.pdf >/dev/null || fail "map failed"
+  python3 - <<'PY' || fail "not the figures asked for"
+import re
+import xml.etree.ElementTree as ElementTree
+
+for name, size in (("sim.pdf", (1000, 600)), ("map.pdf", (1200, 800))):
+    data = open(name, "rb").read()
+    assert data.startswith(b"%PDF-"), f"{name} is not a PDF: {data[:8]!r}"
+    box = re.search(rb"/MediaBox \[ *0 0 ([0-9.]+) ([0-9.]+) *\]", data)
+    assert box and (round(float(box[1])), round(float(box[2]))) == size, f"{name}: {box}"
+for name, size, command in (("sim.svg", (1000, 600), "simulate --omega 1.4 --periods 5 --plot sim.svg"),
+                            ("sweep.SVG", (1000, 900), None)):
+    root = ElementTree.parse(name).getroot()
+    assert root.tag == "{http://www.w3.org/2000/svg}svg", f"{name}: root {root.tag}"
+    assert (int(root.get("width")), int(root.get("height"))) == size, f"{name}: {root.attrib}"
+    desc = root.find("{http://www.w3.org/2000/svg}desc").text
+    assert desc.startswith("impactkit "), f"{name}: <desc> {desc!r}"
+    assert command is None or desc.endswith("command: impactkit " + command), desc
+PY
+}
+
 run_examples() {
   local dir=$1 file
   for file in "$dir"/*.json "$dir"/*.toml; do
@@ -207,6 +240,7 @@ case $check in
   outputs) run_outputs "$3" ;;
   sticking) run_sticking ;;
   plot) run_plot ;;
+  vector-plot) run_vector_plot ;;
   examples) run_examples "$3" ;;
   unwritable) run_unwritable ;;
   failed-plot) run_failed_plot ;;

@@ -4,7 +4,7 @@
 # (nothing but the prefix on CMAKE_PREFIX_PATH), run the consumer on the
 # shipped examples/systems/paper.json, and check that it finds the paper's
 # stable P(2,1) at Ω = 0.6 with the impacts the installed `impactkit orbit`
-# finds.
+# finds; the license is installed in share/doc/impactkit.
 #
 #     check_install.sh CMAKE BUILD_DIR SOURCE_DIR CXX_COMPILER CONFIG
 source "$(dirname "$0")/../cli/testlib.sh"
@@ -16,6 +16,10 @@ prefix=$work/prefix
 for file in include/impactkit/impactkit.hpp include/impactkit/io/system_file.hpp include/impactkit/core/errors.hpp; do
   [[ -f $prefix/$file ]] || fail "not installed: $file"
 done
+# The license travels with the package (and the citation beside it).
+cmp -s "$source/LICENSE" "$prefix/share/doc/impactkit/LICENSE" ||
+  fail "not installed, or not the source's: share/doc/impactkit/LICENSE"
+[[ -f $prefix/share/doc/impactkit/CITATION.cff ]] || fail "not installed: share/doc/impactkit/CITATION.cff"
 package_config=$(find "$prefix" -name impactkitConfig.cmake -print -quit)
 [[ -n $package_config ]] || fail "no impactkitConfig.cmake under $prefix"
 

@@ -13,36 +13,30 @@ constexpr std::size_t kFlushBytes = 1 << 16;
 
 }  // namespace
 
-std::string CommentLines(std::string_view text) {
-  if (text.find('\r') != std::string_view::npos) {
+std::string CsvHead(const std::vector<std::string>& columns, std::string_view provenance) {
+  if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");
+  if (provenance.find('\r') != std::string_view::npos) {
     throw std::invalid_argument("a CSV comment must not contain a carriage return");
   }
-  std::string lines;
-  for (std::size_t begin = 0; begin < text.size();) {
-    const std::size_t end = std::min(text.find('\n', begin), text.size());
-    fmt::format_to(std::back_inserter(lines), "# {}\n", text.substr(begin, end - begin));
+  std::string head = fmt::format("{}\n", fmt::join(columns, ","));
+  for (std::size_t begin = 0; begin < provenance.size();) {
+    const std::size_t end = std::min(provenance.find('\n', begin), provenance.size());
+    fmt::format_to(std::back_inserter(head), "# {}\n", provenance.substr(begin, end - begin));
     begin = end + 1;
   }
-  return lines;
+  return head;
 }
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::string_view provenance,
                      const std::vector<std::string>& columns)
-    : owned_(std::in_place, path), file_(&*owned_), columns_(columns.size()) {
-  Start(provenance, columns);
-}
+    : owned_(std::in_place, path),
+      file_(&*owned_),
+      columns_(columns.size()),
+      buffer_(CsvHead(columns, provenance)) {}
 
 CsvWriter::CsvWriter(AtomicOutputFile& file, std::string_view provenance,
                      const std::vector<std::string>& columns)
-    : file_(&file), columns_(columns.size()) {
-  Start(provenance, columns);
-}
-
-void CsvWriter::Start(std::string_view provenance, const std::vector<std::string>& columns) {
-  if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");
-  buffer_ = CommentLines(provenance);
-  fmt::format_to(std::back_inserter(buffer_), "{}\n", fmt::join(columns, ","));
-}
+    : file_(&file), columns_(columns.size()), buffer_(CsvHead(columns, provenance)) {}
 
 void CsvWriter::WriteRow(std::span<const double> values) {
   if (values.size() != columns_) {

@@ -2,12 +2,15 @@
 /// \file csv.hpp
 /// Numeric tables for plotting tools and scripts:
 ///
+///     t,x1,x2,v1,v2,stuck                            (header)
 ///     # impactkit 0.6.0                              (provenance: comment
 ///     # command: impactkit simulate --omega 1.4 ...   lines, as the caller
 ///     # ...                                           gives them)
-///     t,x1,x2,v1,v2,stuck                            (header)
 ///     897.59992760, ...                              (rows)
 ///
+/// The header comes first because numpy.genfromtxt(names=True) takes its
+/// names from the first line, comment or not; pandas (comment="#"), numpy
+/// (comments="#") and gnuplot skip the comment lines wherever they are.
 /// Numbers are written in the shortest form that reads back to the same
 /// double, so a table loses nothing of what the simulator computed. The file
 /// appears only on Commit() (output_file.hpp), or with the other files of
@@ -24,15 +27,17 @@
 
 namespace impactkit {
 
-/// `text` as comment lines: each of its lines after "# ", each ended by a
-/// line break (a final line break in `text` adds no empty comment).
-/// Throws std::invalid_argument for a carriage return.
-std::string CommentLines(std::string_view text);
+/// The start of every table, before its rows: `columns` as the header row,
+/// then `provenance` as comment lines, each of its lines after "# " (a final
+/// line break in `provenance` adds no empty comment). For tables with text
+/// columns anywhere, written row by row by their callers. Throws
+/// std::invalid_argument for a carriage return in `provenance` or no columns.
+std::string CsvHead(const std::vector<std::string>& columns, std::string_view provenance);
 
 class CsvWriter {
  public:
-  /// `provenance` is what produced the table, written as comment lines
-  /// (CommentLines); `columns` are the header names. Throws OutputError if
+  /// `columns` are the header names; `provenance` is what produced the
+  /// table, written as comment lines after them (CsvHead). Throws OutputError if
   /// the file cannot be created, std::invalid_argument for a carriage
   /// return in the provenance or no columns.
   CsvWriter(const std::filesystem::path& path, std::string_view provenance,
@@ -58,8 +63,6 @@ class CsvWriter {
   const std::filesystem::path& Path() const { return file_->Path(); }
 
  private:
-  void Start(std::string_view provenance, const std::vector<std::string>& columns);
-
   std::optional<AtomicOutputFile> owned_;  ///< the file, unless an OutputSet owns it
   AtomicOutputFile* file_;
   std::size_t columns_;
