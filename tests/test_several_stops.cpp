@@ -12,6 +12,7 @@
 
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/hybrid/recorders.hpp"
@@ -21,6 +22,7 @@
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
@@ -210,6 +212,43 @@ TEST_CASE("a lower stop is the mirror image of an upper one, sticking included",
     CHECK_THAT(sb.stuck_time, WithinAbs(sa.stuck_time, 1e-9));
     CHECK(((state_b.x + state_a.x).cwiseAbs().maxCoeff() < 1e-9));
     if (omega == 0.2) CHECK(sa.releases > 10);  // this one sticks
+  }
+}
+
+TEST_CASE("a lower stop's sticking orbit is the mirror image of the upper one's", "[stops]") {
+  // The release map used to take the stop for an upper one: the mirrored
+  // paper system's orbit at Ω = 0.2 came out with no impact before its
+  // accumulation and a stick phase 4.9 off. The upper one's orbit is
+  // checked against the simulator in test_sticking_orbit.cpp.
+  const System upper = PaperSystem(0.2);
+  System lower = upper;
+  lower.forcing = -upper.forcing;
+  lower.stops = {{1, StopSide::kLower, -0.1, 0.7}};
+  StickingOrbit orbits[2];
+  for (int side = 0; side < 2; ++side) {
+    const System& system = side == 0 ? upper : lower;
+    const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
+    REQUIRE(seed);
+    StickingOrbitOptions options;
+    options.releases = seed->releases;
+    options.q = seed->q;
+    REQUIRE(FindStickingOrbit(system, seed->state, options, &orbits[side]).termination ==
+            Termination::kConverged);
+  }
+  const StickingOrbit &a = orbits[0], &b = orbits[1];
+  REQUIRE(b.stick_phases.size() == a.stick_phases.size());
+  CHECK_THAT(b.stick_phases[0], WithinAbs(a.stick_phases[0], 1e-9));
+  CHECK_THAT(b.release_phases[0], WithinAbs(a.release_phases[0], 1e-9));
+  CHECK_THAT(a.stick_phases[0], WithinAbs(30.464633012, 1e-8));  // docs/cli.md's sample
+  REQUIRE(b.cycles.size() == a.cycles.size());
+  CHECK(b.cycles[0].impacts.size() == a.cycles[0].impacts.size());
+  CHECK(a.cycles[0].impacts.size() == 27);
+  CHECK_THAT(b.contact_margin, WithinAbs(a.contact_margin, 1e-9));
+  CHECK_THAT(b.clearance, WithinAbs(a.clearance, 1e-9));
+  CHECK(((b.state.head(2) + a.state.head(2)).cwiseAbs().maxCoeff() < 1e-9));
+  REQUIRE(b.multipliers.size() == a.multipliers.size());
+  for (Eigen::Index i = 0; i < a.multipliers.size(); ++i) {
+    CHECK(std::abs(b.multipliers(i) - a.multipliers(i)) < 1e-9);
   }
 }
 

@@ -82,8 +82,8 @@ class StickingMap::Cycle {
 
  private:
   std::optional<double> NextImpact(bool from_release, StickingMapStatus* status);
-  /// xs − the highest interior maximum of x_c on the flight [begin, end]
-  /// (the zeros of v_c where it falls), infinity if there is none.
+  /// The least distance from the stop of x_c's interior turns towards it on
+  /// the flight [begin, end] (the zeros of v_c), infinity if there are none.
   double FlightClearance(double t0, const Eigen::VectorXd& z0, double begin, double end) const;
   /// The least interior minimum of Fs on (begin, end), from w = −Fs: its
   /// maxima are the zeros of w' where it falls; infinity if there is none.
@@ -216,10 +216,13 @@ double StickingMap::Cycle::FlightClearance(double t0, const Eigen::VectorXd& z0,
   const Signal velocity = flow.Output(contact_velocity_, t0, z0);
   double clearance = std::numeric_limits<double>::infinity();
   Eigen::VectorXd x, v;
+  const Stop& stop = hybrid_.GetStop(0);
   for (const double t : SignChanges(velocity, begin, end, events_)) {
-    if (velocity.Derivative().Value(t) >= 0) continue;  // a minimum
+    // Only the turns towards the stop: maxima of x_c below an upper stop,
+    // minima above a lower one.
+    if (stop.Sign() * velocity.Derivative().Value(t) >= 0) continue;
     flow.State(t0, z0, t, &x, &v);
-    clearance = std::min(clearance, hybrid_.GetSystem().stops[0].position - x(c_));
+    clearance = std::min(clearance, stop.Sign() * (stop.Position() - x(c_)));
   }
   return clearance;
 }
@@ -241,27 +244,32 @@ double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, doubl
 bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, StickingCycle* cycle,
                                             double* t_star) {
   const Stop& stop = hybrid_.GetStop(0);
-  const double speed = std::max(v_(c_), 0.0);
+  // The speed towards the stop (on either side of the mass), at least 0:
+  // the search places the crossing to rounding, where it may have the
+  // other sign.
+  const double speed = std::max(stop.SpeedTowards(v_(c_)), 0.0);
+  v_(c_) = stop.Sign() * speed;
   *t_star = te;
   if (rule_.IsLanding(speed, arrival_acceleration_, gap_scale_)) {
-    v_(c_) = speed;
     stop.Absorb(v_);
     if (with_jacobian_) dy_ = stop.AbsorbJacobian(n_) * dy_;
     return true;
   }
   cycle->impacts.push_back({te, speed});
-  v_(c_) = speed;
   stop.Reset(v_);
   if (with_jacobian_) dy_ = stop.ResetJacobian(n_) * dy_;
   double jerk;
   Eigen::VectorXd force(n_), acceleration(n_);
-  const double a = hybrid_.ContactAcceleration(0, te, x_, v_, &jerk, &force, &acceleration);
-  const ChatterDecision decision = rule_.Decide(te, previous, -v_(c_), a, gap_scale_);
+  // Towards the stop, as the simulator has it.
+  const double a =
+      stop.Sign() * hybrid_.ContactAcceleration(0, te, x_, v_, &jerk, &force, &acceleration);
+  const double rebound = -stop.SpeedTowards(v_(c_));
+  const ChatterDecision decision = rule_.Decide(te, previous, rebound, a, gap_scale_);
   if (decision != ChatterDecision::kSumTail) return decision != ChatterDecision::kGoesOn;
   const LinearFlow& flow = hybrid_.StuckFlow(0);
   const Signal release = flow.Output(
       hybrid_.Release(0), te, flow.Transient(te, WithoutIndex(x_, c_), WithoutIndex(v_, c_)));
-  const ChatterTail tail = rule_.SumTail(release, hybrid_.Free().Contact(0), te, -v_(c_));
+  const ChatterTail tail = rule_.SumTail(release, hybrid_.Free().Contact(0), te, rebound);
   *t_star = tail.end;
   return tail.accumulates;
 }
