@@ -39,7 +39,7 @@ double PerCall(const Job& job) {
 /// Releases, recorded.
 class Releases : public Observer {
  public:
-  void OnRelease(double, double t) override { times.push_back(t); }
+  void OnRelease(const Release& release) override { times.push_back(release.t_release); }
   std::vector<double> times;
 };
 

@@ -34,7 +34,7 @@ System ElasticChain() {
 
 struct Releases : Observer {
   std::vector<double> times;
-  void OnRelease(double, double t) override { times.push_back(t); }
+  void OnRelease(const Release& release) override { times.push_back(release.t_release); }
 };
 
 /// The first time after `from` where the closed form x(t) reaches 0 from

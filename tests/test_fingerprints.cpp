@@ -85,13 +85,13 @@ class HashingObserver : public Observer {
     hash.Add(impact.x);
     hash.Add(impact.v);
   }
-  void OnChatter(double t_first, double t_end) override {
-    hash.Add(t_first);
-    hash.Add(t_end);
+  void OnChatter(const ChatterEnd& chatter) override {
+    hash.Add(chatter.t_first);
+    hash.Add(chatter.t_end);
   }
-  void OnRelease(double t_begin, double t_release) override {
-    hash.Add(t_begin);
-    hash.Add(t_release);
+  void OnRelease(const Release& release) override {
+    hash.Add(release.t_begin);
+    hash.Add(release.t_release);
   }
   BitHash hash;
 };

@@ -153,7 +153,7 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
       void OnImpact(const Impact& impact) override {
         if (!ended) impacts.OnImpact(impact);
       }
-      void OnChatter(double, double) override { ended = true; }
+      void OnChatter(const ChatterEnd&) override { ended = true; }
       bool ShouldStop() const override { return ended; }
     } sequence;
     simulator.Run(state, 101 * s.ForcingPeriod(), sequence);

@@ -13,7 +13,7 @@ class PeriodProbe : public Observer {
   explicit PeriodProbe(double period) : strobe(period) {}
   void OnSegment(const Segment& segment) override { strobe.OnSegment(segment); }
   void OnImpact(const Impact& impact) override { impacts.push_back(impact.t); }
-  void OnChatter(double, double t_end) override { chatter_ends.push_back(t_end); }
+  void OnChatter(const ChatterEnd& chatter) override { chatter_ends.push_back(chatter.t_end); }
   StroboscopicRecorder strobe;
   std::vector<double> impacts, chatter_ends;
 };

@@ -87,7 +87,7 @@ TEST_CASE("sticking intervals end at releases and hold the mass at the stop", "[
   TimeSeriesRecorder series(0.0, 0.01);
   struct Releases : Observer {
     std::vector<double> times;
-    void OnRelease(double, double t) override { times.push_back(t); }
+    void OnRelease(const Release& release) override { times.push_back(release.t_release); }
   } releases;
   ObserverList all;
   all.Add(sticking);
@@ -118,7 +118,7 @@ TEST_CASE("a series with events has each impact before and after, and every stic
     ChatterRecorder chatter;
     struct Releases : Observer {
       std::vector<double> times;
-      void OnRelease(double, double t) override { times.push_back(t); }
+      void OnRelease(const Release& release) override { times.push_back(release.t_release); }
     } releases;
     ObserverList all;
     for (Observer* o :

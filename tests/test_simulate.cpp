@@ -149,7 +149,7 @@ TEST_CASE("a single mass against the stop (N = 1) sticks and releases", "[simula
       UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 0.3, 0.1, 0.5);
   struct Releases : Observer {
     std::vector<double> times;
-    void OnRelease(double, double t) override { times.push_back(t); }
+    void OnRelease(const Release& release) override { times.push_back(release.t_release); }
   } releases;
   HybridState state = RestState(s);
   const SimulationSummary summary = Simulator(s).Run(state, 30 * s.ForcingPeriod(), releases);
@@ -182,7 +182,7 @@ TEST_CASE("release happens where the contact force vanishes (paper Eq. 16)", "[s
   const System s = PaperSystem(0.2);
   struct Releases : Observer {
     std::vector<double> times;
-    void OnRelease(double, double t) override { times.push_back(t); }
+    void OnRelease(const Release& release) override { times.push_back(release.t_release); }
   } releases;
   HybridState state = RestState(s);
   Simulator simulator(s);
@@ -203,8 +203,8 @@ TEST_CASE("the stuck phase follows the paper's Eq. 17", "[simulate]") {
   // = 0.5 cos Ωt over it with CVODE and compare the state at release.
   struct FirstStick : Observer {
     double begin = -1, end = -1;
-    void OnRelease(double b, double e) override {
-      if (begin < 0) begin = b, end = e;
+    void OnRelease(const Release& release) override {
+      if (begin < 0) begin = release.t_begin, end = release.t_release;
     }
   } stick;
   HybridState state = RestState(s);
@@ -263,7 +263,7 @@ TEST_CASE("sticking in general form: 3 masses, general M, contact force at relea
   s.mass(1, 2) = s.mass(2, 1) = 0.2;
   struct Releases : Observer {
     std::vector<double> times;
-    void OnRelease(double, double t) override { times.push_back(t); }
+    void OnRelease(const Release& release) override { times.push_back(release.t_release); }
   } releases;
   Simulator simulator(s);
   HybridState state = RestState(s);

@@ -20,10 +20,11 @@ class ReleaseRecorder : public Observer {
     segment.StateAt(segment.End(), &x_, &v_);
     stuck_end_ = segment.End();
   }
-  void OnRelease(double, double t_release) override {
-    if (t_release != stuck_end_) return;  // released where it stuck: no stuck segment
+  void OnRelease(const Release& release) override {
+    // Released where it stuck: no stuck segment.
+    if (release.t_release != stuck_end_) return;
     Eigen::VectorXd s(2 * x_.size() - 1);
-    s << WithoutIndex(x_, contact_dof_), WithoutIndex(v_, contact_dof_), t_release;
+    s << WithoutIndex(x_, contact_dof_), WithoutIndex(v_, contact_dof_), release.t_release;
     releases_.push_back(s);
   }
   const std::vector<Eigen::VectorXd>& Releases() const { return releases_; }

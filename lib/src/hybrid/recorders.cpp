@@ -13,11 +13,11 @@ void ObserverList::OnSegment(const Segment& segment) {
 void ObserverList::OnImpact(const Impact& impact) {
   for (Observer* o : observers_) o->OnImpact(impact);
 }
-void ObserverList::OnChatter(double t_first, double t_end) {
-  for (Observer* o : observers_) o->OnChatter(t_first, t_end);
+void ObserverList::OnChatter(const ChatterEnd& chatter) {
+  for (Observer* o : observers_) o->OnChatter(chatter);
 }
-void ObserverList::OnRelease(double t_begin, double t_release) {
-  for (Observer* o : observers_) o->OnRelease(t_begin, t_release);
+void ObserverList::OnRelease(const Release& release) {
+  for (Observer* o : observers_) o->OnRelease(release);
 }
 bool ObserverList::ShouldStop() const {
   for (const Observer* o : observers_) {

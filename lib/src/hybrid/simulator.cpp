@@ -227,7 +227,7 @@ void HybridRun::Phase() {
   if (mode.Holds(k)) {
     state_.held &= ~StopBit(k);
     ++summary_.releases;
-    observer_.OnRelease(stick_begins_[k], end);
+    observer_.OnRelease({k, stick_begins_[k], end});
     return;
   }
   const Stop& stop = hybrid_.GetStop(k);
@@ -428,7 +428,7 @@ void HybridRun::EndChatter(int stop, double te, double rebound, ChatterDecision 
   state_.t = t_star;
   state_.v(hybrid_.GetStop(stop).Dof()) = 0.0;
   ++summary_.chatter_jumps;
-  observer_.OnChatter(te, t_star);
+  observer_.OnChatter({stop, te, t_star});
   LandAtStop(stop);
 }
 

@@ -22,7 +22,7 @@ class SteadyWindowRecorder : public Observer {
 
   void OnSegment(const Segment& segment) override { recorders_.OnSegment(segment); }
   void OnImpact(const Impact& impact) override { recorders_.OnImpact(impact); }
-  void OnChatter(double t_first, double t_end) override { recorders_.OnChatter(t_first, t_end); }
+  void OnChatter(const ChatterEnd& chatter) override { recorders_.OnChatter(chatter); }
 
   const ImpactLog& Impacts() const { return impacts_.Impacts(); }
   const SampleLog& Strobe() const { return strobe_.Points(); }

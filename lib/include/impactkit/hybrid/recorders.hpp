@@ -18,8 +18,8 @@ class ObserverList : public Observer {
   void Add(Observer& observer) { observers_.push_back(&observer); }
   void OnSegment(const Segment& segment) override;
   void OnImpact(const Impact& impact) override;
-  void OnChatter(double t_first, double t_end) override;
-  void OnRelease(double t_begin, double t_release) override;
+  void OnChatter(const ChatterEnd& chatter) override;
+  void OnRelease(const Release& release) override;
   bool ShouldStop() const override;
 
  private:
@@ -189,10 +189,7 @@ class ExtremaRecorder : public Observer {
 /// DetectPeriod needs to call a motion sticking).
 class ChatterRecorder : public Observer {
  public:
-  void OnChatter(double t_first, double t_end) override {
-    (void)t_first;
-    end_times_.push_back(t_end);
-  }
+  void OnChatter(const ChatterEnd& chatter) override { end_times_.push_back(chatter.t_end); }
   const std::vector<double>& EndTimes() const { return end_times_; }
 
  private:

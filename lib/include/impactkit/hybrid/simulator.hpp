@@ -17,7 +17,7 @@
 ///             searched only up to the earliest time found so far)
 ///       observer.OnSegment(F on [t, min(te, t_end)])
 ///       no te: t <- t_end, stop
-///       a release: the stop lets go, observer.OnRelease(tr); next step
+///       a release: the stop lets go, observer.OnRelease({stop, ts, tr}); next step
 ///     at an arrival (c moving, at its stop):
 ///       y- <- F(te)
 ///       an arrival whose bounce height is unresolved is a landing: v_c <- 0,
@@ -31,7 +31,7 @@
 ///               the acceleration's variation and the damping) to t*;
 ///         the other masses follow the stuck subsystem to t* (a chatter
 ///               segment, not sticking), x_c = xs, v_c = 0;
-///               observer.OnChatter(te, t*)
+///               observer.OnChatter({stop, te, t*})
 ///       elastic chatter (r near 1) is cut at a short bounce (counted);
 ///           the threshold method ends at a short interval between impacts
 ///       if v_c = 0 at the stop: held (the stop joins the mode) if its
@@ -149,6 +149,21 @@ struct Impact {
   Eigen::VectorXd v_after;
 };
 
+/// A chatter sequence at stop `stop` beginning with the impact at t_first,
+/// ended at its accumulation point t_end (x_c = xs, v_c = 0 there).
+struct ChatterEnd {
+  int stop = 0;  ///< index into System::stops
+  double t_first = 0.0;
+  double t_end = 0.0;
+};
+
+/// Stop `stop`'s mass leaves it at t_release after sticking since t_begin.
+struct Release {
+  int stop = 0;  ///< index into System::stops
+  double t_begin = 0.0;
+  double t_release = 0.0;
+};
+
 /// Receives what the simulator finds; every method has an empty default.
 /// A segment is valid only during the call.
 class Observer {
@@ -157,17 +172,8 @@ class Observer {
   /// A piece of exact motion on [segment.Begin(), segment.End()].
   virtual void OnSegment(const Segment& segment) { (void)segment; }
   virtual void OnImpact(const Impact& impact) { (void)impact; }
-  /// A chatter sequence beginning with the impact at t_first was ended at
-  /// its accumulation point t_end (x_c = xs, v_c = 0 there).
-  virtual void OnChatter(double t_first, double t_end) {
-    (void)t_first;
-    (void)t_end;
-  }
-  /// The contact mass leaves the stop after sticking since t_begin.
-  virtual void OnRelease(double t_begin, double t_release) {
-    (void)t_begin;
-    (void)t_release;
-  }
+  virtual void OnChatter(const ChatterEnd& chatter) { (void)chatter; }
+  virtual void OnRelease(const Release& release) { (void)release; }
   /// Return true to stop the run after the current event.
   virtual bool ShouldStop() const { return false; }
 };
