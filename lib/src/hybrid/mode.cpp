@@ -78,6 +78,17 @@ void Mode::Expand(const Eigen::VectorXd& x_moving, const Eigen::VectorXd& v_movi
   (*v)(moving_) = v_moving;
 }
 
+Eigen::VectorXd Mode::VectorField(double t, const Eigen::VectorXd& x_moving,
+                                  const Eigen::VectorXd& v_moving) const {
+  Eigen::VectorXd x, v;
+  Expand(x_moving, v_moving, &x, &v);
+  const Eigen::VectorXd force =
+      forcing_ * ForcingRotor(system_->omega, t).real() - damping_rows_ * v - stiffness_rows_ * x;
+  Eigen::VectorXd f(2 * moving_.size());
+  f << v_moving, inverse_mass_ * force;
+  return f;
+}
+
 double Mode::Acceleration(int stop, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                           double* rate, Eigen::VectorXd* force,
                           Eigen::VectorXd* acceleration) const {

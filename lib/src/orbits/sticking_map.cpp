@@ -61,8 +61,6 @@ class StickingMap::Cycle {
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
         rule_(options.simulation, hybrid.GetStop(0).Restitution(), hybrid.TimeScale(),
               hybrid.Free().Contact(0)) {
-    const Eigen::MatrixXd inverse_mass = hybrid.GetSystem().mass.inverse();
-    constraint_direction_ = inverse_mass.col(c_) / inverse_mass(c_, c_);
     const LinearOutput release =
         hybrid.GetStop(0)
             .Release(hybrid.GetSystem(), hybrid.Holding(StopBit(0)).Moving(),
@@ -95,10 +93,6 @@ class StickingMap::Cycle {
   /// dt1 = −l G / ẇ, dy1 = G + f1 dt1.
   void ThroughFlight(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0,
                      const Eigen::VectorXd& f1, const Eigen::RowVectorXd& gradient, double slope);
-  /// (v, a) of the held mode: the free acceleration less the stop's
-  /// reaction, which keeps a_c = 0: a = a_free − M⁻¹e_c a_free,c / (M⁻¹)_cc.
-  Eigen::VectorXd StuckField(double t, const Eigen::VectorXd& x_held,
-                             const Eigen::VectorXd& v_held) const;
   Eigen::MatrixXd HeldRows(const Eigen::MatrixXd& full) const;
 
   /// How long after a release the search for the first impact begins, as
@@ -112,7 +106,6 @@ class StickingMap::Cycle {
   const int n_, c_;
   PreparedOutput contact_velocity_;  ///< v_c on the free flow (with contacts)
   const EventOptions events_;
-  Eigen::VectorXd constraint_direction_;
   Eigen::RowVectorXd release_gradient_;
   double t_ = 0.0;
   double deadline_ = 0.0;   ///< the cycle must stick before this time
@@ -297,8 +290,9 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
     double value, slope;
     release.ValueAndSlope(*tr, &value, &slope);
     dy_ = HeldRows(dy_);
-    ThroughFlight(flow.Transition(*tr - te), StuckField(te, x0, v0), StuckField(*tr, x1, v1),
-                  release_gradient_, slope);
+    const Mode& stuck = hybrid_.Holding(StopBit(0));
+    ThroughFlight(flow.Transition(*tr - te), stuck.VectorField(te, x0, v0),
+                  stuck.VectorField(*tr, x1, v1), release_gradient_, slope);
   }
   x_ = EmbedAtStop(x1, c_, system.stops[0].position);
   v_ = EmbedAtStop(v1, c_, 0.0);
@@ -313,17 +307,6 @@ void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const 
   const Eigen::MatrixXd g = transition * (dy_ - f0 * dt_);
   dt_ = -(gradient * g) / slope;
   dy_ = g + f1 * dt_;
-}
-
-Eigen::VectorXd StickingMap::Cycle::StuckField(double t, const Eigen::VectorXd& x_held,
-                                               const Eigen::VectorXd& v_held) const {
-  const double xs = hybrid_.GetSystem().stops[0].position;
-  Eigen::VectorXd a =
-      hybrid_.Acceleration(t, EmbedAtStop(x_held, c_, xs), EmbedAtStop(v_held, c_, 0.0));
-  a -= constraint_direction_ * a(c_);
-  Eigen::VectorXd f(2 * (n_ - 1));
-  f << v_held, WithoutIndex(a, c_);
-  return f;
 }
 
 Eigen::MatrixXd StickingMap::Cycle::HeldRows(const Eigen::MatrixXd& full) const {

@@ -60,6 +60,10 @@ class Mode {
   void Expand(const Eigen::VectorXd& x_moving, const Eigen::VectorXd& v_moving, Eigen::VectorXd* x,
               Eigen::VectorXd* v) const;
 
+  /// f = (v_F, a_F) of the masses that move, from their state:
+  /// M_FF a_F = A_F cos Ωt − C_FF v_F − K_FF x_F − K_FH xs_H.
+  Eigen::VectorXd VectorField(double t, const Eigen::VectorXd& x_moving,
+                              const Eigen::VectorXd& v_moving) const;
   /// The impulse direction of an impact at a stop whose mass moves
   /// (Stop::ImpulseDirection of this mode's masses).
   const Eigen::VectorXd& ImpulseDirection(int stop) const { return impulse_directions_[stop]; }
