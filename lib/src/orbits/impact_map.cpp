@@ -6,6 +6,7 @@
 
 #include "dynamics/subsystem.hpp"
 #include "hybrid/chatter_rule.hpp"
+#include "hybrid/event_time.hpp"
 #include "impactkit/dynamics/events.hpp"
 
 namespace impactkit {
@@ -203,7 +204,6 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next
   *next_stop = end->stop;
   const double te = end->state.t;
   const Eigen::VectorXd &x = end->state.x, &v = end->state.v;
-  const int c = hybrid_->GetStop(*next_stop).Dof();
   *next = ToEta(te, x, v, *next_stop);
   if (!jacobian) return true;
 
@@ -211,16 +211,22 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next
   const Eigen::MatrixXd transition = flow.Transition(te - t);
   Eigen::MatrixXd g = transition * ResetInEta(stop);
   g.col(n - 1) = -transition * hybrid_->VectorField(t, end->start.x, end->start.v);
-  // Saltation at the next impact (x_c(t') = xs: the sign of the stop's
-  // side cancels).
-  const Eigen::VectorXd f_arrival = hybrid_->VectorField(te, x, v);
-  const Eigen::RowVectorXd dte = -g.row(c) / v(c);
-  const Eigen::MatrixXd dy = g + f_arrival * dte;
-  jacobian->resize(2 * n, 2 * n);
-  jacobian->topRows(n - 1) = WithoutRow(dy.topRows(n), c);
-  jacobian->row(n - 1) = dte;
-  jacobian->bottomRows(n) = dy.bottomRows(n);
+  *jacobian = ArrivalJacobian(g, *next_stop, end->state);
   return true;
+}
+
+Eigen::MatrixXd ImpactMap::ArrivalJacobian(const Eigen::MatrixXd& g, int stop,
+                                           const HybridState& arrival) const {
+  const int n = GetSystem().Dof(), c = hybrid_->GetStop(stop).Dof();
+  // The gap's gradient over its slope: x_c(t') = xs, the sign of the
+  // stop's side cancels.
+  const EventDerivatives d = ThroughEvent(g, Eigen::RowVectorXd::Unit(2 * n, c), arrival.v(c),
+                                          hybrid_->VectorField(arrival.t, arrival.x, arrival.v));
+  Eigen::MatrixXd jacobian(2 * n, g.cols());
+  jacobian.topRows(n - 1) = WithoutRow(d.state.topRows(n), c);
+  jacobian.row(n - 1) = d.time;
+  jacobian.bottomRows(n) = d.state.bottomRows(n);
+  return jacobian;
 }
 
 MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian) const {

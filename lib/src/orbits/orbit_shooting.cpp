@@ -95,14 +95,7 @@ Eigen::MatrixXd ShootingProblem::MapJacobian(const Eigen::VectorXd& z) const {
   Eigen::MatrixXd product = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
   for (int k = 0; k < Impacts(); ++k) {
     const Flight flight = Fly(z, k, true);
-    const int c = hybrid_.GetStop(stops_[(k + 1) % Impacts()]).Dof();
-    const Eigen::RowVectorXd dte = -flight.g.row(c) / flight.end.v(c);
-    const Eigen::MatrixXd dy = flight.g + flight.f * dte;
-    Eigen::MatrixXd step(2 * n_, 2 * n_);
-    step.topRows(n_ - 1) = WithoutRow(dy.topRows(n_), c);
-    step.row(n_ - 1) = dte;
-    step.bottomRows(n_) = dy.bottomRows(n_);
-    product = step * product;
+    product = map_.ArrivalJacobian(flight.g, stops_[(k + 1) % Impacts()], flight.end) * product;
   }
   return product;
 }

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "dynamics/subsystem.hpp"
 #include "hybrid/chatter_rule.hpp"
+#include "hybrid/event_time.hpp"
 #include "impactkit/dynamics/events.hpp"
 
 namespace impactkit {
@@ -304,9 +306,9 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
 void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0,
                                        const Eigen::VectorXd& f1,
                                        const Eigen::RowVectorXd& gradient, double slope) {
-  const Eigen::MatrixXd g = transition * (dy_ - f0 * dt_);
-  dt_ = -(gradient * g) / slope;
-  dy_ = g + f1 * dt_;
+  EventDerivatives d = ThroughEvent(transition * (dy_ - f0 * dt_), gradient, slope, f1);
+  dy_ = std::move(d.state);
+  dt_ = std::move(d.time);
 }
 
 Eigen::MatrixXd StickingMap::Cycle::HeldRows(const Eigen::MatrixXd& full) const {

@@ -148,6 +148,11 @@ class ImpactMap {
   /// None if the flight reaches no stop by t_end (to the search's
   /// resolution). Throws InvalidInput as ValidateEta.
   std::optional<FlightEnd> FirstArrival(const Eigen::VectorXd& eta, int stop, double t_end) const;
+  /// ∂η'/∂p of the impact `arrival` at stop `stop` that ends a flight, from
+  /// G = ∂y(t')/∂p at its time t' held fixed: the event-time correction
+  /// (saltation) of hybrid/event_time.hpp, in η's coordinates.
+  Eigen::MatrixXd ArrivalJacobian(const Eigen::MatrixXd& g, int stop,
+                                  const HybridState& arrival) const;
   /// Index of τ in η (N - 1).
   int TimeIndex() const { return GetSystem().Dof() - 1; }
   /// The impact speed s v_c of η at `stop` (> 0 for an impact state).
