@@ -270,12 +270,14 @@ std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& fil
     labels += fmt::format("set label {} at {:.17g},{:.17g} offset 0.8,0.8 front\n",
                           Quoted(label.text), label.x, label.y);
   }
+  const std::string key =
+      chart.key_outside ? "set key outside right top vertical samplen 2 font \",9\"\n" : "";
   return fmt::format(
       "set title {}\n"
       "set xlabel {}\n"
       "set ylabel {}\n"
-      "{}{}{}",
-      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), labels,
+      "{}{}{}{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), key, labels,
       RangeSettings(chart), PlotCommand(chart, files));
 }
 

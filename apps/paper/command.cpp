@@ -209,7 +209,7 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
   }
   WriteFile(folder, "diagram.json", DiagramJson(swept.diagram).dump(2) + "\n");
   WriteFile(folder, "diagram.png",
-            RenderChart(DiagramChart(swept, DiagramAxis::kImpactVelocity), ImageFormat::kPng));
+            RenderDiagram(DiagramFigure(swept, DiagramAxis::kImpactVelocity), ImageFormat::kPng));
   return j;
 }
 
