@@ -239,6 +239,16 @@ std::optional<std::array<double, 2>> DensestWindow(const Diagram& diagram) {
 void PrintDiagram(const Diagram& diagram) {
   const std::vector<TracedBranch> labelled = LabelBranches(diagram);
   fmt::print("diagram:    {}\n", diagram.BriefReport());
+  if (diagram.failed_starts > 0) {
+    // The library's count, read for the user: what a seed is here, and that
+    // most of them failing is expected.
+    fmt::print(
+        "            ({} seeds not converged: starts tried at special points that found no "
+        "orbit; both sides of every grazing are tried and usually one side has none, so most "
+        "are expected; a branch missing here can be followed with `impactkit continue` from "
+        "an orbit on it)\n",
+        diagram.failed_starts);
+  }
   fmt::print("branches (by the lowest {} they reach):\n", diagram.parameter);
   const auto lowest = [](const TracedBranch& b) {
     return std::min(b.branch.points.front().parameter, b.branch.points.back().parameter);
