@@ -55,17 +55,50 @@ std::string FromHue(double hue, double light) {
   return Hex(c[0] + m, c[1] + m, c[2] + m);
 }
 
-/// The colour of a period without a fixed one: a hue a golden angle from
-/// its neighbours in the enumeration of (p, q) along the diagonals p + q =
-/// const (a sticking P(∞,q) beside P(0,q)), so that classes near each other
-/// in period never look alike, in three lightnesses in turn.
+/// The channels of "#rrggbb" in [0, 1].
+std::array<double, 3> Channels(const std::string& color) {
+  std::array<double, 3> c{};
+  for (int i = 0; i < 3; ++i) c[i] = std::stoi(color.substr(1 + 2 * i, 2), nullptr, 16) / 255.0;
+  return c;
+}
+
+/// CIELAB (D65) of "#rrggbb": distances in it are differences as the eye
+/// sees them (about 2.3 is just noticeable).
+std::array<double, 3> Lab(const std::string& color) {
+  std::array<double, 3> linear = Channels(color);
+  for (double& c : linear) c = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  const double x = (0.4124 * linear[0] + 0.3576 * linear[1] + 0.1805 * linear[2]) / 0.95047;
+  const double y = 0.2126 * linear[0] + 0.7152 * linear[1] + 0.0722 * linear[2];
+  const double z = (0.0193 * linear[0] + 0.1192 * linear[1] + 0.9505 * linear[2]) / 1.08883;
+  auto f = [](double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0; };
+  return {116.0 * f(y) - 16.0, 500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
+}
+
+/// Whether `color` is at least `distance` CIELAB units from every fixed
+/// colour.
+bool ApartFromFixed(const std::string& color, double distance) {
+  const std::array<double, 3> a = Lab(color);
+  return std::all_of(kFixed.begin(), kFixed.end(), [&](const FixedColor& f) {
+    const std::array<double, 3> b = Lab(f.color);
+    return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]) >= distance;
+  });
+}
+
+/// The colour of a period without a fixed one: its hue a golden angle from
+/// that of the next p at the same q (p counts on through the q's, a sticking
+/// P(∞,q) as p = 0), so that a cascade P(n,1), P(n+1,1), ... never has two
+/// near ones alike, in three lightnesses in turn; moved on along the
+/// golden-angle sequence while it is within 15 CIELAB units of a fixed
+/// colour, so that no rare period passes for a common one.
 std::string GeneratedColor(MotionKind kind, int p, int q) {
-  const long diagonal = static_cast<long>(p) + q;
-  const long position = diagonal * (diagonal + 1) / 2 + q;
-  const long index = 2 * position + (kind == MotionKind::kSticking ? 1 : 0);
-  const double hue = std::fmod(0.618033988749895 * static_cast<double>(index), 1.0) * 6.0;
+  constexpr long kPerQ = 1009;  // more than any p an orbit can have (apps: 1000)
   constexpr std::array<double, 3> kLightness = {0.38, 0.55, 0.72};
-  return FromHue(hue, kLightness[index % 3]);
+  const long start = kPerQ * q + (kind == MotionKind::kSticking ? 0 : p);
+  for (long index = start;; index += kPerQ * 64) {
+    const double hue = std::fmod(0.618033988749895 * static_cast<double>(index), 1.0) * 6.0;
+    const std::string color = FromHue(hue, kLightness[index % 3]);
+    if (ApartFromFixed(color, 15.0)) return color;
+  }
 }
 
 /// `color` mixed with black (odd copies) or white (even copies), a third
@@ -73,11 +106,8 @@ std::string GeneratedColor(MotionKind kind, int p, int q) {
 std::string Shaded(const std::string& color, int copy) {
   const double toward = copy % 2 == 1 ? 0.0 : 1.0;
   const double weight = std::min(0.8, 0.33 * ((copy + 1) / 2));
-  std::array<double, 3> c{};
-  for (int i = 0; i < 3; ++i) {
-    const double channel = std::stoi(color.substr(1 + 2 * i, 2), nullptr, 16) / 255.0;
-    c[i] = channel + weight * (toward - channel);
-  }
+  std::array<double, 3> c = Channels(color);
+  for (double& channel : c) channel += weight * (toward - channel);
   return Hex(c[0], c[1], c[2]);
 }
 
