@@ -4,7 +4,11 @@
 # with their folds, period doublings and grazings, each branch's PNG, and a
 # Fig. 5(a)-style overlay of the continued branches (lines: stable solid,
 # unstable dashed) on a brute-force sweep (dots); and the connected diagram of
-# every branch over Ω 0.1-2.5 seeded by a sweep (`impactkit diagram`).
+# every branch over Ω 0.1-2.5 seeded by a sweep alone (`impactkit diagram`),
+# as a user without the paper's orbits gets it. The study's diagram is
+# `impactkit paper`'s diagram.png, seeded by the paper's three orbits as well:
+# it holds more branches; each figure's title says how many, from how many
+# seeds, and whether a bound cut the network short.
 #
 #   examples/fig5_continuation.sh [impactkit binary] [figure folder] [data folder]
 #
@@ -69,6 +73,7 @@ overlay "$data/sweep-080-090.csv" "0.80:0.90" "$figures/continuation-overlay-080
 overlay "$data/sweep-155-175.csv" "1.55:1.75" "$figures/continuation-overlay-155-175.png"
 echo "wrote: $figures/continuation-overlay-080-090.png $figures/continuation-overlay-155-175.png"
 echo
-echo "The connected diagram, Ω 0.1 to 2.5, seeded by a sweep:"
+echo "The connected diagram, Ω 0.1 to 2.5, seeded by a sweep alone (the study's, seeded by"
+echo "the paper's orbits as well, is \`impactkit paper\`'s diagram.png):"
 "$impactkit" diagram --from 0.1 --to 2.5 --json "$data/diagram.json" \
   --plot "$figures/continuation-diagram.png"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The paper system's parameter planes and basins of attraction (docs/maps.md,
-# section "Two-parameter maps and basins") with `impactkit map` and
+# The paper system's parameter planes and basins of attraction (docs/grids.md,
+# section "The paper's system") with `impactkit map` and
 # `impactkit basins`: the (Ω, r) map over Ω 0.1-2.5, r 0.3-0.95 and the
 # (Ω, xs) map over xs 0-0.3, 500 discarded and 100 recorded periods a cell,
 # each row from the previous value's final state; the basins at Ω = 1.7 over
@@ -15,7 +15,7 @@
 #   examples/parameter_maps.sh [impactkit binary] [figure folder] [data folder]
 #
 # Defaults: ./build/apps/impactkit, ./out/figures, ./out/maps. Needs gnuplot.
-# About 4 minutes on 2 cores; under `mpirun`, see docs/maps.md.
+# Under `mpirun`, see docs/grids.md ("Threads, processes, checkpoints").
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
 figures=${2:-./out/figures}

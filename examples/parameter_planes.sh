@@ -57,10 +57,10 @@ plane() {
 set terminal pngcairo size 1000,700 noenhanced
 set output '$figures/plane-$second.png'
 set datafile separator ','
-set xlabel 'Omega'
+set xlabel 'Ω'
 set ylabel '$second'
 set key outside bottom center horizontal
-set title 'Paper system: P(1,1) and P(1,2) bifurcation curves in (Omega, $second)'
+set title 'Paper system: P(1,1) and P(1,2) bifurcation curves in (Ω, $second)'
 plot '$data/stable11-$second.csv' using 1:2 with filledcurves closed fc rgb '#cce5ff' title 'P(1,1) stable', \
   '$data/graze11-$second.csv' using 1:2 with lines lw 2 dt 2 lc rgb '#000000' title 'P(1,1) grazing', \
   '$data/pd11-$second.csv' using 1:2 with lines lw 2 lc rgb '#d62728' title 'P(1,1) period doubling', \

@@ -11,7 +11,7 @@
 #   examples/several_stops.sh [impactkit binary] [figure folder] [data folder]
 #
 # Defaults: ./build/apps/impactkit, ./out/figures, ./out/stops. Needs
-# gnuplot. About 15 s on 2 cores.
+# gnuplot.
 set -euo pipefail
 impactkit=${1:-./build/apps/impactkit}
 figures=${2:-./out/figures}

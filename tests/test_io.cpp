@@ -1,11 +1,12 @@
-/// Tests of the io area: system files (JSON, TOML), CSV tables and
-/// whole-or-nothing output files.
+/// Tests of the io area: system files (JSON, TOML), CSV tables,
+/// whole-or-nothing output files and the colours of motion classes.
 
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cfloat>
 #include <climits>
@@ -19,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "impactkit/io/class_colors.hpp"
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_file.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -641,4 +643,96 @@ TEST_CASE("SIGTERM and SIGINT remove the temporaries and still end the process",
     CHECK(WTERMSIG(status) == signal);
     CHECK(dir.Entries().empty());
   }
+}
+
+namespace {
+
+/// CIELAB (D65) of "#rrggbb", for distances as the eye sees them: the
+/// colour table's claim is checked in this space, not in RGB.
+std::array<double, 3> Lab(const std::string& hex) {
+  std::array<double, 3> linear{};
+  for (int i = 0; i < 3; ++i) {
+    const double c = std::stoi(hex.substr(1 + 2 * i, 2), nullptr, 16) / 255.0;
+    linear[i] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  }
+  const double x = (0.4124 * linear[0] + 0.3576 * linear[1] + 0.1805 * linear[2]) / 0.95047;
+  const double y = 0.2126 * linear[0] + 0.7152 * linear[1] + 0.0722 * linear[2];
+  const double z = (0.0193 * linear[0] + 0.1192 * linear[1] + 0.9505 * linear[2]) / 1.08883;
+  auto f = [](double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0; };
+  return {116.0 * f(y) - 16.0, 500.0 * (f(x) - f(y)), 200.0 * (f(y) - f(z))};
+}
+
+double LabDistance(const std::string& a, const std::string& b) {
+  const std::array<double, 3> p = Lab(a), q = Lab(b);
+  return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+}
+
+}  // namespace
+
+TEST_CASE("ClassColor: the common classes 25 CIELAB units apart, every class its own colour",
+          "[io]") {
+  using impactkit::ClassColor;
+  using impactkit::MotionKind;
+  // The classes the paper's maps hold most (docs/grids.md) and the kinds
+  // without a period.
+  std::vector<std::string> common;
+  for (const auto& [p, q] : std::vector<std::pair<int, int>>{{1, 1},
+                                                             {1, 2},
+                                                             {2, 1},
+                                                             {2, 2},
+                                                             {3, 1},
+                                                             {4, 1},
+                                                             {3, 2},
+                                                             {4, 4},
+                                                             {5, 1},
+                                                             {6, 1},
+                                                             {7, 1},
+                                                             {2, 4},
+                                                             {3, 3},
+                                                             {4, 2},
+                                                             {2, 3},
+                                                             {8, 1}}) {
+    common.push_back(ClassColor(MotionKind::kPeriodic, p, q));
+  }
+  for (int q : {1, 2}) common.push_back(ClassColor(MotionKind::kSticking, 0, q));
+  for (MotionKind kind :
+       {MotionKind::kNonImpacting, MotionKind::kChaotic, MotionKind::kUnresolved}) {
+    common.push_back(ClassColor(kind, 0, 0));
+  }
+  for (std::size_t i = 0; i < common.size(); ++i) {
+    for (std::size_t j = i + 1; j < common.size(); ++j) {
+      INFO(common[i] << " and " << common[j]);
+      CHECK(LabDistance(common[i], common[j]) >= 25.0);
+    }
+  }
+  // Every other period up to P(30,30) keeps 15 units from the common ones,
+  // and the periods of a cascade (p to p + 3 at one q) 10 units from each
+  // other; a sticking class's colour does not depend on p, which means nothing.
+  for (int q = 1; q <= 30; ++q) {
+    for (int p = 1; p <= 30; ++p) {
+      const std::string color = ClassColor(MotionKind::kPeriodic, p, q);
+      if (std::find(common.begin(), common.end(), color) == common.end()) {
+        for (const std::string& c : common) {
+          INFO("P(" << p << "," << q << ") " << color << " and " << c);
+          CHECK(LabDistance(color, c) >= 15.0);
+        }
+      }
+      for (int next = p + 1; next <= std::min(30, p + 3); ++next) {
+        INFO("P(" << p << "," << q << ") and P(" << next << "," << q << ")");
+        CHECK(LabDistance(color, ClassColor(MotionKind::kPeriodic, next, q)) >= 10.0);
+      }
+    }
+    CHECK(ClassColor(MotionKind::kSticking, 7, q) == ClassColor(MotionKind::kSticking, 0, q));
+  }
+  CHECK(ClassColor(MotionKind::kChaotic, 3, 4) == ClassColor(MotionKind::kChaotic, 0, 0));
+  // A second and third attractor of one class: shades of its colour, told
+  // apart from it and from each other.
+  const std::string base = ClassColor(MotionKind::kPeriodic, 1, 1);
+  const std::string darker = ClassColor(MotionKind::kPeriodic, 1, 1, 1);
+  const std::string lighter = ClassColor(MotionKind::kPeriodic, 1, 1, 2);
+  CHECK(LabDistance(base, darker) >= 10.0);
+  CHECK(LabDistance(base, lighter) >= 10.0);
+  CHECK(LabDistance(darker, lighter) >= 10.0);
+  CHECK(Lab(darker)[0] < Lab(base)[0]);
+  CHECK(Lab(lighter)[0] > Lab(base)[0]);
 }

@@ -5,10 +5,12 @@
 
 #include <fmt/format.h>
 
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "commands.hpp"
@@ -21,6 +23,7 @@
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/basins.hpp"
+#include "impactkit/io/class_colors.hpp"
 #include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
@@ -128,23 +131,46 @@ std::string SummaryJson(const Provenance& provenance, const BasinsTask& task,
   return json.dump(2) + "\n";
 }
 
-ClassMap ChartOf(const BasinsTask& task, const BasinsResult& result,
-                 const std::vector<GridCell>& cells) {
-  ClassMap chart;
-  for (std::size_t a = 0; a < result.attractors.size(); ++a) {
-    chart.names.push_back(AttractorLabel(result, static_cast<int>(a)));
+/// "x2 = 0, v2 = 0": the coordinates every start shares (--x0/--v0, rest
+/// by default), all but the two that vary.
+std::string FixedCoordinates(const System& system, const RunFlags& run, const BasinsOptions& o) {
+  std::vector<std::string> fixed;
+  for (const auto& [letter, values] : {std::pair{'x', &run.x0}, std::pair{'v', &run.v0}}) {
+    for (int i = 0; i < system.Dof(); ++i) {
+      const std::string name = fmt::format("{}{}", letter, i + 1);
+      if (name == o.coordinate1 || name == o.coordinate2) continue;
+      const double value = i < static_cast<int>(values->size()) ? (*values)[i] : 0.0;
+      fixed.push_back(fmt::format("{} = {:.6g}", name, value));
+    }
   }
-  chart.colors = ClassColors(static_cast<int>(chart.names.size()));
+  return fmt::format("{}", fmt::join(fixed, ", "));
+}
+
+/// Each attractor in the colour of its class (ClassColor), a further
+/// attractor of a class already drawn in a shade of that colour.
+ClassMap ChartOf(const System& system, const RunFlags& run, const BasinsTask& task,
+                 const BasinsResult& result, const std::vector<GridCell>& cells) {
+  ClassMap chart;
+  std::map<std::tuple<MotionKind, int, int>, int> drawn;
+  for (std::size_t a = 0; a < result.attractors.size(); ++a) {
+    const Attractor& attractor = result.attractors[a];
+    chart.names.push_back(AttractorLabel(result, static_cast<int>(a)));
+    const int copy = drawn[{attractor.kind, attractor.p, attractor.q}]++;
+    chart.colors.push_back(ClassColor(attractor.kind, attractor.p, attractor.q, copy));
+  }
   const std::size_t k = task.Values1().size();
   for (const GridCell& cell : cells) {
     chart.x.push_back(task.Values1()[cell.index % k]);
     chart.y.push_back(task.Values2()[cell.index / k]);
     chart.cell_class.push_back(result.attractor[cell.index]);
   }
-  chart.title = fmt::format("Basins of attraction over ({}, {})", task.Options().coordinate1,
-                            task.Options().coordinate2);
-  chart.x_label = task.Options().coordinate1;
-  chart.y_label = task.Options().coordinate2;
+  const BasinsOptions& o = task.Options();
+  const std::string fixed = FixedCoordinates(system, run, o);
+  chart.title =
+      fmt::format("Basins of attraction at {} = {:.6g} over ({}, {}){}{}", ParameterLabel("omega"),
+                  system.omega, o.coordinate1, o.coordinate2, fixed.empty() ? "" : "; ", fixed);
+  chart.x_label = o.coordinate1;
+  chart.y_label = o.coordinate2;
   return chart;
 }
 
@@ -193,7 +219,8 @@ void RunBasinsCommand(const BasinsRequest& request) {
         SummaryJson(provenance, task, result, static_cast<std::int64_t>(outcome->cells.size())));
   }
   if (plot)
-    plot->Write(RenderClassMap(ChartOf(task, result, outcome->cells), ImageFormatOf(plot->Path())));
+    plot->Write(RenderClassMap(ChartOf(system, request.run, task, result, outcome->cells),
+                               ImageFormatOf(plot->Path())));
   outputs.Commit();
   for (const std::string* path : {&request.out, &request.json, &request.plot}) {
     if (!path->empty()) fmt::print("wrote:   {}\n", *path);

@@ -172,17 +172,18 @@ nlohmann::json BranchJson(const TracedBranch& traced) {
 }
 
 Curve SpecialPointMarks(SpecialPointType type) {
-  // Black, so that no branch colour hides them; the shape tells the type.
-  // gnuplot pointtypes: 5 square, 7 circle, 9 triangle, 11 down triangle,
-  // 13 diamond, 3 star.
+  // Black, so that no branch colour hides them; open, so that they hide no
+  // branch through them; the shape tells the type. gnuplot pointtypes: 4
+  // square, 6 circle, 8 triangle, 10 down triangle, 12 diamond, 3 star, 14
+  // pentagon.
   static const std::map<SpecialPointType, std::pair<const char*, int>> kStyles = {
-      {SpecialPointType::kFold, {"fold", 5}},
-      {SpecialPointType::kPeriodDoubling, {"period doubling", 7}},
-      {SpecialPointType::kNeimarkSacker, {"Neimark-Sacker", 13}},
-      {SpecialPointType::kGrazing, {"grazing", 9}},
-      {SpecialPointType::kSticking, {"sticking onset", 11}},
+      {SpecialPointType::kFold, {"fold", 4}},
+      {SpecialPointType::kPeriodDoubling, {"period doubling", 6}},
+      {SpecialPointType::kNeimarkSacker, {"Neimark-Sacker", 12}},
+      {SpecialPointType::kGrazing, {"grazing", 8}},
+      {SpecialPointType::kSticking, {"sticking onset", 10}},
       {SpecialPointType::kBranchPoint, {"branch point", 3}},
-      {SpecialPointType::kPitchfork, {"pitchfork", 15}}};
+      {SpecialPointType::kPitchfork, {"pitchfork", 14}}};
   const auto& [title, point_type] = kStyles.at(type);
   Curve marks;
   marks.title = title;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -24,8 +25,8 @@ void ReadCurveFile(const std::string& path, const std::string& x_name, const std
                                                    (params[0] == y_name && params[1] == x_name));
       if (!in_plane) continue;
       Curve line;
-      line.title = fmt::format("{} P({},{})", curve.at("type").get<std::string>(),
-                               curve.value("p", 0), curve.value("q", 0));
+      line.title =
+          CurveKey(curve.at("type").get<std::string>(), curve.value("p", 0), curve.value("q", 0));
       for (const nlohmann::json& point : curve.at("points")) {
         line.x.push_back(point.at(x_name).get<double>());
         line.y.push_back(point.at(y_name).get<double>());
@@ -38,6 +39,12 @@ void ReadCurveFile(const std::string& path, const std::string& x_name, const std
 }
 
 }  // namespace
+
+std::string CurveKey(std::string type, int p, int q) {
+  if (type == "grazing" && p == 0) return "impact of P(1,q) vanishes";
+  std::replace(type.begin(), type.end(), '_', ' ');
+  return fmt::format("P({},{}) {}", p, q, type);
+}
 
 std::vector<Curve> ReadCurves(const std::vector<std::string>& paths, const std::string& x_name,
                               const std::string& y_name) {

@@ -12,8 +12,14 @@
 
 namespace impactkit::cli {
 
+/// A two-parameter curve's entry in a figure's key, the same in every figure
+/// (examples/parameter_planes.sh writes the same words): "P(1,2) fold",
+/// "P(1,1) period doubling"; the grazing of the non-impacting response (p =
+/// 0) by what it means for the impacting orbits, "impact of P(1,q) vanishes".
+std::string CurveKey(std::string type, int p, int q);
+
 /// The curves of the files `paths` in the plane (x_name, y_name), as
-/// polylines titled "fold P(1,2)"; curves in other parameters are left out.
+/// polylines titled by CurveKey; curves in other parameters are left out.
 /// Throws InvalidInput naming the file and what is wrong.
 std::vector<Curve> ReadCurves(const std::vector<std::string>& paths, const std::string& x_name,
                               const std::string& y_name);

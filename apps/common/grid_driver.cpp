@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <exception>
 #include <memory>
@@ -81,6 +84,55 @@ class GridProgress {
   bool drawn_ = false;
 };
 
+/// The line ResumeHintOnSignal writes, prepared before any signal: a
+/// handler may only write(2) bytes that already exist.
+std::array<char, 1024> resume_hint{};
+std::size_t resume_hint_length = 0;
+
+extern "C" void SayResumeAndDie(int signal) {
+  [[maybe_unused]] const ssize_t written =
+      ::write(STDERR_FILENO, resume_hint.data(), resume_hint_length);
+  // SA_RESETHAND restored the default action: the signal, delivered when
+  // this handler returns, ends the process as it would have (status 128 +
+  // signal for the shell and the batch system).
+  ::raise(signal);
+}
+
+/// While a checkpoint is being written: Ctrl-C (SIGINT) or SIGTERM (a batch
+/// system's time limit) says on stderr that the finished units are kept
+/// and that the same command resumes, then ends the process as the signal
+/// would have. A signal the process was started ignoring (SIGINT of a
+/// background job) stays ignored.
+class ResumeHintOnSignal {
+ public:
+  explicit ResumeHintOnSignal(const std::string& directory) {
+    const std::string hint = fmt::format(
+        "{}impactkit: interrupted; the units finished so far are saved in {}: run the same "
+        "command again to resume from them\n",
+        ::isatty(STDERR_FILENO) == 1 ? "\r\033[K" : "", directory);
+    resume_hint_length = std::min(hint.size(), resume_hint.size());
+    std::copy_n(hint.begin(), resume_hint_length, resume_hint.begin());
+    struct sigaction action {};
+    action.sa_handler = SayResumeAndDie;
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    for (std::size_t i = 0; i < kSignals.size(); ++i) {
+      ::sigaction(kSignals[i], nullptr, &previous_[i]);
+      if (previous_[i].sa_handler != SIG_IGN) ::sigaction(kSignals[i], &action, nullptr);
+    }
+  }
+  ~ResumeHintOnSignal() {
+    for (std::size_t i = 0; i < kSignals.size(); ++i)
+      ::sigaction(kSignals[i], &previous_[i], nullptr);
+  }
+  ResumeHintOnSignal(const ResumeHintOnSignal&) = delete;
+  ResumeHintOnSignal& operator=(const ResumeHintOnSignal&) = delete;
+
+ private:
+  static constexpr std::array<int, 2> kSignals = {SIGINT, SIGTERM};
+  std::array<struct sigaction, 2> previous_{};
+};
+
 /// The writer's side: which units are left, and every cell received.
 class Collector {
  public:
@@ -88,6 +140,7 @@ class Collector {
       : task_(task), label_(options.label) {
     if (!options.checkpoint.empty()) {
       checkpoint_ = std::make_unique<Checkpoint>(options.checkpoint, task.Identity(), task.Units());
+      resume_hint_ = std::make_unique<ResumeHintOnSignal>(options.checkpoint);
       for (const DamagedUnit& damaged : checkpoint_->Damaged()) {
         fmt::print(
             stderr,
@@ -137,6 +190,7 @@ class Collector {
   const GridTask& task_;
   const std::string label_;
   std::unique_ptr<Checkpoint> checkpoint_;
+  std::unique_ptr<ResumeHintOnSignal> resume_hint_;
   std::unique_ptr<GridProgress> progress_;
   std::vector<int> pending_;
   std::size_t next_ = 0;

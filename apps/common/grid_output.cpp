@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <thread>
 
@@ -47,40 +46,6 @@ std::string MotionLabel(const GridCell& cell) {
       return "unresolved";
   }
   return "unresolved";
-}
-
-std::vector<std::string> ClassColors(int count) {
-  // Paul Tol's "muted" and "light" qualitative schemes: distinct for most
-  // readers, colour-blind ones included.
-  static constexpr std::array<const char*, 18> kFixed = {
-      "#332288", "#88ccee", "#44aa99", "#117733", "#999933", "#ddcc77",
-      "#cc6677", "#882255", "#aa4499", "#77aadd", "#ee8866", "#eedd88",
-      "#ffaabb", "#99ddff", "#e7298a", "#bbcc33", "#aaaa00", "#d95f02"};
-  std::vector<std::string> colors;
-  for (int i = 0; i < count; ++i) {
-    if (i < static_cast<int>(kFixed.size())) {
-      colors.emplace_back(kFixed[i]);
-      continue;
-    }
-    // Hues a golden angle apart never repeat; lightness alternates so that
-    // neighbours in the legend differ in two ways.
-    const double hue = std::fmod(0.618033988749895 * i, 1.0) * 6.0;
-    const double light = i % 2 == 0 ? 0.45 : 0.7;
-    const double chroma = 0.6, x = chroma * (1.0 - std::abs(std::fmod(hue, 2.0) - 1.0));
-    const int sector = static_cast<int>(hue);
-    const std::array<std::array<double, 3>, 6> rgb = {{{chroma, x, 0},
-                                                       {x, chroma, 0},
-                                                       {0, chroma, x},
-                                                       {0, x, chroma},
-                                                       {x, 0, chroma},
-                                                       {chroma, 0, x}}};
-    auto channel = [&](double c) {
-      return static_cast<int>(std::lround(255.0 * std::clamp(c + light - chroma / 2, 0.0, 1.0)));
-    };
-    colors.push_back(fmt::format("#{:02x}{:02x}{:02x}", channel(rgb[sector][0]),
-                                 channel(rgb[sector][1]), channel(rgb[sector][2])));
-  }
-  return colors;
 }
 
 void AddGridRunOptions(CLI::App& command, std::optional<int>& threads, std::string& checkpoint) {

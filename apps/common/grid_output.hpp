@@ -31,10 +31,6 @@ std::string CellFields(const GridCell& cell);
 /// "P(2,1)", "P(inf,1)", "non-impacting", "chaotic", "unresolved".
 std::string MotionLabel(const GridCell& cell);
 
-/// `count` distinct colours, "#rrggbb": a fixed qualitative set first, then
-/// hues a golden angle apart, so that any number of classes can be told apart.
-std::vector<std::string> ClassColors(int count);
-
 /// --threads and --checkpoint, into `threads` (unset: automatic) and `checkpoint`.
 void AddGridRunOptions(CLI::App& command, std::optional<int>& threads, std::string& checkpoint);
 

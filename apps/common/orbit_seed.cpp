@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "common/limits.hpp"
 
@@ -100,6 +101,28 @@ OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
   return options;
 }
 
+namespace {
+
+/// What to try when no orbit converged from the seed: the solver's report
+/// says only why it stopped, not what the user can change.
+std::string OrbitSearchHint(const OrbitSeedOptions& request) {
+  const std::string elsewhere =
+      "or find the orbit where it exists and follow it here with `impactkit continue`";
+  if (!request.guess.empty()) {
+    return "the guess may be too far from an orbit: take one from an impact of `impactkit "
+           "simulate` at this value, " +
+           elsewhere;
+  }
+  if (request.p) {
+    return "the motion simulated here may not be this period: see it with `impactkit "
+           "simulate`, give a --guess, " +
+           elsewhere;
+  }
+  return "the simulated motion may not have settled: try a longer --transient, " + elsewhere;
+}
+
+}  // namespace
+
 PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
                              OrbitOptions* options, OrbitSummary* summary) {
   Eigen::VectorXd eta;
@@ -107,8 +130,8 @@ PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
   PeriodicOrbit orbit;
   const OrbitSummary result = FindOrbit(system, eta, *options, &orbit);
   if (result.termination != Termination::kConverged) {
-    throw std::runtime_error(
-        fmt::format("no P({},{}) orbit found: {}", options->p, options->q, result.BriefReport()));
+    throw std::runtime_error(fmt::format("no P({},{}) orbit found ({}); {}", options->p, options->q,
+                                         result.BriefReport(), OrbitSearchHint(seed)));
   }
   if (summary) *summary = result;
   return orbit;

@@ -270,12 +270,14 @@ std::string PanelScript(const LineChart& chart, const std::vector<fs::path>& fil
     labels += fmt::format("set label {} at {:.17g},{:.17g} offset 0.8,0.8 front\n",
                           Quoted(label.text), label.x, label.y);
   }
+  const std::string key =
+      chart.key_outside ? "set key outside right top vertical samplen 2 font \",9\"\n" : "";
   return fmt::format(
       "set title {}\n"
       "set xlabel {}\n"
       "set ylabel {}\n"
-      "{}{}{}",
-      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), labels,
+      "{}{}{}{}",
+      Quoted(chart.title), Quoted(chart.x_label), Quoted(chart.y_label), key, labels,
       RangeSettings(chart), PlotCommand(chart, files));
 }
 
@@ -286,6 +288,22 @@ std::string CellData(const ClassMap& map) {
     text += fmt::format("{} {} {}\n", map.x[i], map.y[i], map.cell_class[i]);
   }
   return text;
+}
+
+/// The axis's range over the cells: from the first cell's edge to the
+/// last's (`with image` draws each cell centred on its value, half a grid
+/// step either side), so that the axis ends where the data do and no curve
+/// drawn over the cells widens it into a blank band.
+std::array<double, 2> CellRange(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  if (values.size() < 2) {
+    const double half = std::max(0.05 * std::abs(values.front()), 0.5);
+    return {values.front() - half, values.front() + half};
+  }
+  double step = values[1] - values[0];
+  for (std::size_t i = 2; i < values.size(); ++i) step = std::min(step, values[i] - values[i - 1]);
+  return {values.front() - step / 2, values.back() + step / 2};
 }
 
 /// A palette with one colour per class, and a legend entry per class (a
@@ -314,13 +332,15 @@ std::string ClassMapScript(const ClassMap& map, const fs::path& cells,
   // gnuplot's palette needs two colours: one class is drawn as if of two.
   if (classes == 1) palette.push_back(fmt::format("1 \"{}\"", map.colors[0]));
   const int colors = static_cast<int>(palette.size());
+  const auto [x_low, x_high] = CellRange(map.x);
+  const auto [y_low, y_high] = CellRange(map.y);
   return fmt::format(
       "set title {}\nset xlabel {}\nset ylabel {}\nunset grid\nunset colorbox\n"
       "set key outside right top vertical maxrows 32 samplen 1.5 font \",9\"\n"
       "set palette maxcolors {}\nset palette defined ({})\nset cbrange [-0.5:{}]\n"
-      "set autoscale fix\nset offsets 0, 0, 0, 0\n{}\n",
+      "set xrange [{:.17g}:{:.17g}]\nset yrange [{:.17g}:{:.17g}]\nset offsets 0, 0, 0, 0\n{}\n",
       Quoted(map.title), Quoted(map.x_label), Quoted(map.y_label), colors, fmt::join(palette, ", "),
-      colors - 0.5, plot);
+      colors - 0.5, x_low, x_high, y_low, y_high, plot);
 }
 
 /// With IMPACTKIT_PLOT_SOURCE=DIR, the figure's script and data files go to
@@ -452,7 +472,7 @@ ImageFormat ImageFormatOf(const fs::path& path) {
 
 std::string RenderClassMap(const ClassMap& map, ImageFormat format) {
   RequireGnuplot();
-  if (map.names.empty()) throw PlotError("a class map needs at least one class");
+  if (map.names.empty() || map.x.empty()) throw PlotError("a class map needs a cell and a class");
   const TemporaryDirectory directory;
   const fs::path image = directory / ImageName("map", format);
   const fs::path cells = directory / "cells.dat";
@@ -485,8 +505,11 @@ std::string RenderStacked(const std::vector<LineChart>& charts, int width, int h
   const TemporaryDirectory directory;
   const fs::path image = directory / ImageName("chart", format);
   const bool single = charts.size() == 1;
-  std::string script = Preamble(format, width, height, image,
-                                single ? "outside bottom center horizontal" : "top right");
+  // Below the plot, the key's height padded: gnuplot sets a bottom key's
+  // row right against the x label otherwise, the label reading as an entry.
+  std::string script =
+      Preamble(format, width, height, image,
+               single ? "outside bottom center horizontal height 1.5" : "top right");
   if (!single) script += fmt::format("set multiplot layout {},1\n", charts.size());
   for (std::size_t c = 0; c < charts.size(); ++c) {
     std::vector<fs::path> files;

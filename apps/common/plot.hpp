@@ -83,6 +83,9 @@ struct LineChart {
   /// y starts at 0 (max - min, amplitudes: never negative).
   bool y_from_zero = false;
   std::vector<PointLabel> labels;
+  /// The key in a column right of the plot rather than in the panel: for a
+  /// key of many entries (a diagram's families), which would hide data.
+  bool key_outside = false;
   int width = 1000;  ///< pixels (points in a PDF)
   int height = 600;
 };

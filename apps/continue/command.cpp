@@ -116,6 +116,30 @@ Provenance ProvenanceOf(const ContinueRequest& request, const System& system) {
                   request.follow_grazing ? " --follow-grazing" : ""));
 }
 
+/// Says what --follow-grazing did where it did nothing visible: no grazing
+/// on the branch, or no orbit with one impact more or fewer beside one.
+void ReportGrazingFollowed(const std::vector<TracedBranch>& branches) {
+  const Branch& main = branches.front().branch;
+  const auto grazings =
+      std::count_if(main.special_points.begin(), main.special_points.end(), [](const auto& s) {
+        return s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking;
+      });
+  const auto followed = std::count_if(branches.begin(), branches.end(),
+                                      [](const auto& b) { return b.label.starts_with("graze"); });
+  if (grazings == 0) {
+    fmt::print(
+        "note:       --follow-grazing: the branch meets no grazing in this range, so there is "
+        "nothing to follow; widen --from/--to, or see where impacts appear with `impactkit "
+        "sweep`\n");
+  } else if (followed == 0) {
+    fmt::print(
+        "note:       --follow-grazing: no branch with one impact more or fewer starts at the "
+        "branch's {} grazing{} (no orbit found beside it, or it lies outside --from/--to); the "
+        "motion past it may be non-periodic (see it with `impactkit sweep`)\n",
+        grazings, grazings == 1 ? "" : "s");
+  }
+}
+
 /// A sticking start: its family through the library's sticking branch
 /// (continue/sticking.hpp); the options the impact branches alone have are
 /// refused.
@@ -178,6 +202,7 @@ void RunContinue(const ContinueRequest& request) {
                                           network, std::ref(progress)));
   }
   for (const TracedBranch& b : branches) PrintBranch(b);
+  if (request.follow_grazing) ReportGrazingFollowed(branches);
   // A branch of one point is no branch: exit status 1 before any output.
   const Branch& traced = branches.front().branch;
   if (traced.points.size() < 2) {

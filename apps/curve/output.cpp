@@ -6,6 +6,8 @@
 #include <cmath>
 #include <map>
 
+#include "common/curves.hpp"
+
 namespace impactkit::cli {
 namespace {
 
@@ -127,7 +129,7 @@ LineChart CurveChart(const std::vector<impactkit::Curve>& curves) {
   std::map<std::string, Curve> marks;  // one legend entry per kind of codim-2 point
   for (const impactkit::Curve& c : curves) {
     Curve line;
-    line.title = CurveTitle(c);
+    line.title = CurveKey(CurveName(c), c.p, c.q);
     std::tie(line.color, line.dashed) = kStyle.at(c.type);
     for (const CurvePoint& point : c.points) {
       line.x.push_back(point.parameter);

@@ -158,8 +158,9 @@ void RunDiagram(const DiagramRequest& request) {
     written.push_back(request.json);
   }
   if (plot) {
-    WriteChart(*plot, DiagramChart(swept, request.axis == "range" ? DiagramAxis::kRange
-                                                                  : DiagramAxis::kImpactVelocity));
+    const DiagramAxis axis =
+        request.axis == "range" ? DiagramAxis::kRange : DiagramAxis::kImpactVelocity;
+    plot->Write(RenderDiagram(DiagramFigure(swept, axis), ImageFormatOf(plot->Path())));
     written.push_back(request.plot);
   }
   outputs.Commit();

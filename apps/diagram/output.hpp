@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "common/plot.hpp"
 #include "impactkit/analysis/swept_diagram.hpp"
@@ -27,8 +28,15 @@ void PrintDiagram(const Diagram& diagram);
 /// stable, v, range_xN}]}], branches: [{label, origin, p, q, ...}]}.
 nlohmann::json DiagramJson(const Diagram& diagram);
 
-/// Stable stretches solid, unstable dashed, nodes marked by type, the
-/// sweep's points (in the same axis) underneath.
-LineChart DiagramChart(const SweptDiagram& swept, DiagramAxis axis);
+/// The diagram's figure: the whole range, the branches coloured by family
+/// (period; the 24 shortest periods, the others grey), stable stretches solid and unstable dashed,
+/// special points as open markers by type, the sweep's points (in the same axis) underneath, its
+/// title saying how many branches from how many seeds and whether the network was cut short. A
+/// dense diagram (more than 12 branches) gets a second panel, the window an eighth of the range
+/// wide that holds the most special points. Render with RenderDiagram.
+std::vector<LineChart> DiagramFigure(const SweptDiagram& swept, DiagramAxis axis);
+
+/// The figure's panels stacked in one `format` image. Throws PlotError.
+std::string RenderDiagram(const std::vector<LineChart>& panels, ImageFormat format);
 
 }  // namespace impactkit::cli

@@ -25,6 +25,7 @@
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/analysis/parameter_map.hpp"
+#include "impactkit/io/class_colors.hpp"
 #include "impactkit/io/csv.hpp"
 
 namespace impactkit::cli {
@@ -107,9 +108,9 @@ std::string SummaryJson(const Provenance& provenance, const ParameterMapTask& ta
 using ClassKey = std::tuple<MotionKind, int, int>;
 
 /// Periods drawn in their own colour; the rarer ones share one entry, so
-/// that the legend stays one or two readable columns however many periods
-/// a map holds (the CSV and JSON keep every class).
-constexpr std::size_t kLegendPeriods = 28;
+/// that the legend stays one narrow column beside a figure panel however
+/// many periods a map holds (the CSV and JSON keep every class).
+constexpr std::size_t kLegendPeriods = 20;
 
 /// A motion as the colour map tells it apart: impacting motions by period,
 /// the others by kind alone.
@@ -118,50 +119,47 @@ ClassKey ClassOf(const GridCell& cell) {
   return by_period ? ClassKey{cell.kind, cell.q, cell.p} : ClassKey{cell.kind, 0, 0};
 }
 
-/// The legend: the kLegendPeriods most frequent periods by kind, q, p (so
-/// the same map always gets the same colours), then "other periods",
-/// non-impacting (near white), chaotic (black), unresolved (grey).
+/// The classes with a legend entry of their own: the kLegendPeriods most
+/// frequent periods, then the kinds without a period, sorted by kind, q, p.
+std::vector<ClassKey> LegendClasses(const std::map<ClassKey, std::int64_t>& counts) {
+  std::vector<std::pair<std::int64_t, ClassKey>> periods;
+  std::vector<ClassKey> legend;
+  for (const auto& [key, count] : counts) {
+    const MotionKind kind = std::get<0>(key);
+    if (kind == MotionKind::kPeriodic || kind == MotionKind::kSticking) {
+      periods.emplace_back(-count, key);  // most frequent first, then by key
+    } else {
+      legend.push_back(key);
+    }
+  }
+  std::sort(periods.begin(), periods.end());
+  for (std::size_t i = 0; i < std::min(periods.size(), kLegendPeriods); ++i) {
+    legend.push_back(periods[i].second);
+  }
+  std::sort(legend.begin(), legend.end());
+  return legend;
+}
+
+/// The legend's classes in their colours (ClassColor: the same class has
+/// the same colour in every map), then one grey entry for the periods left
+/// out.
 ClassMap ChartOf(const ParameterMapTask& task, const std::vector<GridCell>& cells) {
   const ParameterMapOptions& o = task.Options();
   std::map<ClassKey, std::int64_t> counts;
   for (const GridCell& cell : cells) ++counts[ClassOf(cell)];
-  std::vector<std::pair<std::int64_t, ClassKey>> periods;
-  for (const auto& [key, count] : counts) {
-    if (std::get<0>(key) == MotionKind::kPeriodic || std::get<0>(key) == MotionKind::kSticking) {
-      periods.emplace_back(-count, key);  // most frequent first, then by key
-    }
-  }
-  std::sort(periods.begin(), periods.end());
-  const std::size_t shown = std::min(periods.size(), kLegendPeriods);
-  std::vector<ClassKey> legend;
-  for (std::size_t i = 0; i < shown; ++i) legend.push_back(periods[i].second);
-  std::sort(legend.begin(), legend.end());
-
   ClassMap chart;
   std::map<ClassKey, int> class_of;
-  for (const ClassKey& key : legend) {
+  for (const ClassKey& key : LegendClasses(counts)) {
     class_of[key] = static_cast<int>(chart.names.size());
     GridCell example;
     std::tie(example.kind, example.q, example.p) = key;
     chart.names.push_back(MotionLabel(example));
+    chart.colors.push_back(ClassColor(example.kind, example.p, example.q));
   }
-  chart.colors = ClassColors(static_cast<int>(chart.names.size()));
   const int other = static_cast<int>(chart.names.size());
-  if (periods.size() > shown) {
-    std::int64_t rare = 0;
-    for (std::size_t i = shown; i < periods.size(); ++i) rare -= periods[i].first;
-    chart.names.push_back(fmt::format("{} other periods ({} cells)", periods.size() - shown, rare));
-    chart.colors.emplace_back("#b0b0b0");
-  }
-  for (const auto& [kind, color] :
-       {std::pair{MotionKind::kNonImpacting, "#f2f2f2"}, std::pair{MotionKind::kChaotic, "#000000"},
-        std::pair{MotionKind::kUnresolved, "#707070"}}) {
-    if (!counts.contains({kind, 0, 0})) continue;
-    class_of[{kind, 0, 0}] = static_cast<int>(chart.names.size());
-    GridCell example;
-    example.kind = kind;
-    chart.names.push_back(MotionLabel(example));
-    chart.colors.emplace_back(color);
+  if (counts.size() > class_of.size()) {
+    chart.names.push_back(fmt::format("{} other periods", counts.size() - class_of.size()));
+    chart.colors.emplace_back(kOtherClassesColor);
   }
   const std::size_t k = task.Values1().size();
   for (const GridCell& cell : cells) {

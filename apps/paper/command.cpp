@@ -39,7 +39,8 @@ namespace {
 struct PaperRequest {
   std::string out = "out/paper";
   bool quick = false;
-  int threads = 0;  ///< 0: all cores
+  bool all_branches = false;  ///< a table for every branch, not only the seeds'
+  int threads = 0;            ///< 0: all cores
 };
 
 /// Resolution of the run: the paper's, or a quick one for tests.
@@ -69,7 +70,8 @@ struct Folder {
   std::filesystem::path path;
   Provenance provenance;  ///< of the run; each table adds what it holds
   OutputSet outputs;
-  std::vector<std::string> written;  ///< names, in the order staged
+  std::vector<std::string> written;        ///< names, in the order staged
+  std::vector<std::string> branch_tables;  ///< of written, the branch CSVs
 };
 
 /// Stages `text` as folder/name.
@@ -170,7 +172,8 @@ nlohmann::json OrbitStage(const System& paper, const Resolution& resolution) {
 /// seeded by the P(1,1), P(2,1) and P(1,2) orbits of §3 and by the sweep's
 /// periodic windows: the branches, every special point, and the picture.
 nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, int threads,
-                            const SweepOptions& sweep_options, SweepResult sweep, Folder& folder) {
+                            const SweepOptions& sweep_options, SweepResult sweep, bool all_branches,
+                            Folder& folder) {
   SweptDiagramOptions options;
   options.diagram.continuation.lower = sweep_options.from;
   options.diagram.continuation.upper = sweep_options.to;
@@ -201,15 +204,21 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
   swept.sweep = std::move(sweep);
   PrintDiagram(swept.diagram);
   nlohmann::json j = nlohmann::json::array();
-  for (const TracedBranch& b : LabelBranches(swept.diagram)) {
+  const std::vector<TracedBranch> branches = LabelBranches(swept.diagram);
+  for (std::size_t k = 0; k < branches.size(); ++k) {
+    const TracedBranch& b = branches[k];
     PrintBranch(b);
+    j.push_back(BranchJson(b));
+    // The paper's three branches (the first seeds) always; the others,
+    // dozens of tables whose points diagram.json holds too, when asked.
+    if (k >= seeds.size() && !all_branches) continue;
     const std::string csv = "branch-" + b.label + ".csv";
     WriteBranchRows(AddTable(folder, csv, "branch " + b.label, BranchColumns(b.branch)), b.branch);
-    j.push_back(BranchJson(b));
+    folder.branch_tables.push_back(csv);
   }
   WriteFile(folder, "diagram.json", DiagramJson(swept.diagram).dump(2) + "\n");
   WriteFile(folder, "diagram.png",
-            RenderChart(DiagramChart(swept, DiagramAxis::kImpactVelocity), ImageFormat::kPng));
+            RenderDiagram(DiagramFigure(swept, DiagramAxis::kImpactVelocity), ImageFormat::kPng));
   return j;
 }
 
@@ -297,6 +306,27 @@ nlohmann::json SweepStage(const System& paper, const SweepOptions& options,
   return regimes;
 }
 
+/// What is where in the folder, a line per part of the study (every file
+/// staged is on one of them).
+void PrintWritten(const Folder& folder, std::size_t branches) {
+  fmt::print("wrote into {}:\n", std::filesystem::absolute(folder.path).string());
+  fmt::print(
+      "  summary.json          everything printed above (modes, peaks, orbits, regimes, "
+      "branches)\n");
+  fmt::print("  fig2-resonance.png    Fig. 2, the resonance curves without the stop\n");
+  fmt::print(
+      "  fig3-bifurcation.png  Fig. 3, the brute-force diagram; fig3-sweep.csv, one row "
+      "per value\n");
+  fmt::print(
+      "  diagram.png           the connected diagram; diagram.json, its {} branches' "
+      "points and special points\n",
+      branches);
+  const std::size_t tables = folder.branch_tables.size();
+  fmt::print("  branch-*.csv          {} branch table{}: {}{}\n", tables, tables == 1 ? "" : "s",
+             fmt::join(folder.branch_tables, ", "),
+             tables < branches ? " (every branch's with --all-branches)" : "");
+}
+
 void RunPaper(const PaperRequest& request) {
   if (request.threads < 0) throw InvalidInput("--threads must be >= 0 (0: all cores)");
   RequireGnuplot();
@@ -340,16 +370,15 @@ void RunPaper(const PaperRequest& request) {
   fmt::print(
       "branches (the connected diagram in omega, seeded at 1.0, 0.6, 2.0 and by the "
       "sweep):\n");
-  summary["branches"] =
-      DiagramStage(paper, resolution, threads, sweep_options, std::move(sweep), folder);
+  summary["branches"] = DiagramStage(paper, resolution, threads, sweep_options, std::move(sweep),
+                                     request.all_branches, folder);
   Stage(5, "summary");
   summary["seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary_file.Write(summary.dump(2) + "\n");
   folder.written.push_back("summary.json");
   folder.outputs.Commit();
-  fmt::print("wrote into {}: {}\n", std::filesystem::absolute(folder.path).string(),
-             fmt::join(folder.written, ", "));
+  PrintWritten(folder, summary["branches"].size());
   fmt::print("time:         {:.1f} s\n", summary["seconds"].get<double>());
 }
 
@@ -363,12 +392,16 @@ void AddPaperCommand(CLI::App& app) {
       "orbits at its sample frequencies with their stability, the P(1,1), P(2,1) and P(1,2) "
       "branches continued in omega with the branches born at their period doublings and "
       "grazings, and the brute-force diagram (Fig. 3) with its regimes. Prints a summary and "
-      "writes CSV, JSON and PNG files into one folder.");
+      "writes CSV, JSON and PNG files into one folder, and says what is where.");
   command->add_option("--out", request->out, "Output folder (created if missing)")
       ->check(OutputPath("folder"))
       ->capture_default_str();
   command->add_flag("--quick", request->quick,
                     "Reduced resolution (121 sweep values, short transients), for tests");
+  command->add_flag("--all-branches", request->all_branches,
+                    "A CSV table for every branch of the connected diagram (dozens; diagram.json "
+                    "holds their points too), not only for the three seeded at the paper's "
+                    "orbits");
   command->add_option("--threads", request->threads, "Threads of the sweep (0: all cores)")
       ->check(AtMost(kMaxThreads, "threads"))
       ->capture_default_str();

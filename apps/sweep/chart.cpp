@@ -12,7 +12,9 @@ std::vector<LineChart> SweepCharts(const System& system, const SweepOptions& opt
                                    const SweepResult& result) {
   const int c = system.stops[0].dof + 1;
   LineChart ranges, speeds;
-  ranges.title = fmt::format("impactkit sweep: max - min of x{} in each recorded period", c);
+  // Panel letters as the paper's Fig. 3 has them; no tool name in a title
+  // that goes into a paper.
+  ranges.title = fmt::format("(a) max - min of x{} in each recorded period", c);
   // Both panels span the whole sweep, also where one of them has no data
   // (no impacts above the last impacting value).
   std::optional<std::array<double, 2>> range;
@@ -23,7 +25,7 @@ std::vector<LineChart> SweepCharts(const System& system, const SweepOptions& opt
   ranges.x_range = range;
   ranges.y_from_zero = true;
   ranges.y_label = fmt::format("max - min x{}", c);
-  speeds.title = ImpactSpeedLabel(system);
+  speeds.title = "(b) " + ImpactSpeedLabel(system);
   speeds.x_label = ParameterLabel(options.parameter);
   speeds.x_range = range;
   speeds.y_label = "impact velocity";

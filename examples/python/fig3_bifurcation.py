@@ -5,7 +5,7 @@ recorded impact speed.
 
     python3 examples/python/fig3_bifurcation.py [figure.png] [--steps K]
 
-Defaults: out/figures/fig3_python.png, K = 2401 (about 15 s on 2 threads).
+Defaults: out/figures/fig3_python.png, K = 2401.
 """
 
 import argparse

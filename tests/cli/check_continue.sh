@@ -3,8 +3,9 @@
 # the summary names the grazing near 0.856 and the period doubling near
 # 1.613; the JSON has special_points with types and end_reason; the CSV has
 # a header with the parameters and one row per point; --switch-pd writes the
-# P(2,2) branch beside it. A start that does not converge fails with exit 1
-# and a one-line reason.
+# P(2,2) branch beside it; --follow-grazing says when the branch meets no
+# grazing. A start that does not converge fails with exit 1 and a one-line
+# reason.
 #
 #     check_continue.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -25,6 +26,16 @@ columns_of "$work/b.csv" | grep -q '^omega,arclength,phase1,v1,range_xN,mod1,mod
 (($(wc -l <"$work/b.csv") > 50)) || fail "too few CSV rows"
 [[ -s "$work/b.pd1.csv" ]] || fail "the period-doubled branch's CSV is missing"
 columns_of "$work/b.pd1.csv" | grep -q '^omega,arclength,phase1,phase2,v1,v2,' || fail "P(2,2) CSV header"
+
+# --follow-grazing where the branch meets no grazing says so, and what to try.
+"$impactkit" continue --from 1.0 --to 1.2 --start 1.1 --follow-grazing >"$work/stdout" ||
+  fail "impactkit continue --follow-grazing failed"
+grep -q "^note: *--follow-grazing: the branch meets no grazing in this range" "$work/stdout" ||
+  fail "no note that no grazing was met: $(cat "$work/stdout")"
+# ... and nothing of the kind where it followed one.
+"$impactkit" continue --from 0.5 --to 1.2 --start 1 --follow-grazing >"$work/stdout" ||
+  fail "impactkit continue --follow-grazing failed"
+! grep -q "^note:" "$work/stdout" || fail "a note where a grazing was followed: $(cat "$work/stdout")"
 
 if "$impactkit" continue --from 1 --to 2 --p 3 --q 1 --guess 0.3,1,0.5,0.01 2>"$work/stderr"; then
   fail "a start that does not converge was accepted"

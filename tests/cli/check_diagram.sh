@@ -3,7 +3,8 @@
 # seeding sweep: with no start given, it prints the P(2,1), P(3,2), P(4,2)
 # and P(1,1) branches and the period doubling at 0.8372414 in parameter
 # order; --json holds nodes (type, param, multipliers) and edges whose
-# from/to are node ids; --max-branches stops it with an "incomplete" report.
+# from/to are node ids; the seeds that did not converge are explained;
+# --max-branches stops it with an "incomplete" report.
 #
 #     check_diagram.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -18,6 +19,11 @@ for branch in 'P(2,1) from 0.8 to 0.857' 'P(3,2) from 0.8322' 'P(4,2) from 0.832
   grep -qF "$branch" "$work/stdout" || fail "no branch '$branch': $(cat "$work/stdout")"
 done
 grep -q "period_doubling at omega = 0.83724137" "$work/stdout" || fail "no PD at 0.8372414"
+# Seeds that did not converge (6 here: grazings tried on both sides) are
+# explained where they are counted.
+grep -q " 6 seeds not converged)" "$work/stdout" || fail "no failed seeds: $(cat "$work/stdout")"
+grep -q "^ *(6 seeds not converged: starts tried at special points that found no orbit" \
+  "$work/stdout" || fail "'seeds not converged' unexplained: $(cat "$work/stdout")"
 # Special points in parameter order.
 grep -E '^  [a-z_]+ at omega = ' "$work/stdout" | sed -E 's/.* = ([0-9.]+) .*/\1/' >"$work/params"
 sort -g -c "$work/params" || fail "special points not in parameter order"

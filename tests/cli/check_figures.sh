@@ -1,7 +1,9 @@
 # Usage: check_figures.sh IMPACTKIT SOURCE_DIR
 # Every figure of the paper rendered (docs/paper-reproduction.md, "The
-# figures"): each examples/fig*.sh runs as scripts/run.sh calls it, and each
-# PNG it promises exists, is at least 500 x 300 pixels and is not blank. Every
+# figures"): each examples/fig*.sh runs as scripts/run.sh calls it, writes
+# the data it promises (each table's rows, the kinds, branches and lines its
+# figure is drawn from, checked), and each PNG it promises exists, is at least
+# 500 x 300 pixels and is not blank. Every
 # gnuplot run (the scripts' own and impactkit's --plot) goes through a shim
 # that reports the x and y ranges of its last plot, and no range may be
 # degenerate: narrower than 1e-9 of its magnitude (an axis autoscaled into
@@ -34,10 +36,53 @@ SHIM
 chmod +x "$work/shim/gnuplot"
 
 cd "$source_dir"
+mkdir "$work/logs"
 for script in $(printf '%s\n' examples/fig*.sh | sort -V); do
+  log=$work/logs/$(basename "$script" .sh).log
   PATH="$work/shim:$PATH" bash "$script" "$impactkit" "$work/figures" "$work/data" \
-    >"$work/log" 2>&1 || fail "$script failed: $(tail -5 "$work/log")"
+    >"$log" 2>&1 || fail "$script failed: $(tail -5 "$log")"
 done
+
+# Each script's data, not only its figures: the rows it promises and what
+# they must hold.
+rows() { grep -v '^#' "$work/data/$1" | tail -n +2 | grep -c . || true; }
+expect_rows() {  # FILE MIN: at least MIN data rows under the header
+  [[ -f $work/data/$1 ]] || fail "no data file $1"
+  (($(rows "$1") >= $2)) || fail "$1 has $(rows "$1") data rows, expected at least $2"
+}
+log_has() {  # SCRIPT PATTERN: the script's printed output matches PATTERN
+  grep -qE "$2" "$work/logs/$1.log" || fail "$1 printed no line matching '$2'"
+}
+expect_rows fig2.csv 2401
+(($(grep -cE '^ +x[12] +[0-9.]+ +[0-9.]+$|^peaks: +mass' "$work/logs/fig2_resonance.log") >= 5)) ||
+  fail "fig2_resonance.sh printed fewer than the four resonance peaks"
+expect_rows fig3-summary.csv 2401
+for kind in periodic sticking chaotic non_impacting; do
+  log_has fig3_bifurcation "^ +[0-9]+ $kind\$"
+done
+for panel in a b c d e f g h; do
+  expect_rows "fig4$panel.csv" 100
+  expect_rows "fig4$panel-impacts.csv" 1
+done
+for table in p11.csv p11.pd2.csv p11.graze1.csv p21.csv p12.csv sweep-080-090.csv sweep-155-175.csv; do
+  expect_rows "$table" 20
+done
+python3 -c 'import json, sys; sys.exit(len(json.load(open(sys.argv[1]))["branches"]) < 10)' \
+  "$work/data/diagram.json" || fail "fig5's connected diagram has fewer than 10 branches"
+for panel in a b c; do expect_rows "fig6$panel.csv" 1000; done
+expect_rows fig7-summary.csv 501
+expect_rows fig7-sticking-branch.csv 20
+for n in 2 3 4 5 6 7 8; do log_has fig7_sticking "^ +[0-9.]+ - [0-9.]+: periodic P\\($n,1\\)\$"; done
+(($(grep -cE '^ +branch main: +P\([0-9]+,1\) from the start' "$work/logs/fig7_sticking.log") >= 8)) ||
+  fail "fig7_sticking.sh followed fewer than 8 P(n,1) branches"
+! grep -q 'P(,)' "$work/logs/fig7_sticking.log" || fail "fig7_sticking.sh printed a period without p and q"
+for csv in "$work"/data/fig8_*.csv; do expect_rows "$(basename "$csv")" 1000; done
+(($(ls "$work"/data/fig8_*.csv | wc -l) == 12)) || fail "fig8 wrote $(ls "$work"/data/fig8_*.csv | wc -l) impact maps, expected 12"
+for panel in a b c; do expect_rows "fig9$panel.csv" 1000; done
+expect_rows fig10a.csv 100
+expect_rows fig10b.csv 100
+grep -q '"termination": "converged"' "$work/data/fig10a_fit.json" || fail "fig10(a)'s fit did not converge"
+expect_rows fig12.csv 100
 
 # The figures docs/paper-reproduction.md shows, one or more per paper figure.
 for name in fig2_resonance fig3_sweep fig4a fig4b fig4c fig4d fig4e fig4f fig4g fig4h \

@@ -14,6 +14,11 @@
 #         of an uninterrupted run, computing only the cells not on record
 #         (their count is the report's); a checkpoint of another grid is
 #         refused with exit 2 and one line
+#     check_map.sh IMPACTKIT interrupt
+#         a checkpointed run stopped by SIGTERM (a batch system's time limit;
+#         Ctrl-C's SIGINT takes the same path) says on stderr, in one line,
+#         that the finished units are saved and that rerunning resumes, and
+#         dies of the signal (status 143); the rerun resumes
 #     check_map.sh IMPACTKIT damaged
 #         a finished checkpoint with one unit edited (periodic -> chaotic),
 #         one cut short and one emptied: the rerun computes those three
@@ -75,6 +80,29 @@ case $mode in
       fail "mpirun failed: $(cat "$work/stderr")"
     grep -q "x 2 ranks" "$work/stdout" || fail "not run on 2 ranks: $(cat "$work/stdout")"
     same_but_command "$work/one.csv" "$work/mpi.csv" || fail "CSV differs between 1 process and 2 ranks"
+    echo ok
+    ;;
+  interrupt)
+    long=(map --from 0.6 --to 2.4 --steps 30 --param2 r --from2 0.3 --to2 0.95 --steps2 20
+          --transient 300 --record 40 --chunk 10 --threads 1)
+    "$impactkit" "${long[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" \
+      >/dev/null 2>"$work/stderr" &
+    pid=$!
+    for _ in $(seq 200); do
+      (($(find "$work/cp" -name 'unit-*.txt' 2>/dev/null | wc -l) >= 2)) && break
+      sleep 0.02
+    done
+    kill -TERM $pid 2>/dev/null || fail "the run ended before it could be stopped"
+    status=0
+    wait $pid || status=$?
+    ((status == 143)) || fail "exit status $status after SIGTERM, expected 143"
+    [[ $(wc -l <"$work/stderr") -eq 1 ]] || fail "stderr: $(cat "$work/stderr")"
+    grep -qF "interrupted; the units finished so far are saved in $work/cp: run the same command again to resume" \
+      "$work/stderr" || fail "no resume hint: $(cat "$work/stderr")"
+    "$impactkit" "${long[@]}" --checkpoint "$work/cp" --out "$work/resumed.csv" \
+      >"$work/stdout" || fail "the resumed run failed"
+    grep -q "[1-9][0-9]* resumed from the checkpoint" "$work/stdout" ||
+      fail "nothing resumed: $(cat "$work/stdout")"
     echo ok
     ;;
   resume)

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The main job in its reduced mode: `impactkit paper --quick` writes every
-# promised file, non-empty, and prints the same special points of the main
-# branches as the library computes directly (paper_points); its connected
-# diagram holds the P(2,2) branch born at the P(1,1) period doubling.
+# promised file, non-empty, names each in its closing list (branch tables
+# only for the paper's three branches without --all-branches), and prints
+# the same special points of the main branches as the library computes
+# directly (paper_points); its connected diagram holds the P(2,2) branch born
+# at the P(1,1) period doubling.
 #
 #     check_paper.sh IMPACTKIT PAPER_POINTS
 source "$(dirname "$0")/testlib.sh"
@@ -15,6 +17,17 @@ for file in summary.json fig2-resonance.png fig3-sweep.csv fig3-bifurcation.png 
             diagram.json branch-main.csv branch-seed2.csv branch-seed3.csv; do
   [[ -s "$work/paper/$file" ]] || fail "missing or empty: $file"
 done
+# The branch tables are the paper's three branches' unless --all-branches
+# asks for every one (diagram.json holds them all), and the closing list says
+# what each file in the folder is.
+tables=$(find "$work/paper" -name 'branch-*.csv' | wc -l)
+((tables == 3)) || fail "$tables branch tables without --all-branches, expected 3"
+sed -n '/^wrote into/,$p' "$work/stdout" >"$work/where"
+for file in "$work"/paper/*; do
+  grep -qF "$(basename "$file")" "$work/where" || fail "the closing list does not name $(basename "$file")"
+done
+grep -q "^  branch-\*.csv  *3 branch tables: .*(every branch's with --all-branches)" "$work/where" ||
+  fail "the closing list does not say where the other branches are: $(cat "$work/where")"
 for section in "modal data:" "resonance:" "orbits (" "branches (" "brute-force diagram" "wrote into"; do
   grep -q "^$section" "$work/stdout" || fail "the summary lacks '$section'"
 done
