@@ -261,9 +261,7 @@ TEST_CASE("the observer hears which stop released and ended each chatter", "[sto
   s.stops = {{1, StopSide::kUpper, 0.1, 0.7}, {1, StopSide::kLower, -0.1, 0.7}};
   Validate(s);
   struct Events : Observer {
-    void OnSegment(const Segment& segment) override {
-      segment.StateAt(segment.End(), &x, &v);
-    }
+    void OnSegment(const Segment& segment) override { segment.StateAt(segment.End(), &x, &v); }
     void OnImpact(const Impact& impact) override { impacts.push_back(impact); }
     void OnChatter(const ChatterEnd& chatter) override { chatters.push_back(chatter); }
     void OnRelease(const Release& release) override {
