@@ -9,11 +9,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
+#include "seeded_orbit.hpp"
 
 using namespace impactkit;
 using Catch::Matchers::WithinAbs;
@@ -44,14 +44,7 @@ TEST_CASE("sticking begins at the accumulation point of its chatter, near the fa
   for (const Reference& expected : references) {
     INFO("omega " << expected.omega);
     const System system = SingleMass(1.0, 0.1, 1.2, expected.omega, 0.3, 0.6);
-    const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
-    REQUIRE(seed);
-    StickingOrbitOptions options;
-    options.releases = seed->releases;
-    options.q = seed->q;
-    StickingOrbit orbit;
-    REQUIRE(FindStickingOrbit(system, seed->state, options, &orbit).termination ==
-            Termination::kConverged);
+    const StickingOrbit orbit = testing::SeededStickingOrbit(system);
     CHECK_THAT(orbit.stick_phases[0], WithinAbs(expected.accumulation_phase, 1e-9));
     // The floor: each impact's time is rounded to ~ε L / u, and the
     // accumulation point moves by 2/(a(1 − r)) times a speed's error (the
@@ -72,14 +65,7 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   // over which such a bounce decides the end, 7e-9 here (docs/theory.md §5a).
   constexpr double kEnd = 0.46181203954564;
   const System system = SingleMass(1.0, 0.1, 1.2, 0.45, 0.3, 0.6);
-  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
-  REQUIRE(seed);
-  StickingOrbitOptions orbit_options;
-  orbit_options.releases = seed->releases;
-  orbit_options.q = seed->q;
-  StickingOrbit start;
-  REQUIRE(FindStickingOrbit(system, seed->state, orbit_options, &start).termination ==
-          Termination::kConverged);
+  const StickingOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.lower = 0.44;
   options.upper = 0.47;

@@ -12,7 +12,6 @@
 
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/hybrid/recorders.hpp"
@@ -22,7 +21,7 @@
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/orbits/orbit.hpp"
-#include "impactkit/orbits/sticking_orbit.hpp"
+#include "seeded_orbit.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
@@ -224,18 +223,8 @@ TEST_CASE("a lower stop's sticking orbit is the mirror image of the upper one's"
   System lower = upper;
   lower.forcing = -upper.forcing;
   lower.stops = {{1, StopSide::kLower, -0.1, 0.7}};
-  StickingOrbit orbits[2];
-  for (int side = 0; side < 2; ++side) {
-    const System& system = side == 0 ? upper : lower;
-    const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
-    REQUIRE(seed);
-    StickingOrbitOptions options;
-    options.releases = seed->releases;
-    options.q = seed->q;
-    REQUIRE(FindStickingOrbit(system, seed->state, options, &orbits[side]).termination ==
-            Termination::kConverged);
-  }
-  const StickingOrbit &a = orbits[0], &b = orbits[1];
+  const StickingOrbit a = testing::SeededStickingOrbit(upper);
+  const StickingOrbit b = testing::SeededStickingOrbit(lower);
   REQUIRE(b.stick_phases.size() == a.stick_phases.size());
   CHECK_THAT(b.stick_phases[0], WithinAbs(a.stick_phases[0], 1e-9));
   CHECK_THAT(b.release_phases[0], WithinAbs(a.release_phases[0], 1e-9));

@@ -19,24 +19,12 @@
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
+#include "seeded_orbit.hpp"
 
 using namespace impactkit;
 using Catch::Matchers::WithinAbs;
 
 namespace {
-
-/// The sticking orbit of `system` refined from its steady simulation.
-StickingOrbit RefinedOrbit(const System& system) {
-  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
-  REQUIRE(seed);
-  StickingOrbitOptions options;
-  options.releases = seed->releases;
-  options.q = seed->q;
-  StickingOrbit orbit;
-  const StickingOrbitSummary summary = FindStickingOrbit(system, seed->state, options, &orbit);
-  REQUIRE(summary.termination == Termination::kConverged);
-  return orbit;
-}
 
 /// How the simulation from rest sticks with parameter `name` at `value`
 /// (300 transient periods, periods up to 4); nothing if it does not stick.
@@ -102,7 +90,7 @@ Eigen::VectorXcd SimulatorMultipliers(const System& system, const StickingOrbit&
 TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long simulation",
           "[sticking]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit orbit = RefinedOrbit(system);
+  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
   REQUIRE(orbit.releases == 1);
   REQUIRE(orbit.q == 1);
   CHECK(orbit.residual < 1e-11);
@@ -140,7 +128,7 @@ TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long si
 TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator's monodromy",
           "[sticking]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit orbit = RefinedOrbit(system);
+  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
   const Eigen::VectorXcd lambda = SimulatorMultipliers(system, orbit);
   // Sticking collapses x_2 and v_2: two zero multipliers of the strobe map.
   CHECK(std::abs(lambda(2)) < 1e-5);
@@ -156,7 +144,7 @@ TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator'
 TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sticking]") {
   SECTION("paper system, Omega = 0.2, at the orbit and off it, one and two releases") {
     const System system = PaperSystem(0.2);
-    const StickingOrbit orbit = RefinedOrbit(system);
+    const StickingOrbit orbit = testing::SeededStickingOrbit(system);
     const StickingMap map(system);
     Eigen::VectorXd off = orbit.state;
     off(0) -= 2e-3;  // Fs lower: released a little earlier, still a release
@@ -184,7 +172,7 @@ TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sti
     const Eigen::MatrixXd damping = 0.1 * stiffness;
     const System system =
         GeneralSystem(mass, damping, stiffness, Eigen::Vector3d(0.5, 0.0, 0.0), 0.2, 0.1, 0.7);
-    const StickingOrbit orbit = RefinedOrbit(system);
+    const StickingOrbit orbit = testing::SeededStickingOrbit(system);
     const StickingMap map(system);
     const Eigen::MatrixXd fd = map.FiniteDifferenceJacobian(orbit.state, orbit.releases);
     REQUIRE(fd.size() == orbit.jacobian.size());
@@ -201,7 +189,7 @@ TEST_CASE("N = 1: the sticking orbit's release has the closed form cos(Omega t) 
   const double k = 1.0, xs = 0.1, a = 0.5, omega = 0.2;
   const System system =
       UniformChain({1, 1.0, k, 0.1}, Eigen::VectorXd::Constant(1, a), omega, xs, 0.7);
-  const StickingOrbit orbit = RefinedOrbit(system);
+  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
   const double release = std::acos(k * xs / a) / omega;
   CHECK_THAT(orbit.release_phases[0], WithinAbs(release, 1e-12));
   CHECK_THAT(orbit.state(0), WithinAbs(release, 1e-12));
@@ -218,7 +206,7 @@ TEST_CASE("N = 1: the sticking orbit's release has the closed form cos(Omega t) 
 
 TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit orbit = RefinedOrbit(system);
+  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
   StickingOrbitOptions options;
   StickingOrbit out;
   SECTION("q = 0 or no releases") {
@@ -250,7 +238,7 @@ TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
 TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation stops sticking",
           "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit start = RefinedOrbit(system);
+  const StickingOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.lower = 0.1;
   options.upper = 0.6;
@@ -302,7 +290,7 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
 TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
           "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit start = RefinedOrbit(system);
+  const StickingOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.parameter = "xs";
   options.lower = 0.0;
@@ -332,7 +320,7 @@ TEST_CASE(
     "monodromy and its period-2 sticking beyond",
     "[sticking][continuation]") {
   const System system = PaperSystem(0.27);
-  const StickingOrbit start = RefinedOrbit(system);
+  const StickingOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.parameter = "c";
   options.lower = 0.01;
@@ -381,7 +369,7 @@ TEST_CASE(
   // Fs(t*) = 0.37.
   System system = PaperSystem(0.25);
   SetParameter(system, "A1", 0.5);
-  const StickingOrbit start = RefinedOrbit(system);
+  const StickingOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.parameter = "A1";
   options.lower = 0.5;
