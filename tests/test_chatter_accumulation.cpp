@@ -73,6 +73,10 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
   CHECK_THAT(branch.points.back().parameter, WithinAbs(kEnd, 1e-8));
   CHECK(branch.special_points.back().point.parameter == branch.points.back().parameter);
+  // A tolerance below the rounding of Ω ends the bisection there.
+  options.locate_tolerance = 1e-300;
+  const StickingBranch finest = ContinueStickingBranch(system, start, options);
+  CHECK_THAT(finest.points.back().parameter, WithinAbs(branch.points.back().parameter, 1e-9));
 }
 
 TEST_CASE("the stuck time per period of a sticking single mass is the exact one",

@@ -413,6 +413,7 @@ void StickingMarch::LocateEnd() {
   std::optional<StickingBranchPoint> last;
   while (std::abs(outside - inside) > options_.locate_tolerance) {
     const double mid = 0.5 * (inside + outside);
+    if (mid == inside || mid == outside) break;  // a tolerance below μ's rounding
     if (std::optional<StickingBranchPoint> point = PointAt(mid)) {
       inside = mid;
       last = std::move(point);
