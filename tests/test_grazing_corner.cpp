@@ -222,15 +222,15 @@ TEST_CASE(
     REQUIRE(path.status == MapStatus::kOk);
     // The orbit's impacts from η on, split at each in turn.
     for (int split = 0; split < p; ++split) {
-      std::vector<HybridState> contacts;
+      std::vector<StopContact> contacts;
       for (int k = split; k < split + p; ++k) {
         const Eigen::VectorXd& eta = k == 0 ? orbit.eta : path.path[(k - 1) % p];
         HybridState impact = map.ToState(eta);
         if (k > p) impact.t += q * system.ForcingPeriod();
-        contacts.push_back(impact);
+        contacts.push_back({impact, 0});
       }
       const SpeedSplitMonodromy m = SplitMonodromy(system, contacts, q);
-      const Eigen::VectorXcd lambda = m.At(contacts.front().v(1)).eigenvalues();
+      const Eigen::VectorXcd lambda = m.At(contacts.front().state.v(1)).eigenvalues();
       // Each multiplier of the map has one of M's within 1e-9.
       for (const std::complex<double>& l : orbit.multipliers) {
         INFO("split at impact " << split << ", multiplier " << l);
@@ -348,9 +348,14 @@ TEST_CASE(
     "[curve][grazing-corner]") {
   const System system = PaperSystem(1.2);
   CHECK_THROWS_AS(SplitMonodromy(system, {}, 1), InvalidInput);
-  HybridState first = RestState(system), late = RestState(system);
-  late.t = 1.5 * system.ForcingPeriod();
+  const StopContact first{RestState(system), 0};
+  StopContact late = first;
+  late.state.t = 1.5 * system.ForcingPeriod();
   CHECK_THROWS_WITH(SplitMonodromy(system, {first, late}, 1),
                     Catch::Contains("must lie within its q = 1 forcing periods"));
   CHECK_NOTHROW(SplitMonodromy(system, {first, late}, 2));
+  CHECK_THROWS_WITH(SplitMonodromy(system, {first, {late.state, 1}}, 2),
+                    Catch::Contains("a contact's stop must be one of the system's 1 stops"));
+  CHECK_THROWS_WITH(ResponseTouchMonodromy(system, 1, -1),
+                    Catch::Contains("the stop touched must be one of the system's 1 stops"));
 }

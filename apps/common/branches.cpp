@@ -28,6 +28,7 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
       {"parameter", parameter},
       {"description", s.Describe(parameter)},
       {"monitor", s.monitor},
+      {"stop", s.point.orbit.stop + 1},
       {"eta", std::vector<double>(s.point.orbit.eta.data(),
                                   s.point.orbit.eta.data() + s.point.orbit.eta.size())}};
   if (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking) {

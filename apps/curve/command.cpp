@@ -211,8 +211,15 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
       start.special.point.orbit.q = orbit.q;
       return start;
     }
+    // η is at the stop `stop` names (1-based; files before several stops
+    // have none: stop 1).
+    ImpactMapOptions section;
+    section.stop = s.value("stop", 1) - 1;
+    Require(section.stop >= 0 && section.stop < system->StopCount(),
+            fmt::format("--start-json: point {}'s stop {} is not one of the system's {} stops",
+                        request.point, section.stop + 1, system->StopCount()));
     start.special.point.orbit = DescribeOrbit(
-        ImpactMap(*system),
+        ImpactMap(*system, section),
         Eigen::Map<const Eigen::VectorXd>(eta.data(), static_cast<Eigen::Index>(eta.size())),
         orbit.p, orbit.q);
     return start;
@@ -254,9 +261,6 @@ void RunCurve(const CurveRequest& request) {
   AtomicOutputFile* out = AddIfAsked(outputs, request.out);
   AtomicOutputFile* json = AddIfAsked(outputs, request.json);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
-  // Checked before the one-parameter search that finds the start point:
-  // ContinueCurve would refuse only after it (curve_problem.hpp).
-  system.SoleStop("two-parameter curves");
   CurveOptions options;
   CurveStart start;
   if (request.start_json.empty()) {

@@ -412,6 +412,50 @@ CurvePoint StartPoint(CurveProblem& problem, const Eigen::VectorXd& x0,
   return *point;
 }
 
+/// What a curve is followed in: its orbit's p, q and section, and for a
+/// grazing the flight holding the touch and the stop touched.
+struct CurveSetup {
+  CurveOptions options;
+  bool response = false;  ///< P(1,q)'s vanishing impact: the response's grazing
+  Eigen::VectorXd eta;
+  int flight = 0, touched = 0;
+  double contact_time = 0.0;
+};
+
+CurveSetup SetUp(const CurveStart& start, const CurveOptions& options) {
+  const SpecialPoint& special = start.special;
+  const PeriodicOrbit& orbit = special.point.orbit;
+  CurveSetup setup;
+  setup.options = options;
+  // P(1,q)'s impact vanishes where the non-impacting response touches the
+  // stop: that is the curve (p = 0 says so).
+  setup.response = special.vanishing_impact >= 0;
+  setup.options.orbit.p = setup.response ? 0 : orbit.p;
+  setup.options.orbit.q = setup.response ? 1 : orbit.q;
+  if (setup.response) return setup;
+  // η is at the orbit's own section stop, whichever stop that is.
+  setup.options.orbit.map.stop = orbit.stop;
+  setup.eta = orbit.eta;
+  setup.flight = orbit.contacts.clearance_flight;
+  setup.touched = orbit.contacts.clearance_stop;
+  setup.contact_time = orbit.contacts.clearance_time;
+  if (special.type != SpecialPointType::kGrazing || setup.flight == 0) return setup;
+  // A grazing curve's orbit is described from the impact that starts the
+  // touching flight, so that the grazing rows follow that one flight and no
+  // other: reached through earlier flights, a difference step could cross
+  // another flight's touch of a stop (a symmetric orbit in a clearance
+  // touches both stops at once) and start the flight at another impact.
+  System at = start.system;
+  SetParameter(at, options.parameter, special.point.parameter);
+  const MapResult path = ImpactMap(at, setup.options.orbit.map).Apply(orbit.eta, orbit.p, false);
+  if (path.status != MapStatus::kOk) return setup;
+  const auto before = static_cast<std::size_t>(setup.flight - 1);
+  setup.eta = path.path[before];
+  setup.options.orbit.map.stop = path.stops[before];
+  setup.flight = 0;
+  return setup;
+}
+
 void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1, double mu2) {
   const SpecialPointType type = start.special.type;
   Require(HasCurve(type),
@@ -528,17 +572,12 @@ Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
   const double mu1 = special.parameter;
   const double mu2 = GetParameter(start.system, options.parameter2);
   CheckStart(start, options, mu1, mu2);
-  // P(1,q)'s impact vanishes where the non-impacting response touches the
-  // stop: that is the curve (p = 0 says so).
-  const bool response = special.vanishing_impact >= 0;
-  CurveOptions own = options;
-  own.orbit.p = response ? 0 : special.point.orbit.p;
-  own.orbit.q = response ? 1 : special.point.orbit.q;
-  const OrbitContacts& contacts = special.point.orbit.contacts;
-  CurveProblem problem(start.system, own, special.type, contacts.clearance_flight, response);
-  const Eigen::VectorXd eta = response ? Eigen::VectorXd() : special.point.orbit.eta;
+  const CurveSetup setup = SetUp(start, options);
+  const CurveOptions& own = setup.options;
+  const bool response = setup.response;
+  CurveProblem problem(start.system, own, special.type, setup.flight, setup.touched, response);
   const CurvePoint first =
-      StartPoint(problem, problem.Join(eta, contacts.clearance_time, mu1, mu2), own);
+      StartPoint(problem, problem.Join(setup.eta, setup.contact_time, mu1, mu2), own);
 
   CurveTracer tracer(problem, special.type, own, progress);
   HalfCurve forward = tracer.Trace(first);
@@ -635,12 +674,9 @@ std::optional<CurveStart> ReducedGrazingStart(const System& system, const Branch
 
 double CompareCurveJacobian(const CurveStart& start, const CurveOptions& options,
                             const CurvePoint& point) {
-  CurveOptions own = options;
-  own.orbit.p = point.orbit.p;
-  own.orbit.q = point.orbit.q;
-  CurveProblem problem(start.system, own, start.special.type,
-                       start.special.point.orbit.contacts.clearance_flight,
-                       start.special.vanishing_impact >= 0);
+  const CurveSetup setup = SetUp(start, options);
+  CurveProblem problem(start.system, setup.options, start.special.type, setup.flight, setup.touched,
+                       setup.response);
   Require(point.x.size() == problem.Size(), "the point is not one of this start's curve");
   problem.UpdateBorders(point.x);
   Eigen::MatrixXd used, coarse, middle;

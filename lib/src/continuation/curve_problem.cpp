@@ -1,7 +1,10 @@
 #include "continuation/curve_problem.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "continuation/arclength.hpp"
 #include "continuation/defining_function.hpp"
@@ -11,15 +14,21 @@
 namespace impactkit::detail {
 
 CurveProblem::CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
-                           int grazing_flight, bool response)
+                           int grazing_flight, int grazing_stop, bool response)
     : base_(base),
       options_(options),
       type_(type),
       grazing_flight_(grazing_flight),
       response_(response),
+      touched_stop_(response ? NonImpactingTouchStop(base) : grazing_stop),
       eta_size_(response ? 0 : 2 * base.Dof()),
       size_(response ? 2 : 2 * base.Dof() + 2 + (type == SpecialPointType::kGrazing ? 1 : 0)) {
-  base_.SoleStop("two-parameter curves");
+  for (const auto& [stop, what] : {std::pair{options_.orbit.map.stop, "the orbit's section stop"},
+                                   std::pair{touched_stop_, "the stop touched"}}) {
+    Require(stop >= 0 && stop < base_.StopCount(),
+            fmt::format("{} must be one of the system's {} stops (0 to {}), got {}", what,
+                        base_.StopCount(), base_.StopCount() - 1, stop));
+  }
   GetParameter(base_, options_.parameter);  // throws for an unknown name
   GetParameter(base_, options_.parameter2);
 }
@@ -70,7 +79,7 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,
   if (response_) {
     g->resize(1);
     try {
-      (*g)(0) = NonImpactingClearance(SystemAt(Mu1(x), Mu2(x)));
+      (*g)(0) = NonImpactingClearance(SystemAt(Mu1(x), Mu2(x)), touched_stop_);
     } catch (const InvalidInput&) {
       return false;  // outside a parameter's range
     }
@@ -78,17 +87,20 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,
   }
   const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
   if (!map) return false;
-  const int c = base_.stops[0].dof, time = map->TimeIndex();
   const Eigen::VectorXd eta = Eta(x);
-  if (!(eta(time + 1 + c) > 0)) return false;
+  if (!(map->Speed(eta, map->SectionStop()) > 0)) return false;
   if (type_ == SpecialPointType::kGrazing) {
-    // The flight's state at t*, ignoring the stop: smooth on both sides of
+    // The flight's state at t*, ignoring the stops: smooth on both sides of
     // the grazing (Residual rejects the side where the orbit crosses it).
-    const std::optional<Eigen::VectorXd> start = GrazingFlightStart(*map, eta);
+    // The touched stop's gap s (x_c − xs), held kGrazingMargin inside, and
+    // v_c = 0.
+    const std::optional<FlightStart> start = GrazingFlightStart(*map, eta);
     if (!start) return false;
-    const HybridState at = map->FlightState(*start, x(eta_size_));
+    const HybridState at = map->FlightState(start->eta, x(eta_size_), start->stop);
+    const StopParameters& touched = map->GetSystem().stops[touched_stop_];
     g->resize(2);
-    *g << at.x(c) - map->GetSystem().stops[0].position + kGrazingMargin, at.v(c);
+    *g << touched.Sign() * (at.x(touched.dof) - touched.position) + kGrazingMargin,
+        at.v(touched.dof);
     return g->allFinite();
   }
   // U and D P come from one map application, which Residual has usually
@@ -108,23 +120,24 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,
   return g->allFinite();
 }
 
-std::optional<Eigen::VectorXd> CurveProblem::GrazingFlightStart(const ImpactMap& map,
-                                                                const Eigen::VectorXd& eta) const {
-  if (grazing_flight_ == 0) return eta;
-  const MapResult before = map.Apply(eta, grazing_flight_, false);
+std::optional<CurveProblem::FlightStart> CurveProblem::GrazingFlightStart(
+    const ImpactMap& map, const Eigen::VectorXd& eta) const {
+  if (grazing_flight_ == 0) return FlightStart{eta, map.SectionStop()};
+  // The impacts before the flight may be at any stops.
+  const MapResult before = map.Follow(eta, map.SectionStop(), grazing_flight_, false);
   if (before.status != MapStatus::kOk) return std::nullopt;
-  return before.eta;
+  return FlightStart{before.eta, before.stops.back()};
 }
 
 bool CurveProblem::TouchInsideFlight(const Eigen::VectorXd& x) const {
   const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
   if (!map) return false;
-  const std::optional<Eigen::VectorXd> start = GrazingFlightStart(*map, Eta(x));
+  const std::optional<FlightStart> start = GrazingFlightStart(*map, Eta(x));
   if (!start) return false;
-  const MapResult next = map->Apply(*start, 1, false);
+  const MapResult next = map->Follow(start->eta, start->stop, 1, false);
   const double t = x(eta_size_);
   const int time = map->TimeIndex();
-  return next.status == MapStatus::kOk && t > (*start)(time) && t < next.eta(time);
+  return next.status == MapStatus::kOk && t > start->eta(time) && t < next.eta(time);
 }
 
 bool CurveProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* f) const {
@@ -183,7 +196,7 @@ Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
       !DefiningGradient(x, 1.0, &gradient)) {
     return x;
   }
-  // Reflected across the linearised surface x_c(t*) = xs − margin: as far
+  // Reflected across the linearised surface s (x_c(t*) − xs) = −margin: as far
   // inside as the prediction was outside.
   const Eigen::VectorXd normal = gradient.row(0).transpose();
   const double norm2 = normal.squaredNorm();

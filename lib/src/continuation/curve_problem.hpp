@@ -25,13 +25,15 @@ constexpr double kGrazingMargin = 1e-10;
 
 class CurveProblem {
  public:
-  /// `grazing_flight`: for a grazing curve, the impact whose flight holds
-  /// the touch. `response`: a grazing curve of the non-impacting response
-  /// instead (where P(1,q)'s impact vanishes): X = (μ1, μ2) and the one
-  /// equation xs − |X_c| = 0. Throws InvalidInput for a parameter the
-  /// system lacks.
+  /// The orbit's impacts η are at options.orbit.map.stop (its section).
+  /// `grazing_flight`, `grazing_stop`: for a grazing curve, the impact
+  /// whose flight holds the touch and the stop touched. `response`: a
+  /// grazing curve of the non-impacting response instead (where P(1,q)'s
+  /// impact vanishes): X = (μ1, μ2) and the one equation s xs − |X_c| = 0
+  /// at the stop the response comes closest to at the start. Throws
+  /// InvalidInput for a parameter or stop the system lacks.
   CurveProblem(const System& base, const CurveOptions& options, SpecialPointType type,
-               int grazing_flight, bool response = false);
+               int grazing_flight, int grazing_stop, bool response = false);
 
   /// Unknowns: 2N + 2, 2N + 3 for a grazing by a new contact, 2 for the
   /// response's grazing.
@@ -47,6 +49,9 @@ class CurveProblem {
   static double Mu1(const Eigen::VectorXd& x) { return x(x.size() - 2); }
   static double Mu2(const Eigen::VectorXd& x) { return x(x.size() - 1); }
 
+  /// Grazing: the stop touched (for the response's grazing, the stop the
+  /// response comes closest to at the start).
+  int TouchedStop() const { return touched_stop_; }
   /// Grazing: t*, the time of the touch.
   double ContactTime(const Eigen::VectorXd& x) const { return x(eta_size_); }
   /// The system the problem was built on (at the start's parameters) and
@@ -94,9 +99,14 @@ class CurveProblem {
   Eigen::VectorXd Inside(const Eigen::VectorXd& x) const;
   /// The multiplier a fold (+1) or period doubling (−1) curve holds.
   double CriticalMultiplier() const { return type_ == SpecialPointType::kFold ? 1.0 : -1.0; }
-  /// Grazing: the impact state that starts the flight holding the touch.
-  std::optional<Eigen::VectorXd> GrazingFlightStart(const ImpactMap& map,
-                                                    const Eigen::VectorXd& eta) const;
+  /// Grazing: the impact state that starts the flight holding the touch,
+  /// and the stop that impact is at.
+  struct FlightStart {
+    Eigen::VectorXd eta;
+    int stop = 0;
+  };
+  std::optional<FlightStart> GrazingFlightStart(const ImpactMap& map,
+                                                const Eigen::VectorXd& eta) const;
   /// Grazing: t* lies after the flight's start and before its next impact.
   bool TouchInsideFlight(const Eigen::VectorXd& x) const;
 
@@ -105,6 +115,7 @@ class CurveProblem {
   SpecialPointType type_;
   int grazing_flight_;
   bool response_;
+  int touched_stop_;
   int eta_size_, size_;
   SigmaBorders borders_;
   mutable std::unique_ptr<BranchProblem> along1_, along2_;

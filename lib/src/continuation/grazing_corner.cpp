@@ -58,12 +58,14 @@ std::optional<Eigen::VectorXd> SolveCorner(
 std::optional<GrazingCorner> ResponseCorner(const CurveProblem& problem, double lambda,
                                             const Eigen::Vector2d& guess) {
   const int q = problem.Options().orbit.q;
+  const int stop = problem.TouchedStop();
   const Rows rows = [&](const Eigen::VectorXd& mu, Eigen::VectorXd* g) {
     if (!mu.allFinite()) return false;
     try {
       const System system = problem.SystemAt(mu(0), mu(1));
       g->resize(2);
-      *g << NonImpactingClearance(system), ResponseTouchMonodromy(system, q).GrazingLimit(lambda);
+      *g << NonImpactingClearance(system, stop),
+          ResponseTouchMonodromy(system, q, stop).GrazingLimit(lambda);
     } catch (const InvalidInput&) {
       return false;  // outside a parameter's range
     }
@@ -86,8 +88,10 @@ std::optional<std::pair<PeriodicOrbit, Eigen::Vector2d>> ReducedOrbitBeyond(
   if (path.status != MapStatus::kOk) return std::nullopt;
   OrbitOptions reduced = options;
   reduced.p = options.p - 1;
-  const Eigen::VectorXd& seed =
-      path.path[static_cast<std::size_t>(b.orbit.contacts.slowest_impact)];
+  // Its section is the stop of the impact after the vanishing one.
+  const auto after = static_cast<std::size_t>(b.orbit.contacts.slowest_impact);
+  reduced.map.stop = path.stops[after];
+  const Eigen::VectorXd& seed = path.path[after];
   const Eigen::Vector2d from(b.parameter, b.parameter2);
   for (double beyond : {1.0, 1.5, 2.0, 3.0}) {
     const Eigen::Vector2d mu = from + beyond * (guess - from);
@@ -113,14 +117,16 @@ std::optional<GrazingCorner> ReducedCorner(const CurveProblem& problem, double l
   const auto& [orbit, mu] = *beyond;
   CurveOptions options = problem.Options();
   options.orbit.p -= 1;
-  const int flight = orbit.contacts.clearance_flight;
-  const CurveProblem grazing(problem.Base(), options, SpecialPointType::kGrazing, flight);
+  options.orbit.map.stop = orbit.stop;
+  const int flight = orbit.contacts.clearance_flight, touched = orbit.contacts.clearance_stop;
+  const CurveProblem grazing(problem.Base(), options, SpecialPointType::kGrazing, flight, touched);
   const Rows limit = [&](const Eigen::VectorXd& x, Eigen::VectorXd* g) {
     try {
       const ImpactMap map(grazing.SystemAt(CurveProblem::Mu1(x), CurveProblem::Mu2(x)),
                           options.orbit.map);
-      const std::optional<SpeedSplitMonodromy> m = TouchMonodromy(
-          map, grazing.Eta(x), options.orbit.p, options.orbit.q, flight, grazing.ContactTime(x));
+      const std::optional<SpeedSplitMonodromy> m =
+          TouchMonodromy(map, grazing.Eta(x), options.orbit.p, options.orbit.q, flight,
+                         grazing.ContactTime(x), touched);
       if (!m) return false;
       *g = Eigen::VectorXd::Constant(1, kLimitRowWeight * m->GrazingLimit(lambda));
     } catch (const InvalidInput&) {

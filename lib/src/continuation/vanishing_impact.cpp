@@ -48,19 +48,39 @@ class ReducedOrbitClearance {
 
 }  // namespace
 
-double NonImpactingClearance(const System& s) {
+namespace {
+
+/// X = (K − Ω²M + iΩC)⁻¹ A, the non-impacting response's complex amplitude.
+Eigen::VectorXcd ResponseAmplitude(const System& s) {
   using Complex = std::complex<double>;
   const double w = s.omega;
   const Eigen::MatrixXcd dynamic = s.stiffness.cast<Complex>() - w * w * s.mass.cast<Complex>() +
                                    Complex(0.0, w) * s.damping.cast<Complex>();
-  const Eigen::VectorXcd x = dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
-  // Each stop's distance from the mass's rest position, less the
-  // amplitude: the least of them.
-  double clearance = std::numeric_limits<double>::infinity();
-  for (const StopParameters& stop : s.stops) {
-    clearance = std::min(clearance, stop.Sign() * stop.position - std::abs(x(stop.dof)));
+  return dynamic.partialPivLu().solve(s.forcing.cast<Complex>());
+}
+
+/// A stop's distance from its mass's rest position, less the amplitude.
+double StopClearance(const StopParameters& stop, const Eigen::VectorXcd& x) {
+  return stop.Sign() * stop.position - std::abs(x(stop.dof));
+}
+
+}  // namespace
+
+double NonImpactingClearance(const System& s) {
+  return NonImpactingClearance(s, NonImpactingTouchStop(s));
+}
+
+double NonImpactingClearance(const System& s, int stop) {
+  return StopClearance(s.stops.at(static_cast<std::size_t>(stop)), ResponseAmplitude(s));
+}
+
+int NonImpactingTouchStop(const System& s) {
+  const Eigen::VectorXcd x = ResponseAmplitude(s);
+  int least = 0;
+  for (int k = 1; k < s.StopCount(); ++k) {
+    if (StopClearance(s.stops[k], x) < StopClearance(s.stops[least], x)) least = k;
   }
-  return clearance;
+  return least;
 }
 
 std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& problem,

@@ -29,7 +29,14 @@ struct VanishingImpactPoint {
 
 /// xs − max_t x_c(t) of the non-impacting steady response X cos(Ωt − φ):
 /// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A.
+/// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A, the least over the stops.
 double NonImpactingClearance(const System& system);
+/// The same for one stop: s xs − |X_c| at stop `stop` (c its mass, s its
+/// Sign()).
+double NonImpactingClearance(const System& system, int stop);
+/// The stop the non-impacting response comes closest to (least clearance):
+/// the one it touches where P(1, q)'s impact vanishes.
+int NonImpactingTouchStop(const System& system);
 
 /// The grazing beyond the branch's last two points `a`, `b`, where impact
 /// `impact` (an index among the p impacts of b) vanishes. Empty when the

@@ -12,8 +12,9 @@ namespace impactkit {
 namespace {
 
 /// S(ε) = regular + d0 nᵀ / ε at one contact (nothing multiplied by G yet).
-SpeedSplitMonodromy SplitSaltation(const HybridSystem& hybrid, const HybridState& contact) {
-  const Stop& stop = hybrid.GetStop(0);
+SpeedSplitMonodromy SplitSaltation(const HybridSystem& hybrid, const StopContact& at) {
+  const Stop& stop = hybrid.GetStop(at.stop);
+  const HybridState& contact = at.state;
   const int n = hybrid.GetSystem().Dof(), c = stop.Dof();
   const Eigen::MatrixXd reset = stop.ResetJacobian(n);
   // f⁺ − R f⁻ with the mass arriving at `speed`: affine in it.
@@ -48,34 +49,42 @@ double SpeedSplitMonodromy::GrazingLimit(double lambda) const {
   return k.partialPivLu().determinant() < 0 ? -least : least;
 }
 
-SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<HybridState>& contacts,
+SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<StopContact>& contacts,
                                    int q) {
-  system.SoleStop("the grazing limit of an orbit's monodromy");
-  const double end = contacts.empty() ? 0.0 : contacts.front().t + q * system.ForcingPeriod();
+  const double end = contacts.empty() ? 0.0 : contacts.front().state.t + q * system.ForcingPeriod();
   Require(
-      !contacts.empty() && contacts.back().t < end,
+      !contacts.empty() && contacts.back().state.t < end,
       fmt::format("the contacts of an orbit's monodromy must lie within its q = {} forcing periods",
                   q));
+  for (const StopContact& contact : contacts) {
+    Require(contact.stop >= 0 && contact.stop < system.StopCount(),
+            fmt::format("a contact's stop must be one of the system's {} stops (0 to {}), got {}",
+                        system.StopCount(), system.StopCount() - 1, contact.stop));
+  }
   const HybridSystem hybrid(system);
   const LinearFlow& flow = hybrid.FreeFlow();
   const SpeedSplitMonodromy split = SplitSaltation(hybrid, contacts.front());
   // G: the flights and the other impacts, from the split contact round.
   Eigen::MatrixXd rest = Eigen::MatrixXd::Identity(2 * system.Dof(), 2 * system.Dof());
-  double t = contacts.front().t;
+  double t = contacts.front().state.t;
   for (std::size_t k = 1; k < contacts.size(); ++k) {
+    const HybridState& state = contacts[k].state;
     const SpeedSplitMonodromy impact = SplitSaltation(hybrid, contacts[k]);
     // n · f⁻ = s v_c: the position part of n on the velocities.
-    const double speed = impact.normal.head(system.Dof()).dot(contacts[k].v);
-    rest = impact.At(speed) * flow.Transition(contacts[k].t - t) * rest;
-    t = contacts[k].t;
+    const double speed = impact.normal.head(system.Dof()).dot(state.v);
+    rest = impact.At(speed) * flow.Transition(state.t - t) * rest;
+    t = state.t;
   }
   rest = flow.Transition(end - t) * rest;
   return {rest * split.regular, rest * split.singular, split.normal};
 }
 
-SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q) {
+SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q, int stop_index) {
+  Require(stop_index >= 0 && stop_index < system.StopCount(),
+          fmt::format("the stop touched must be one of the system's {} stops (0 to {}), got {}",
+                      system.StopCount(), system.StopCount() - 1, stop_index));
   const HybridSystem hybrid(system);
-  const Stop& stop = hybrid.GetStop(0);
+  const Stop& stop = hybrid.GetStop(stop_index);
   const LinearFlow& flow = hybrid.FreeFlow();
   // x_c(t) = a cos Ωt + b sin Ωt: the stop's side of it is largest at
   // Ωt = atan2(s b, s a).
@@ -87,22 +96,25 @@ SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q) {
   const double b = stop.Sign() * touch.x(stop.Dof());
   touch.t = std::atan2(b, a) / (2.0 * std::numbers::pi) * period;
   flow.SteadyState(touch.t, &touch.x, &touch.v);
-  return SplitMonodromy(system, {touch}, q);
+  return SplitMonodromy(system, {{touch, stop_index}}, q);
 }
 
 std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
-                                                  int p, int q, int flight, double t) {
+                                                  int p, int q, int flight, double t, int stop) {
   const MapResult path = map.Apply(eta, p, false);
   if (path.status != MapStatus::kOk) return std::nullopt;
-  const Eigen::VectorXd& start =
-      flight == 0 ? eta : path.path[static_cast<std::size_t>(flight - 1)];
-  std::vector<HybridState> contacts = {map.FlightState(start, t)};
+  // The impact that starts the flight, and its stop.
+  const auto k0 = static_cast<std::size_t>(flight - 1);
+  const Eigen::VectorXd& start = flight == 0 ? eta : path.path[k0];
+  const int start_stop = flight == 0 ? map.SectionStop() : path.stops[k0];
+  std::vector<StopContact> contacts = {{map.FlightState(start, t, start_stop), stop}};
   // The impacts after the touch, the orbit's first ones shifted a period on.
   const double shift = q * map.GetSystem().ForcingPeriod();
   for (int k = flight; k < flight + p; ++k) {
-    HybridState impact = map.ToState(path.path[static_cast<std::size_t>(k % p)]);
+    const auto at = static_cast<std::size_t>(k % p);
+    HybridState impact = map.ToState(path.path[at], path.stops[at]);
     if (k >= p) impact.t += shift;
-    contacts.push_back(impact);
+    contacts.push_back({impact, path.stops[at]});
   }
   return SplitMonodromy(map.GetSystem(), contacts, q);
 }

@@ -167,7 +167,7 @@ Eigen::VectorXcd PencilMultipliers(const SpeedSplitMonodromy& split, double spee
 /// ~ε ‖D P_I^p‖ absolutely: the small ones are lost (λ2 ~ 4e-10 against
 /// an error ~2e-7 at v = 7e-10). Where that error exceeds 1e-9 of the
 /// smallest, all but the largest come from the split monodromy's pencil
-/// at the slowest impact (one stop; docs/theory.md §5b).
+/// at the slowest impact (at any stop; docs/theory.md §5b).
 Eigen::VectorXcd Multipliers(const ImpactMap& map, const std::vector<Eigen::VectorXd>& etas,
                              const std::vector<int>& stops, int q,
                              const Eigen::MatrixXd& jacobian) {
@@ -175,8 +175,7 @@ Eigen::VectorXcd Multipliers(const ImpactMap& map, const std::vector<Eigen::Vect
       SortedByModulus(Eigen::EigenSolver<Eigen::MatrixXd>(jacobian).eigenvalues());
   constexpr double kRelativeAccuracy = 1e-9;
   const double error = std::numeric_limits<double>::epsilon() * jacobian.norm();
-  if (lambda.size() < 2 || map.GetSystem().StopCount() != 1 ||
-      !(error > kRelativeAccuracy * std::abs(lambda(lambda.size() - 1)))) {
+  if (lambda.size() < 2 || !(error > kRelativeAccuracy * std::abs(lambda(lambda.size() - 1)))) {
     return lambda;
   }
   // The contacts from the slowest impact on, within q periods.
@@ -185,11 +184,11 @@ Eigen::VectorXcd Multipliers(const ImpactMap& map, const std::vector<Eigen::Vect
   for (int k = 1; k < p; ++k) {
     if (map.Speed(etas[k], stops[k]) < map.Speed(etas[slowest], stops[slowest])) slowest = k;
   }
-  std::vector<HybridState> contacts;
+  std::vector<StopContact> contacts;
   for (int k = 0; k < p; ++k) {
     const int at = (slowest + k) % p;
-    contacts.push_back(map.ToState(etas[at], stops[at]));
-    if (at < slowest) contacts.back().t += q * map.GetSystem().ForcingPeriod();
+    contacts.push_back({map.ToState(etas[at], stops[at]), stops[at]});
+    if (at < slowest) contacts.back().state.t += q * map.GetSystem().ForcingPeriod();
   }
   const Eigen::VectorXcd pencil = PencilMultipliers(SplitMonodromy(map.GetSystem(), contacts, q),
                                                     map.Speed(etas[slowest], stops[slowest]));

@@ -10,11 +10,15 @@
 ///     fold             σ(D P − I) = 0      (σ relative to D P's size,
 ///     period doubling  σ(D P + I) = 0       docs/continuation.md)
 ///     Neimark–Sacker   Π_{i<j} (λ_i λ_j − 1) = det(D P ⊙ D P − I) = 0
-///     grazing          x_c(t*) = xs − δ,  v_c(t*) = 0   (t* in one flight;
-///                      δ = 1e-10 keeps the touch on the orbit's side)
+///     grazing          s (x_c(t*) − xs) = −δ,  v_c(t*) = 0   (t* in one
+///                      flight; δ = 1e-10 keeps the touch on the orbit's side)
 ///
-/// (P(1,q)'s vanishing impact: X = (μ1, μ2) and xs − |X_c| = 0 for the
-/// non-impacting response X_c, see CurveStart.)
+/// (P(1,q)'s vanishing impact: X = (μ1, μ2) and s xs − |X_c| = 0 for the
+/// non-impacting response X_c, see CurveStart.) With several stops η is at
+/// the start orbit's section stop (PeriodicOrbit::stop) and the grazing
+/// rows hold the stop touched (OrbitContacts::clearance_stop; for the
+/// response, the stop it comes closest to): c its mass, xs its position, s
+/// its side (+1 above, −1 below).
 ///
 /// where σ(A) is the minimally augmented function of A (Govaerts): the last
 /// component of the solution of [A b; cᵀ 0] (v, σ) = (0, 1) with borders b,
@@ -94,7 +98,7 @@ struct CurvePoint {
   double parameter2 = 0.0;  ///< μ2
   double arclength = 0.0;   ///< from the start, signed by direction
   PeriodicOrbit orbit;      ///< at (μ1, μ2)
-  /// The defining functions here (one value; grazing: x_c(t*) − xs and
+  /// The defining functions here (one value; grazing: s (x_c(t*) − xs) + δ and
   /// v_c(t*)): zero to the corrector's tolerance.
   Eigen::VectorXd defining;
   double contact_time = 0.0;  ///< grazing: t*, the time of the touch
@@ -147,8 +151,9 @@ struct Curve {
 /// p and q are the curve's. A grazing is a new contact (vanishing_impact <
 /// 0), or P(1,q)'s impact vanishing: the curve is then where the
 /// non-impacting response X cos(Ωt − φ), X = (K − Ω²M + iΩC)⁻¹ A, touches
-/// the stop, |X_c(μ1, μ2)| = xs (the curve's p is 0, its points have no
-/// orbit).
+/// the stop it comes closest to, |X_c(μ1, μ2)| = s xs (the curve's p is 0,
+/// its points have no orbit). Any stop of the system: the orbit's η is at
+/// its own section stop.
 struct CurveStart {
   System system;
   SpecialPoint special;

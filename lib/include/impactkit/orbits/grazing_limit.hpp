@@ -54,24 +54,35 @@ struct SpeedSplitMonodromy {
   double GrazingLimit(double lambda) const;
 };
 
-/// M(ε) of an orbit of `system` (one stop) whose contacts in q forcing
-/// periods are `contacts`, in time order, each the state just before it:
-/// the first is the one split (its speed towards the stop replaced by ε;
+/// A contact of an orbit: the state just before it and the stop (an index
+/// into System::stops) it is at, whose reset and gap it meets.
+struct StopContact {
+  HybridState state;
+  int stop = 0;
+};
+
+/// M(ε) of an orbit of `system` whose contacts in q forcing periods are
+/// `contacts`, in time order, each the state just before it at its stop:
+/// the first is the one split (its speed towards its stop replaced by ε;
 /// it may be a touch, speed 0), the others impacts at their own speeds.
-/// Throws InvalidInput for an empty list or one not within q periods.
-SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<HybridState>& contacts,
+/// Throws InvalidInput for an empty list, one not within q periods, or a
+/// stop the system lacks.
+SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<StopContact>& contacts,
                                    int q);
 
-/// The same at the non-impacting response's closest approach to the stop:
-/// on the curve where P(1, q)'s impact vanishes (the response touches the
-/// stop there), the limit of the orbit's monodromy as ε → 0.
-SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q);
+/// The same at the non-impacting response's closest approach to `stop`:
+/// on the curve where P(1, q)'s impact vanishes (the response touches that
+/// stop there: the one it comes closest to), the limit of the orbit's
+/// monodromy as ε → 0. Throws InvalidInput for a stop the system lacks.
+SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q, int stop);
 
 /// The same at time t in flight `flight` (0: the one after η) of the orbit
-/// of `map` with p impacts through η, q periods: where P(p + 1, q)'s impact
-/// vanishes (the orbit touches the stop at t), the limit of that orbit's
-/// monodromy. Empty if the map fails along the orbit.
+/// of `map` with p impacts through η (at the map's section stop), q
+/// periods, touching stop `stop` at t: where P(p + 1, q)'s impact there
+/// vanishes, the limit of that orbit's monodromy. The orbit's impacts keep
+/// the stops the map finds them at (MapResult::stops). Empty if the map
+/// fails along the orbit.
 std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
-                                                  int p, int q, int flight, double t);
+                                                  int p, int q, int flight, double t, int stop);
 
 }  // namespace impactkit
