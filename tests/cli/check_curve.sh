@@ -8,11 +8,15 @@
 # the same curve as the direct start; P(1,2)'s vanishing impact is the
 # non-impacting response's grazing, and its fold curve begins at a corner
 # on it; a curve stopped by --max-points names the impact vanishing
-# nearby; a sticking family's JSON is refused as a start, with its reason.
+# nearby; a sticking family's JSON is refused as a start, with its reason;
+# a system with two stops (one mass in a clearance) has curves too, from
+# the direct start and from `continue --json`, whose special point names
+# the stop its eta is at.
 #
-#     check_curve.sh IMPACTKIT
+#     check_curve.sh IMPACTKIT SOURCE_DIR
 source "$(dirname "$0")/testlib.sh"
 impactkit=$1
+systems=$2/examples/systems
 
 "$impactkit" curve --type period_doubling --p 1 --q 1 --omega 1.6 --param omega --param2 r \
   --from2 0.5 --to2 0.95 --json "$work/pd.json" --out "$work/pd.csv" >"$work/stdout" ||
@@ -80,4 +84,22 @@ status=0
   2>"$work/stderr" || status=$?
 ((status == 2)) && grep -q "a sticking family P(inf,q) (.continue --sticking.); curve follows" \
   "$work/stderr" || fail "sticking JSON: exit $status, $(cat "$work/stderr")"
+# Two stops: the clearance's symmetric P(2,1) grazes both stops at once at
+# omega = 0.7010019931; its grazing curve in (omega, A1) runs from bound to
+# bound (docs/several-stops.md).
+"$impactkit" curve --system "$systems/clearance-1dof.toml" --omega 1 --type grazing \
+  --param2 A1 --from 0.5 --to 1.2 --from2 0.8 --to2 1.2 --json "$work/c2.json" \
+  >"$work/stdout" || fail "two-stop curve: $(cat "$work/stdout")"
+grep -q "start:      grazing at omega = 0.7010019931" "$work/stdout" ||
+  fail "two-stop curve start: $(cat "$work/stdout")"
+grep -q "ends:     parameter_bound (reached omega = .*, A1 = 1.2)" "$work/stdout" ||
+  fail "two-stop curve end: $(cat "$work/stdout")"
+"$impactkit" continue --system "$systems/clearance-1dof.toml" --start 1 --from 0.5 --to 1 \
+  --json "$work/c2-branch.json" >/dev/null || fail "two-stop continue failed"
+json=$(tr -d ' \n' <"$work/c2-branch.json")
+[[ $json == *'"stop":'[12]* ]] || fail "special point without its stop: $json"
+"$impactkit" curve --start-json "$work/c2-branch.json" --point 1 --param2 A1 --from 0.5 --to 1.2 \
+  --from2 0.8 --to2 1.2 >"$work/stdout2" || fail "two-stop --start-json: $(cat "$work/stdout2")"
+[[ $(grep "^  ends:" "$work/stdout") == $(grep "^  ends:" "$work/stdout2") ]] ||
+  fail "--start-json gave another two-stop curve: $(cat "$work/stdout2")"
 echo ok
