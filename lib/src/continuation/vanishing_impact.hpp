@@ -28,7 +28,6 @@ struct VanishingImpactPoint {
 };
 
 /// xs − max_t x_c(t) of the non-impacting steady response X cos(Ωt − φ):
-/// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A.
 /// xs − |X_c| with X = (K − Ω²M + iΩC)⁻¹ A, the least over the stops.
 double NonImpactingClearance(const System& system);
 /// The same for one stop: s xs − |X_c| at stop `stop` (c its mass, s its
