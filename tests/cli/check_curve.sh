@@ -102,4 +102,11 @@ json=$(tr -d ' \n' <"$work/c2-branch.json")
   --from2 0.8 --to2 1.2 >"$work/stdout2" || fail "two-stop --start-json: $(cat "$work/stdout2")"
 [[ $(grep "^  ends:" "$work/stdout") == $(grep "^  ends:" "$work/stdout2") ]] ||
   fail "--start-json gave another two-stop curve: $(cat "$work/stdout2")"
+# A start JSON whose stop the system lacks is refused with the reason.
+sed 's/"stop": *[12]/"stop": 7/g' "$work/c2-branch.json" >"$work/c2-bad.json"
+status=0
+"$impactkit" curve --start-json "$work/c2-bad.json" --point 1 --param2 A1 --from 0.5 --to 1.2 \
+  --from2 0.8 --to2 1.2 >/dev/null 2>"$work/stderr" || status=$?
+((status == 2)) && grep -q "stop 7 is not one of the system's 2 stops" "$work/stderr" ||
+  fail "a stop the system lacks: exit $status, $(cat "$work/stderr")"
 echo ok
