@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -134,4 +135,81 @@ TEST_CASE("signal derivative bounds hold everywhere after their start", "[flow]"
       CHECK_THAT(slope, WithinAbs(v(n - 1) - 0.1 * r.omega * std::sin(r.omega * t), 1e-14));
     }
   }
+}
+
+// The gap after an impact is 0 exactly; from there its change over a short
+// flight must be rounded relative to that change (the terms' size times the
+// flight's duration s), not to the terms' size: that is what places a slow
+// bounce's return (docs/theory.md §4). The reference is the closed form of
+// the 1-DOF flight written without cancellation in long double.
+TEST_CASE(
+    "an anchored signal's and a state's change since the flight's start are rounded "
+    "relative to themselves",
+    "[flow]") {
+  constexpr double m = 1.0, k = 1.0, c = 0.1, a = 1.2, omega = 0.46, xs = 0.3;
+  constexpr double t0 = 3.7, v0 = -1e-6;  // just after an impact, leaving the stop slowly
+  const LinearFlow flow(Eigen::MatrixXd::Constant(1, 1, m), Eigen::MatrixXd::Constant(1, 1, c),
+                        Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, a),
+                        Eigen::VectorXd::Zero(1), omega);
+  const Eigen::VectorXd z0 =
+      flow.Transient(t0, Eigen::VectorXd::Constant(1, xs), Eigen::VectorXd::Constant(1, v0));
+  Signal gap = flow.Output(
+      flow.Prepare({Eigen::RowVectorXd::Ones(1), Eigen::RowVectorXd::Zero(1), 0.0, -xs}), t0, z0);
+  gap.AnchorAt(0.0, v0);
+  // x_p = X cos θ, θ = Ωt − φ; the transient from (xs − x_p, v0 − v_p) at t0.
+  // Every constant in long double: one rounded in double would put an error
+  // ~ε s into the increments checked below.
+  const long double w = omega, detuning = k - m * w * w;
+  const long double amplitude = a / std::hypot(detuning, c * w);
+  const long double theta0 = w * static_cast<long double>(t0) - std::atan2(c * w, detuning);
+  const long double decay = c / (2 * static_cast<long double>(m));
+  const long double rate = std::sqrt(k / static_cast<long double>(m) - decay * decay);
+  const long double dx = xs - amplitude * std::cos(theta0);
+  const long double dv = v0 + amplitude * w * std::sin(theta0);
+  for (const double step : {1e-9, 1e-6, 1e-3, 0.1, 1.0, 4.0, 200.0}) {
+    const double s = (t0 + step) - t0;  // the step the signal sees (exact)
+    // x(t0 + s) − xs = Δx_p + (Φ11 − 1) dx + Φ12 dv, each without cancellation.
+    const long double half_step = w * s / 2;
+    const long double steady = -2 * amplitude * std::sin(theta0 + half_step) * std::sin(half_step);
+    const long double sine = std::sin(rate * s), half_sine = std::sin(rate * s / 2);
+    const long double cosine_part = std::cos(rate * s) + decay / rate * sine;
+    const long double phi11_increment =
+        std::expm1(-decay * s) * cosine_part - 2 * half_sine * half_sine + decay / rate * sine;
+    const long double phi12 = std::exp(-decay * s) * sine / rate;
+    const double expected = static_cast<double>(steady + phi11_increment * dx + phi12 * dv);
+    // v(t0 + s) − v0 = Δv_p + Φ21 dx + (Φ22 − 1) dv.
+    const long double steady_velocity =
+        -2 * amplitude * w * std::cos(theta0 + half_step) * std::sin(half_step);
+    const long double phi21 = -(k / m) / rate * std::exp(-decay * s) * sine;
+    const long double phi22_increment =
+        std::expm1(-decay * s) * (std::cos(rate * s) - decay / rate * sine) -
+        2 * half_sine * half_sine - decay / rate * sine;
+    const double expected_velocity =
+        static_cast<double>(steady_velocity + phi21 * dx + phi22_increment * dv);
+    CAPTURE(s, expected, expected_velocity);
+    // The terms are of size ~1 (X ≈ 1.4, the rates ≤ 1). The anchored gap
+    // is value + slope s + the terms' second-order remainders, ~s²: 32 ulps
+    // of s² (and of the result), beside the reference's own rounding (16
+    // long-double ulps of its first-order terms, ~s). An evaluation from
+    // the first order on would err by ~ε s, 100 times more at s = 1e-9.
+    // Beyond s = 1/ρ = 1 the terms' own rounding, ~ε: the anchored sum
+    // would err by ~ε s there, 200 times more at s = 200.
+    constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+    const double reference_rounding = 16 * std::numeric_limits<long double>::epsilon() * s;
+    const double change = std::min(s, 1.0);
+    double value, slope, curvature;
+    gap.PreciseValueSlopeCurvature(t0 + s, &value, &slope, &curvature);
+    CHECK(std::abs(value - expected) <=
+          32 * kEpsilon * (change * change + std::abs(expected)) + reference_rounding);
+    // The state from the flight's start, by first-order increments (~s),
+    // to 32 ulps of s, and of the start's own values.
+    Eigen::VectorXd x, v;
+    flow.StateFrom(t0, Eigen::VectorXd::Constant(1, xs), Eigen::VectorXd::Constant(1, v0), z0,
+                   t0 + s, &x, &v);
+    CHECK(std::abs((x(0) - xs) - expected) <= 32 * kEpsilon * s + kEpsilon * xs);
+    CHECK(std::abs((v(0) - v0) - expected_velocity) <= 32 * kEpsilon * s + kEpsilon * std::abs(v0));
+  }
+  double value, slope, curvature;
+  gap.PreciseValueSlopeCurvature(t0, &value, &slope, &curvature);
+  CHECK(value == 0.0);
 }

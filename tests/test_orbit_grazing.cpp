@@ -143,17 +143,23 @@ TEST_CASE("below the rounding floor a near-grazing impact is found and reported 
 TEST_CASE("the orbit of the issue's command is found from its exact solution", "[orbit-grazing]") {
   // `impactkit orbit --p 1 --q 1 --guess 0.8509130733897027,7.422846623612595e-07`
   // at δ = 1e-5 stopped at "residual 1.41e-11 after 2 iterations": Newton on
-  // the map cannot get U below its rounding, ~ε ‖DP‖ with ‖DP‖ ~ 1e6.
+  // the map could not get U below its rounding, ~ε ‖DP‖ with ‖DP‖ ~ 1e6, and
+  // the fixed-time formulation took over. Since the map's arrivals are
+  // refined from the gap's value and slope at the impact (Signal::AnchorAt)
+  // U is evaluated to ~6e-12 there and the map's own solve converges;
+  // either way the orbit is the closed form's.
   const double omega = 3.674033251526545;
   PeriodicOrbit orbit;
   const OrbitSummary summary = FindOrbit(
       SystemB(omega), Eigen::Vector2d(0.8509130733897027, 7.422846623612595e-07), {}, &orbit);
   INFO(summary.BriefReport());
   REQUIRE(summary.termination == Termination::kConverged);
-  CHECK(summary.used_shooting);
-  CHECK(summary.shooting_residual <= 1e-15);
-  CHECK(summary.residual > 1e-11);  // what the map's Newton could not beat
-  CHECK(summary.residual <= summary.residual_floor);
+  if (summary.used_shooting) {
+    CHECK(summary.shooting_residual <= 1e-15);
+    CHECK(summary.residual <= summary.residual_floor);
+  } else {
+    CHECK(summary.residual <= 1e-11);
+  }
   CHECK_THAT(orbit.multipliers(0).real(), WithinRel(-1078484.94, 1e-8));
   const SdofP11 expected = ClosedFormOrbit(Parameters(omega));
   CHECK_THAT(orbit.eta(1), WithinRel(expected.u, 1e-8));

@@ -16,12 +16,21 @@ impacts.
 
     sdof_chatter_mp.py m c k A xs r OMEGA...
     sdof_chatter_mp.py m c k A xs r --end LOW HIGH
+    sdof_chatter_mp.py m c k A xs r --rounding TRIALS OMEGA
 
 The second form locates the end of the sticking family between LOW (the
 chatter after a release accumulates while the stop pushes) and HIGH (it
 does not: a bounce does not come back, or the force has turned at an
 impact) by bisection to 1e-13.
+
+The third measures the floor that double precision puts on the
+accumulation point: each impact time is moved by a random fraction in
+[-1/2, 1/2] of its double's ulp (what storing it as a double does), the
+state taken there with x = xs, and the accumulation point's shifts over
+TRIALS such runs printed with their rms.
 """
+import math
+import random
 import sys
 
 import mpmath as mp
@@ -79,10 +88,12 @@ def next_impact(x, xs, t0, guess_span, period):
     return None
 
 
-def chatter(m, c, k, a_force, xs, r, omega):
+def chatter(m, c, k, a_force, xs, r, omega, rounding=None):
     """The accumulation point of the chatter after the release at Ω and its
     number of impacts, or None if it does not accumulate before the next
-    release (past the family's end the mass leaves the stop instead)."""
+    release (past the family's end the mass leaves the stop instead).
+    `rounding`, a random.Random, moves each impact time within half an ulp
+    of its double."""
     period = 2 * mp.pi / omega
     release = mp.acos(k * xs / a_force) / omega
     t, x0, v0 = release, xs, mp.mpf(0)
@@ -93,6 +104,8 @@ def chatter(m, c, k, a_force, xs, r, omega):
         te = next_impact(x, xs, t, span, period)
         if te is None or te > release + period:
             return None
+        if rounding is not None:
+            te += mp.mpf(rounding.uniform(-0.5, 0.5)) * math.ulp(float(te))
         u = v(te)
         impacts += 1
         accel = (a_force * mp.cos(omega * te) - k * xs - c * (-r * u)) / m
@@ -112,10 +125,23 @@ def locate_end(m, c, k, a_force, xs, r, low, high):
     print(f"family end between {mp.nstr(low, 16)} and {mp.nstr(high, 16)}")
 
 
+def rounding_floor(m, c, k, a_force, xs, r, trials, omega):
+    exact = chatter(m, c, k, a_force, xs, r, omega)[0]
+    shifts = [
+        float(chatter(m, c, k, a_force, xs, r, omega, random.Random(seed))[0] - exact)
+        for seed in range(trials)
+    ]
+    rms = math.sqrt(sum(d * d for d in shifts) / trials)
+    print(f"accumulation point shifted by {' '.join(f'{d:.2e}' for d in shifts)}; rms {rms:.2e}")
+
+
 def main():
     m, c, k, a_force, xs, r = (mp.mpf(v) for v in sys.argv[1:7])
     if sys.argv[7] == "--end":
         locate_end(m, c, k, a_force, xs, r, mp.mpf(sys.argv[8]), mp.mpf(sys.argv[9]))
+        return
+    if sys.argv[7] == "--rounding":
+        rounding_floor(m, c, k, a_force, xs, r, int(sys.argv[8]), mp.mpf(sys.argv[9]))
         return
     for omega_text in sys.argv[7:]:
         omega = mp.mpf(omega_text)

@@ -31,6 +31,14 @@ Point Evaluate(const Signal& signal, double t) {
   return p;
 }
 
+/// The same from the signal's anchor, if it has one (Signal::AnchorAt):
+/// the root refinement's points, whose rounding places the crossing.
+Point EvaluatePrecisely(const Signal& signal, double t) {
+  Point p{t, 0.0, 0.0, 0.0};
+  signal.PreciseValueSlopeCurvature(t, &p.w, &p.dw, &p.d2w);
+  return p;
+}
+
 /// B3 >= sup|w'''| over a flight, with the multiples every step uses
 /// (computed once per flight: each step took five divisions by it).
 struct ThirdBound {
@@ -181,20 +189,24 @@ double TimeTolerance(double t, const EventOptions& options) {
 /// make it converge in a few steps, and the bracket invariant is what the
 /// caller relies on. A Newton step from t, at distance e <= |w(t)|/slope_bound
 /// from the root, lands within curvature_bound e² / (2 w'(t)) of it (Taylor);
-/// once that is below the tolerance the step is returned without the
-/// evaluation that would only confirm it (one of about ten per flight).
+/// once that is below the rounding of t (half an ulp) the step is returned
+/// without the evaluation that would only confirm it (one of about ten per
+/// flight). Below the tolerance but above the rounding it is not: in a
+/// chatter sequence the accumulation point moves by 10³–10⁴ times an
+/// impact's time error (docs/theory.md §4).
 double RefineRoot(const Signal& w, Point a, Point b, double t, double slope_bound,
                   double curvature_bound, const EventOptions& options) {
   for (int iteration = 0; iteration < 100; ++iteration) {
     if (!(t > a.t && t < b.t)) t = 0.5 * (a.t + b.t);
-    const Point p = Evaluate(w, t);
+    const Point p = EvaluatePrecisely(w, t);
     if (p.w == 0) return t;
     (p.w < 0 ? a : b) = p;
     const double tolerance = TimeTolerance(t, options);
     const double newton = t - p.w / p.dw;
     const double distance = std::abs(p.w) / slope_bound;
+    const double rounding = 0.5 * std::numeric_limits<double>::epsilon() * std::abs(t);
     const bool converged = std::abs(newton - t) <= tolerance ||
-                           0.5 * curvature_bound * distance * distance <= tolerance * p.dw;
+                           0.5 * curvature_bound * distance * distance <= rounding * p.dw;
     if (converged) return std::clamp(newton, a.t, b.t);
     if (b.t - a.t <= tolerance) return b.t;
     t = newton;

@@ -149,6 +149,31 @@ void Signal::ValueSlopeCurvature(double t, double* value, double* slope, double*
   *curvature = d2w - omega_ * omega_ * forced.real();
 }
 
+void Signal::PreciseValueSlopeCurvature(double t, double* value, double* slope,
+                                        double* curvature) const {
+  const double tau = t - t0_;
+  // Beyond the span the anchor's linear part rounds above the plain sum.
+  if (!anchored_ || !(tau >= 0.0 && tau <= clock_->AnchoredSpan())) {
+    ValueSlopeCurvature(t, value, slope, curvature);
+    return;
+  }
+  double w = anchor_ + anchor_slope_ * tau, dw = 0.0, d2w = 0.0;
+  for (std::size_t j = 0; j < terms_.size(); ++j) {
+    double ec, es, ec_second, es_second;
+    clock_->EvaluateSecond(static_cast<int>(j), tau, &ec, &es, &ec_second, &es_second);
+    const ModeTerms& m = terms_[j];
+    w += m.alpha[0] * ec_second + m.gamma[0] * es_second;
+    dw += m.alpha[1] * ec + m.gamma[1] * es;
+    d2w += m.alpha[2] * ec + m.gamma[2] * es;
+  }
+  // P e^{iΩτ} = P (1 + iΩτ + E), its first two terms in the anchor.
+  const std::complex<double> second = forced_ * clock_->RotorSecondIncrement(tau);
+  const std::complex<double> forced = forced_ * std::complex<double>(1.0, omega_ * tau) + second;
+  *value = w + second.real();
+  *slope = dw - omega_ * forced.imag();
+  *curvature = d2w - omega_ * omega_ * forced.real();
+}
+
 Signal Signal::Derivative(int order) const {
   Signal d = *this;
   for (std::size_t j = 0; j < d.terms_.size(); ++j) {
@@ -159,7 +184,10 @@ Signal Signal::Derivative(int order) const {
   }
   for (int k = 0; k < order; ++k) d.forced_ *= std::complex<double>(0.0, omega_);
   d.forced_magnitude_ = std::abs(d.forced_);
-  if (order > 0) d.constant_ = 0.0;
+  if (order > 0) {
+    d.constant_ = 0.0;
+    d.anchored_ = false;
+  }
   return d;
 }
 
@@ -214,6 +242,8 @@ Signal Signal::Negated() const {
   }
   n.forced_ = -forced_;
   n.constant_ = -constant_;
+  n.anchor_ = -anchor_;
+  n.anchor_slope_ = -anchor_slope_;
   return n;
 }
 
@@ -360,6 +390,30 @@ void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::Ve
   *v = y.tail(n);
 }
 
+void LinearFlow::StateFrom(double t0, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0,
+                           const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
+                           Eigen::VectorXd* v) const {
+  thread_local Eigen::VectorXd dz, dy;
+  const Eigen::Index n = dof_;
+  const double tau = t - t0;
+  // y(t) − y(t0) = V [(e^{Bτ} − I) z0 + Re(Z e^{iΩt0} (e^{iΩτ} − 1))], and
+  // e^{iΩt0} (e^{iΩτ} − 1) = −e^{iΩt} conj(e^{iΩτ} − 1): the rotor at t,
+  // which the next flight's Transient asks for too (ForcingRotor keeps one).
+  const std::complex<double> forced_increment =
+      -ForcingRotor(omega_, t) * std::conj(clock_.RotorIncrement(tau));
+  dz = (steady_forced_ * forced_increment).real();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double ec, es, ec_increment;
+    clock_.Evaluate(static_cast<int>(j), tau, &ec, &es, &ec_increment);
+    const Eigen::Vector2d zj = z0.segment<2>(2 * j);
+    dz.segment<2>(2 * j) += ec_increment * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
+  }
+  dy.resize(2 * n);
+  Multiply(basis_, dz, &dy);
+  *x = x0 + dy.head(n);
+  *v = v0 + dy.tail(n);
+}
+
 void LinearFlow::SteadyState(double t, Eigen::VectorXd* x, Eigen::VectorXd* v) const {
   State(t, Eigen::VectorXd::Zero(2 * dof_), t, x, v);
 }
@@ -399,6 +453,7 @@ void LinearFlow::Output(const PreparedOutput& output, double t0, const Eigen::Ve
   signal->forced_ = output.forced * ForcingRotor(omega_, t0);
   signal->forced_magnitude_ = std::abs(signal->forced_);
   signal->constant_ = output.constant;
+  signal->anchored_ = false;
 }
 
 Eigen::MatrixXd LinearFlow::Transition(double tau) const {

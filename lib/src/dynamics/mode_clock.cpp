@@ -1,5 +1,7 @@
 #include "impactkit/dynamics/mode_clock.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -15,12 +17,59 @@ double TauDecayMax(double a, double tau0) {
   return tau0 >= 1.0 / a ? tau0 * std::exp(-a * tau0) : 1.0 / (a * std::numbers::e);
 }
 
-/// e^{λτ} from exp and sincos.
-std::complex<double> Exponential(std::complex<double> rate, double tau) {
-  return std::exp(rate.real() * tau) * std::polar(1.0, rate.imag() * tau);
+/// e^{λτ} and e^{λτ} − 1 in long double.
+struct ExponentialParts {
+  std::complex<long double> value{1.0L, 0.0L}, increment{0.0L, 0.0L};
+
+  /// At z = λτ with |z| <= 4, from the series: 40 terms take 4^n / n! below 1e-20.
+  static ExponentialParts At(std::complex<long double> z) {
+    ExponentialParts parts;
+    std::complex<long double> term = z;
+    for (int n = 2; n <= 42; ++n) {
+      parts.increment += term;
+      term *= z / static_cast<long double>(n);
+    }
+    parts.value = 1.0L + parts.increment;
+    return parts;
+  }
+  /// From τ to τ + σ, with `step` the parts at σ:
+  /// e^{λ(τ+σ)} − 1 = e^{λσ}(e^{λτ} − 1) + (e^{λσ} − 1).
+  void Advance(const ExponentialParts& step) {
+    increment = step.value * increment + step.increment;
+    value = step.value * value;
+  }
+};
+
+/// The tables' entries at τ = k σ, k < count, by the recurrence above:
+/// each step's rounding is an ulp of long double, so 256 steps stay below
+/// an ulp of double, where exp, expm1 and sincos per entry made a table's
+/// construction cost as much as ten thousand evaluations of it.
+template <std::size_t kCount>
+void FillTables(std::complex<double> rate, double sigma,
+                std::array<std::complex<double>, kCount>* values,
+                std::array<std::complex<double>, kCount>* increments) {
+  const std::complex<long double> rate_ld(rate.real(), rate.imag());
+  const ExponentialParts step = ExponentialParts::At(rate_ld * static_cast<long double>(sigma));
+  ExponentialParts parts;
+  auto narrow = [](std::complex<long double> z) {
+    return std::complex<double>(static_cast<double>(z.real()), static_cast<double>(z.imag()));
+  };
+  for (std::size_t k = 0; k < kCount; ++k) {
+    (*values)[k] = narrow(parts.value);
+    (*increments)[k] = narrow(parts.increment);
+    parts.Advance(step);
+  }
 }
 
 }  // namespace
+
+/// e^x (cos y + i sin y) − 1 with x + iy = λτ is
+/// (expm1(x) cos y − 2 sin²(y/2)) + i e^x sin y.
+std::complex<double> ExponentialIncrement(std::complex<double> rate, double tau) {
+  const double x = rate.real() * tau, y = rate.imag() * tau;
+  const double half_sine = std::sin(0.5 * y);
+  return {std::expm1(x) * std::cos(y) - 2.0 * half_sine * half_sine, std::exp(x) * std::sin(y)};
+}
 
 std::complex<double> ForcingRotor(double omega, double t) {
   struct Memo {
@@ -40,6 +89,36 @@ ModeBasis ModeBasis::Make(double decay, double beta2) {
   mode.lightly_damped = beta2 > 0 && mode.root >= std::numbers::e * decay;
   if (mode.lightly_damped) mode.modulus = std::sqrt(decay * decay + beta2);
   return mode;
+}
+
+double ModeBasis::CosineIncrement(double tau) const {
+  if (beta2 > 0) return ExponentialIncrement({-decay, root}, tau).real();
+  // Over-damped: e^{-aτ} cosh(bτ) − 1 = (e^{-(a−b)τ} − 1 + e^{-(a+b)τ} − 1) / 2.
+  if (beta2 < 0)
+    return 0.5 * (std::expm1(-(decay - root) * tau) + std::expm1(-(decay + root) * tau));
+  return std::expm1(-decay * tau);
+}
+
+double ModeBasis::LargestRate() const {
+  if (beta2 > 0) return std::sqrt(decay * decay + beta2);
+  return decay + root;  // over-damped: the faster of a ± b; critical: a
+}
+
+SecondOrderSeries::SecondOrderSeries(double decay, double beta2) {
+  // y^(n+2) = −2a y^(n+1) − (a² + β²) y^(n), kept divided by n! and in long
+  // double (its rounding then stays below double's).
+  const long double a = decay, m = static_cast<long double>(decay) * decay + beta2;
+  auto fill = [&](long double y0, long double y1, std::array<double, kTerms>* coefficients) {
+    for (int n = 0; n < kTerms; ++n) {  // y0, y1: y^(n)/n!, y^(n+1)/(n+1)!
+      const long double k = n + 1;
+      const long double y2 = (-2.0L * a * k * y1 - m * y0) / (k * (k + 1));
+      (*coefficients)[n] = static_cast<double>(y2);
+      y0 = y1;
+      y1 = y2;
+    }
+  };
+  fill(1.0L, -a, &cosine_);
+  fill(0.0L, 1.0L, &sine_);
 }
 
 void ModeBasis::Evaluate(double tau, double* ec, double* es) const {
@@ -103,17 +182,24 @@ ExponentialTable::ExponentialTable(std::complex<double> rate) {
     taylor_[n] = {term.real(), term.imag()};
     term *= rate / static_cast<double>(n + 1);
   }
-  for (unsigned k = 0; k < kFine; ++k) fine_[k] = Exponential(rate, k * step_);
-  for (unsigned k = 0; k < kCoarse; ++k) coarse_[k] = Exponential(rate, k * kFine * step_);
+  FillTables(rate, step_, &fine_, &fine_increment_);
+  FillTables(rate, kFine * step_, &coarse_, &coarse_increment_);
 }
 
 ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
-    : modes_(std::move(modes)), omega_(omega), rotor_({0.0, omega}) {
+    : modes_(std::move(modes)),
+      omega_(omega),
+      rotor_({0.0, omega}),
+      rotor_series_(0.0, omega * omega) {
+  double largest_rate = omega;
   for (const ModeBasis& mode : modes_) {
+    series_.emplace_back(mode.decay, mode.beta2);
+    largest_rate = std::max(largest_rate, mode.LargestRate());
     const bool oscillates = mode.beta2 > 0;
     tables_.push_back(oscillates ? ExponentialTable({-mode.decay, mode.root}) : ExponentialTable());
     inverse_roots_.push_back(oscillates ? 1.0 / mode.root : 0.0);
   }
+  anchored_span_ = 1.0 / largest_rate;
 }
 
 }  // namespace impactkit

@@ -121,8 +121,12 @@ ChatterDecision ChatterRule::Decide(double te, double previous, double rebound, 
 /// acceleration's fourth derivative (A = L ρ² its scale), with ρ = 2π/τ
 /// (or the damping rate γ where larger) bounding their rates. Over the tail
 /// that is span times its value at the first bounce at the most. Following
-/// the bounces exactly instead costs their timing: a crossing at speed u is
-/// located to the gap's rounding ε L / u. And the other masses follow the
+/// the bounces exactly instead costs their timing, which is weighed here at
+/// ε L ρ s / u: the rounding of the gap's first-order increments over the
+/// bounce. (The refinement places a crossing better still, from the
+/// remainders past the first order, Signal::AnchorAt; the map taking over
+/// at this larger figure keeps the bounces followed few, and its share of
+/// the error, ~2 ε L ρ / a, is what the tests measure.) And the other masses follow the
 /// stuck flow, missing the pull of the contact mass's bounces: ∫h over the
 /// tail is 2u³/(3a²(1 − r³)), times the coupling in their velocities. The
 /// map takes over where its time error is below the timing's, or the
@@ -137,7 +141,7 @@ bool ChatterRule::TailIsExact(double rebound, double acceleration, double length
   const double relative = rate * bounce, squared = relative * relative;
   const double neglected =
       span * squared * squared * (1.0 + length_scale * time_rate * time_rate / acceleration);
-  const double timing = kEpsilon * length_scale / rebound;
+  const double timing = kEpsilon * length_scale * rate * bounce / rebound;
   const double pull = contact_.coupling * 2.0 * rebound * rebound * rebound /
                       (3.0 * acceleration * acceleration * (1.0 - r * r * r));
   return neglected <= std::max(TimeRounding(), timing) &&

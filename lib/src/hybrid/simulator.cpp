@@ -276,8 +276,9 @@ std::optional<double> HybridRun::ReleaseTime(int stop, double end) const {
 std::optional<double> HybridRun::ImpactTime(int stop, double end) {
   const Stop& s = hybrid_.GetStop(stop);
   length_scales_[stop] = LengthScale(stop);
-  const double gap = s.Sign() * (state_.x(s.Dof()) - s.Position());
+  const double gap = s.GapOf(state_.x);
   if (gap > 0 || (gap == 0 && s.SpeedTowards(state_.v(s.Dof())) > 0)) return state_.t;
+  witnesses_[stop].AnchorAt(gap, s.SpeedTowards(state_.v(s.Dof())));
   return FirstUpcrossing(witnesses_[stop], state_.t, end, Search(stop));
 }
 

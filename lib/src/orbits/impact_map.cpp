@@ -146,7 +146,9 @@ std::optional<ImpactMap::Arrival> ImpactMap::NextArrival(const HybridState& from
   const int stops = hybrid_->StopCount(), from_stop = *stop;
   for (int i = 1; i <= stops; ++i) {
     const int k = (from_stop + i) % stops;
-    const Signal gap = flow.Output(hybrid_->Gap(k), from.t, z0);
+    Signal gap = flow.Output(hybrid_->Gap(k), from.t, z0);
+    const Stop& watched = hybrid_->GetStop(k);
+    gap.AnchorAt(watched.GapOf(from.x), watched.SpeedTowards(from.v(watched.Dof())));
     const double scale = GapLengthScale(*hybrid_, k, from.x, from.v, gap);
     const std::optional<double> te =
         FirstUpcrossing(gap, from.t, first ? first->t : t_end, ArrivalSearch(events, scale));
@@ -173,7 +175,7 @@ std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorX
   const Stop& arrival = hybrid_->GetStop(end.stop);
   const int c = arrival.Dof();
   end.state.t = found->t;
-  flow.State(end.start.t, z0, found->t, &end.state.x, &end.state.v);
+  flow.StateFrom(end.start.t, end.start.x, end.start.v, z0, found->t, &end.state.x, &end.state.v);
   end.state.x(c) = arrival.Position();
   const double speed = arrival.SpeedTowards(end.state.v(c));
   // The simulator's rule (hybrid/chatter_rule.hpp): an arrival whose

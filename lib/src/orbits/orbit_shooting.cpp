@@ -51,8 +51,8 @@ ShootingProblem::Flight ShootingProblem::Fly(const Eigen::VectorXd& z, int k,
   hybrid_.GetStop(stops_[k]).Reset(v_after);
   Flight flight;
   flight.end.t = EndTime(z, k);
-  flow.State(before.t, flow.Transient(before.t, before.x, v_after), flight.end.t, &flight.end.x,
-             &flight.end.v);
+  flow.StateFrom(before.t, before.x, v_after, flow.Transient(before.t, before.x, v_after),
+                 flight.end.t, &flight.end.x, &flight.end.v);
   if (!with_derivatives) return flight;
   // G as in ImpactMap's step: the reset, the flow, and the start time's
   // column −e^{S s} f(y+, τ) (moving the start moves the whole flight).

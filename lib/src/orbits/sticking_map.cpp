@@ -168,7 +168,9 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
   const System& system = hybrid_.GetSystem();
   const LinearFlow& flow = hybrid_.FreeFlow();
   const Eigen::VectorXd z0 = flow.Transient(t_, x_, v_);
-  const Signal gap = flow.Output(hybrid_.Gap(0), t_, z0);
+  Signal gap = flow.Output(hybrid_.Gap(0), t_, z0);
+  const Stop& stop = hybrid_.GetStop(0);
+  gap.AnchorAt(stop.GapOf(x_), stop.SpeedTowards(v_(c_)));
   // At a release the gap leaves 0 with zero speed and acceleration. Off
   // the release surface (a Newton iterate) a pressing force would turn that
   // tangency into a spurious impact at t0; searching from a short time later
@@ -195,7 +197,7 @@ std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, Sticking
   gap_scale_ = scale;
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
-  flow.State(t0, z0, *te, &x_, &v_);
+  flow.StateFrom(t0, x0, v0, z0, *te, &x_, &v_);
   x_(c_) = system.stops[0].position;
   t_ = *te;
   if (with_jacobian_) {
@@ -278,7 +280,7 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
   const Eigen::VectorXd x0 = WithoutIndex(x_, c_), v0 = WithoutIndex(v_, c_);
   const Eigen::VectorXd z0 = flow.Transient(te, x0, v0);
   Eigen::VectorXd x1, v1;
-  flow.State(te, z0, t_star, &x1, &v1);
+  flow.StateFrom(te, x0, v0, z0, t_star, &x1, &v1);
   cycle->accumulation = t_star;
   cycle->contact_force = hybrid_.ContactForce(0, t_star, x1, v1);
   if (!Stop::Holds(cycle->contact_force)) return StickingMapStatus::kNoSticking;
@@ -287,7 +289,7 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
   if (!tr) return StickingMapStatus::kNoRelease;
   if (with_contacts_) cycle->hold_margin = HoldMargin(release, t_star, *tr);
-  flow.State(te, z0, *tr, &x1, &v1);
+  flow.StateFrom(te, x0, v0, z0, *tr, &x1, &v1);
   if (with_jacobian_) {
     double value, slope;
     release.ValueAndSlope(*tr, &value, &slope);

@@ -53,6 +53,8 @@ class Stop {
   double Sign() const { return sign_; }
   /// The speed towards the stop of a mass moving with velocity v_c.
   double SpeedTowards(double v_c) const { return sign_ * v_c; }
+  /// The gap s (x_c − xs) of the positions x (all N): exactly 0 at an impact.
+  double GapOf(const Eigen::VectorXd& x) const { return sign_ * (x(dof_) - position_); }
 
   /// The witness over the coordinates `moving` (the free mode's N, or those
   /// of the masses that move while other stops hold theirs; this stop's DOF
