@@ -47,7 +47,9 @@ PlainOdeintRun PlainOdeintImpacts(const System& s, double t_end, double toleranc
   const Eigen::Vector2d minv_a = minv * s.forcing;
   const PaperRhs rhs{
       Times(minv, s.damping), Times(minv, s.stiffness), {minv_a(0), minv_a(1)}, s.omega};
-  const StopParameters& stop = s.SoleStop("the plain Odeint peer");
+  Require(s.StopCount() == 1 && s.stops[0].side == StopSide::kUpper,
+          "the plain Odeint peer is written for one upper stop");
+  const StopParameters& stop = s.stops[0];
   const int c = stop.dof;
   // The impulse acts along M^{-1} e_c and sets v_c to -r v_c.
   const std::array<double, 2> impulse{minv(0, c) / minv(c, c), minv(1, c) / minv(c, c)};

@@ -4,10 +4,13 @@
 /// from rest seeds, as several test files need them (a test fails at once
 /// if the seed or the solve fails).
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <vector>
 
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 
@@ -24,17 +27,58 @@ inline PeriodicOrbit SeededOrbit(const System& system, int p, int q) {
   return orbit;
 }
 
+/// The sticking orbit options a seed asks for: its stop, releases and q.
+inline StickingOrbitOptions SeedOptions(const StickingSeed& seed) {
+  StickingOrbitOptions options;
+  options.map.stop = seed.stop;
+  options.releases = seed.releases;
+  options.q = seed.q;
+  return options;
+}
+
 /// The sticking orbit seeded by 200 periods from rest (periods up to 4).
 inline StickingOrbit SeededStickingOrbit(const System& system) {
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
-  StickingOrbitOptions options;
-  options.releases = seed->releases;
-  options.q = seed->q;
   StickingOrbit orbit;
-  REQUIRE(FindStickingOrbit(system, seed->state, options, &orbit).termination ==
+  REQUIRE(FindStickingOrbit(system, seed->state, SeedOptions(*seed), &orbit).termination ==
           Termination::kConverged);
   return orbit;
+}
+
+/// A stuck phase of a steady simulation as the simulator's recorders see
+/// it: from its chatter's accumulation point (begin) to the release (end),
+/// and the stop it was at: the first whole one in the two periods after
+/// `periods` - 1 from rest.
+struct SimulatedStuckPhase {
+  StickingInterval interval;
+  int stop = 0;
+};
+
+inline SimulatedStuckPhase SimulateStuckPhase(const System& system, int periods) {
+  const double period = system.ForcingPeriod();
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, (periods - 1) * period);
+  struct Releases : Observer {
+    void OnRelease(const Release& release) override { stops.push_back(release.stop); }
+    std::vector<int> stops;
+  } releases;
+  ChatterRecorder chatter;
+  StickingRecorder sticking;
+  ObserverList all;
+  all.Add(chatter);
+  all.Add(sticking);
+  all.Add(releases);
+  simulator.Run(state, (periods + 1) * period, all);
+  REQUIRE(!chatter.EndTimes().empty());
+  REQUIRE(sticking.Intervals().size() >= 2);
+  // The window may open during a stuck phase: the first whole one is the second.
+  const StickingInterval stuck = sticking.Intervals()[1];
+  REQUIRE(std::find(chatter.EndTimes().begin(), chatter.EndTimes().end(), stuck.begin) !=
+          chatter.EndTimes().end());
+  REQUIRE(releases.stops.size() >= 2);
+  return {stuck, releases.stops[1]};
 }
 
 }  // namespace impactkit::testing

@@ -97,29 +97,14 @@ TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long si
 
   // Independent: 300 periods from rest, the last period's chatter end and
   // sticking interval as the simulator's recorders saw them.
-  const double period = system.ForcingPeriod();
-  HybridState state = RestState(system);
-  const Simulator simulator(system);
-  simulator.Run(state, 299 * period);
-  ChatterRecorder chatter;
-  StickingRecorder sticking;
-  ObserverList both;
-  both.Add(chatter);
-  both.Add(sticking);
-  simulator.Run(state, 301 * period, both);
-  REQUIRE(!chatter.EndTimes().empty());
-  REQUIRE(sticking.Intervals().size() >= 2);
-  // The window opens during a stuck phase: the first whole one is the second.
-  const StickingInterval stuck = sticking.Intervals()[1];
-  REQUIRE(stuck.begin == chatter.EndTimes().front());
+  const StickingInterval stuck = testing::SimulateStuckPhase(system, 300).interval;
   // The stick time is the chatter's predicted accumulation point on both
   // sides, good to ~5e-8 with the default span (docs/theory.md, the 60-digit
   // stuck time of test_simulate): two runs whose impact times differ in the
   // last bits (a changed root refinement did that) differ there by a few
   // 1e-9, so that is the bound; the release, a root of the contact force on
   // the stuck flow, is compared to 1e-9.
-  const double stick_phase = system.Phase(chatter.EndTimes().front());
-  CHECK_THAT(orbit.stick_phases[0], WithinAbs(stick_phase, 5e-8));
+  CHECK_THAT(orbit.stick_phases[0], WithinAbs(system.Phase(stuck.begin), 5e-8));
   CHECK_THAT(orbit.release_phases[0], WithinAbs(system.Phase(stuck.end), 1e-9));
   CHECK_THAT(orbit.stuck_durations[0], WithinAbs(stuck.end - stuck.begin, 5e-8));
   CHECK(orbit.stable);

@@ -33,7 +33,8 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
   command
       .add_option("--stop", options.stop,
                   "With --guess and several stops: the stop (1, 2, ... as in the system file) "
-                  "the guess's impact is at; its mass is the one left out of eta (default 1)")
+                  "the guess's impact (or, with --sticking, release) is at; its mass is the one "
+                  "left out of the guess (default 1)")
       ->type_name("K")
       ->check(CLI::PositiveNumber)
       ->group(group);
@@ -57,6 +58,18 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
       ->group(group);
 }
 
+int GuessStop(const System& system, const OrbitSeedOptions& options) {
+  if (options.stop && options.guess.empty()) {
+    throw InvalidInput("--stop goes with --guess (a seed from simulation knows its stop)");
+  }
+  const int stop = options.stop.value_or(1);
+  if (stop > system.StopCount()) {
+    throw InvalidInput(fmt::format("--stop {}: the system has {} stop{}", stop, system.StopCount(),
+                                   system.StopCount() == 1 ? "" : "s"));
+  }
+  return stop - 1;
+}
+
 OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
                         Eigen::VectorXd* eta) {
   if (request.transient < 0) throw InvalidInput("--transient must be >= 0");
@@ -64,19 +77,12 @@ OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
   if (request.p.has_value() != request.q.has_value()) {
     throw InvalidInput("--p and --q go together: give both, or neither to detect them");
   }
-  if (request.stop && request.guess.empty()) {
-    throw InvalidInput("--stop goes with --guess (a seed from simulation knows its stop)");
-  }
+  const int stop = GuessStop(system, request);
   if (!request.guess.empty()) {
     if (!request.p) throw InvalidInput("--guess needs --p and --q");
     *eta = Eigen::Map<const Eigen::VectorXd>(request.guess.data(),
                                              static_cast<Eigen::Index>(request.guess.size()));
-    const int stop = request.stop.value_or(1);
-    if (stop > system.StopCount()) {
-      throw InvalidInput(fmt::format("--stop {}: the system has {} stop{}", stop,
-                                     system.StopCount(), system.StopCount() == 1 ? "" : "s"));
-    }
-    options.map.stop = stop - 1;
+    options.map.stop = stop;
   } else {
     const std::optional<OrbitSeed> seed = SeedFromSimulation(system, request.transient);
     if (!seed) throw std::runtime_error("the simulated motion has no impacts: no orbit to refine");

@@ -34,6 +34,10 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
 OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& options,
                         Eigen::VectorXd* eta);
 
+/// The 0-based stop of a --guess: --stop K, or the first. Throws
+/// InvalidInput for a --stop without --guess or one the system lacks.
+int GuessStop(const System& system, const OrbitSeedOptions& options);
+
 /// FindOrbit from the chosen seed; throws std::runtime_error if it fails.
 PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
                              OrbitOptions* options, OrbitSummary* summary = nullptr);

@@ -31,9 +31,10 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
     return SeedStickingFromSimulation(system, seed.transient);
   }
   if (seed.p) throw InvalidInput("--sticking orbits have no --p (the chatter has no end count)");
+  const int stop = GuessStop(system, seed);
   if (!seed.guess.empty()) {
     if (!seed.q) throw InvalidInput("--sticking --guess needs --q");
-    return StickingSeed{request.releases, *seed.q,
+    return StickingSeed{stop, request.releases, *seed.q,
                         Eigen::Map<const Eigen::VectorXd>(
                             seed.guess.data(), static_cast<Eigen::Index>(seed.guess.size()))};
   }
@@ -48,6 +49,7 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
 StickingOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
                                   StickingOrbitSummary* summary) {
   StickingOrbitOptions options;
+  options.map.stop = seed.stop;
   options.releases = seed.releases;
   options.q = seed.q;
   StickingOrbit orbit;

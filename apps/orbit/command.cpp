@@ -152,9 +152,9 @@ void AddOrbitCommand(CLI::App& app) {
                    "Write the orbit as JSON: kind (impact), p, q, omega, impacts [{t, phase, v}], "
                    "multipliers [[re, im]], stable, residual, iterations, eta, system, jacobian "
                    "(the method), jacobian_check (with --check-jacobian); for a sticking orbit "
-                   "kind (sticking), q, releases, stick_phases, release_phases, "
+                   "kind (sticking), stop (1-based), q, releases, stick_phases, release_phases, "
                    "stuck_durations, chatter [{impacts, accumulation, contact_force, "
-                   "fast_impacts [{t, phase, v}]}], multipliers, stable, state")
+                   "fast_impacts [{t, phase, v, stop}]}], multipliers, stable, state")
       ->type_name("FILE.json")
       ->check(OutputPath())
       ->group("Output");

@@ -34,8 +34,10 @@ std::vector<StickingImpact> FastImpacts(const StickingCycle& cycle, double min_s
 void Print(const System& system, const StickingOrbit& orbit, const StickingOrbitSummary& summary,
            double min_speed) {
   fmt::print("system:      {}\n", DescribeSystem(system));
-  fmt::print("orbit:       sticking P(inf,{}) at omega = {}, {} sticking phase{}, {}\n", orbit.q,
-             orbit.omega, orbit.releases, orbit.releases == 1 ? "" : "s",
+  const std::string at_stop =
+      system.StopCount() > 1 ? fmt::format(" at stop {}", orbit.stop + 1) : "";
+  fmt::print("orbit:       sticking P(inf,{}) at omega = {}, {} sticking phase{}{}, {}\n", orbit.q,
+             orbit.omega, orbit.releases, orbit.releases == 1 ? "" : "s", at_stop,
              orbit.stable ? "stable" : "unstable");
   fmt::print(
       "sticking:    stick phase          release phase        stuck duration  "
@@ -50,11 +52,13 @@ void Print(const System& system, const StickingOrbit& orbit, const StickingOrbit
     fmt::print("impacts:     {} before the accumulation at phase {:.12f}, {} faster than {}:\n",
                cycle.impacts.size(), system.Phase(cycle.accumulation), fast.size(), min_speed);
     for (const StickingImpact& i : fast) {
-      fmt::print("             phase {:<22.12f} velocity {:.12f}\n", system.Phase(i.t), i.velocity);
+      const std::string at = system.StopCount() > 1 ? fmt::format("  stop {}", i.stop + 1) : "";
+      fmt::print("             phase {:<22.12f} velocity {:.12f}{}\n", system.Phase(i.t),
+                 i.velocity, at);
     }
   }
   fmt::print("multipliers: on the release section (sticking collapses x{0}, v{0})\n",
-             system.SoleStop("impactkit orbit").dof + 1);
+             system.stops[orbit.stop].dof + 1);
   for (const std::complex<double>& m : orbit.multipliers) {
     fmt::print("             {:<+20.12e} {:<+20.12e} {:.12f}\n", m.real(), m.imag(), std::abs(m));
   }
@@ -65,6 +69,7 @@ nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
                          const StickingOrbitSummary& summary, double min_speed) {
   nlohmann::json j;
   j["kind"] = "sticking";
+  j["stop"] = orbit.stop + 1;  // 1-based, as in the system file and --stop
   j["q"] = orbit.q;
   j["releases"] = orbit.releases;
   j["omega"] = orbit.omega;
@@ -79,7 +84,8 @@ nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
   for (const StickingCycle& cycle : orbit.cycles) {
     nlohmann::json impacts = nlohmann::json::array();
     for (const StickingImpact& i : FastImpacts(cycle, min_speed)) {
-      impacts.push_back({{"t", i.t}, {"phase", system.Phase(i.t)}, {"v", i.velocity}});
+      impacts.push_back(
+          {{"t", i.t}, {"phase", system.Phase(i.t)}, {"v", i.velocity}, {"stop", i.stop + 1}});
     }
     j["chatter"].push_back({{"impacts", cycle.impacts.size()},
                             {"accumulation", cycle.accumulation},
@@ -108,8 +114,10 @@ void RunStickingOrbit(const System& system, const StickingSeed& seed, double min
   j["provenance"] =
       MakeProvenance(source, system, fmt::format("orbit --sticking --q {}", orbit.q)).Json();
   if (check_jacobian) {
+    StickingMapOptions map;
+    map.stop = orbit.stop;
     const Eigen::MatrixXd fd =
-        StickingMap(system).FiniteDifferenceJacobian(orbit.state, orbit.releases);
+        StickingMap(system, map).FiniteDifferenceJacobian(orbit.state, orbit.releases);
     if (fd.size() == 0) {
       throw std::runtime_error(
           "the finite-difference Jacobian cannot be formed here: a perturbed map does not stick");

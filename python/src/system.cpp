@@ -112,9 +112,6 @@ void BindSystem(py::module_& module) {
       .def_property_readonly(
           "forcing", [](const System& s) { return s.forcing; }, "A (a copy).")
       .def_property_readonly(
-          "contact_dof", [](const System& s) { return s.SoleStop("contact_dof").dof; },
-          "The mass that meets the stop (0-based), of a system with one stop.")
-      .def_property_readonly(
           "stops",
           [](const System& s) {
             py::list stops;

@@ -45,17 +45,6 @@ shift 2
 grid=(map --from 0.6 --to 2.4 --steps 13 --param2 r --from2 0.5 --to2 0.9 --steps2 5
       --transient 200 --record 40 --chunk 5)
 
-# The map with "$@" is refused for the reason `pattern`: status 2 and one
-# line on stderr that says it.
-refused() {
-  local pattern=$1 status=0
-  shift
-  "$impactkit" "$@" >"$work/stdout" 2>"$work/stderr" || status=$?
-  [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 ]] ||
-    fail "expected a refusal ($pattern): status $status, stderr $(cat "$work/stderr")"
-  grep -q "$pattern" "$work/stderr" || fail "message: $(cat "$work/stderr")"
-}
-
 case $mode in
   row)
     "$impactkit" "${grid[@]}" --out "$work/map.csv" >/dev/null || fail "map failed"
@@ -138,7 +127,7 @@ case $mode in
     grep -qF "$expected" "$work/stdout" || fail "expected '$expected': $(cat "$work/stdout")"
     same_but_command "$work/whole.csv" "$work/resumed.csv" || fail "the resumed CSV differs"
     # The same directory for another grid is refused, and left as it was.
-    refused "belongs to another run" "${grid[@]}" --checkpoint "$work/cp"
+    refused "belongs to another run" "$impactkit" "${grid[@]}" --checkpoint "$work/cp"
     echo ok
     ;;
   damaged)
@@ -170,7 +159,7 @@ case $mode in
     grep -qF "(0 computed, 65 resumed" "$work/stdout" || fail "not all resumed: $(cat "$work/stdout")"
     # A damaged run.txt says whose units these are: refused, as damaged.
     sed -i 's/units=15/units=16/' "$work/cp/run.txt"
-    refused "run.txt is damaged" "${grid[@]}" --checkpoint "$work/cp"
+    refused "run.txt is damaged" "$impactkit" "${grid[@]}" --checkpoint "$work/cp"
     echo ok
     ;;
   plot)

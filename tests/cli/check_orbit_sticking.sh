@@ -5,6 +5,10 @@
 # stuck_durations, chatter and multipliers, residual <= 1e-11. The same
 # orbit from its own release state with --sticking --guess has the same
 # release phase, and the analytic Jacobian agrees with finite differences.
+# With a second stop (paper-mass1-stop.toml: under mass 1, struck between
+# releases) the orbit sticks at stop 2 and says so, in the JSON too, and a
+# guess there needs --stop 2; a clearance it sticks at on both sides is
+# refused with the reason.
 #
 #     check_orbit_sticking.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -33,4 +37,20 @@ release() { grep -A1 '^sticking:' "$1" | tail -1 | awk '{ print $2 }'; }
   fail "release phase $(release "$work/guess") from the guess, $(release "$work/stdout") seeded"
 relative=$(sed -n 's/.*(\([^ ]*\) relative to its largest entry).*/\1/p' "$work/guess")
 awk -v d="$relative" 'BEGIN { exit !(d > 0 && d < 1e-6) }' || fail "Jacobians differ by $relative"
+systems="$(dirname "$0")/../../examples/systems"
+"$impactkit" orbit --system "$systems/paper-mass1-stop.toml" --sticking --json "$work/two.json" \
+  >"$work/two" || fail "orbit --sticking on two stops failed: $(cat "$work/two")"
+grep -q "1 sticking phase at stop 2, stable" "$work/two" || fail "unexpected summary: $(cat "$work/two")"
+grep -q "velocity .*  stop 1$" "$work/two" || fail "no impact at stop 1 listed: $(cat "$work/two")"
+[[ $(tr -d ' \n' <"$work/two.json") == *'"stop":2,"stuck_durations"'* ]] ||
+  fail "the JSON does not name stop 2: $(cat "$work/two.json")"
+state=$(tr -d ' \n' <"$work/two.json" | sed -n 's/.*"state":\[\([^]]*\)\].*/\1/p')
+"$impactkit" orbit --system "$systems/paper-mass1-stop.toml" --sticking --q 1 --guess "$state" \
+  --stop 2 >"$work/two-guess" || fail "orbit --sticking --guess --stop 2 failed: $(cat "$work/two-guess")"
+[[ $(release "$work/two-guess") == $(release "$work/two") ]] ||
+  fail "release phase $(release "$work/two-guess") from the guess, $(release "$work/two") seeded"
+refused "the system has 2 stops" "$impactkit" orbit --system "$systems/paper-mass1-stop.toml" \
+  --sticking --q 1 --guess "$state" --stop 3
+refused "another stop holds a mass" "$impactkit" orbit --sticking \
+  --system "$systems/clearance-1dof.toml" --omega 0.2
 echo ok

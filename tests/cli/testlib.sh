@@ -25,3 +25,14 @@ same_but_command() {
   cmp -s <(grep -v -e '^# command: ' -e '^ *"command": ' "$1") \
     <(grep -v -e '^# command: ' -e '^ *"command": ' "$2")
 }
+
+# The command "$@" is refused for the reason `pattern`: status 2 and one
+# line on stderr that says it.
+refused() {
+  local pattern=$1 status=0
+  shift
+  "$@" >"$work/refused.stdout" 2>"$work/refused.stderr" || status=$?
+  [[ $status -eq 2 && $(wc -l <"$work/refused.stderr") -eq 1 ]] ||
+    fail "expected a refusal ($pattern): status $status, stderr $(cat "$work/refused.stderr")"
+  grep -q "$pattern" "$work/refused.stderr" || fail "message: $(cat "$work/refused.stderr")"
+}

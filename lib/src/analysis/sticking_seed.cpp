@@ -10,10 +10,11 @@
 namespace impactkit {
 namespace {
 
-/// The section state (x, v without the contact DOF, t) at every release.
+/// At every release after a stuck segment, the stop and the section state
+/// there (x, v without that stop's DOF, t).
 class ReleaseRecorder : public Observer {
  public:
-  explicit ReleaseRecorder(int contact_dof) : contact_dof_(contact_dof) {}
+  explicit ReleaseRecorder(const System& system) : system_(system) {}
 
   void OnSegment(const Segment& segment) override {
     if (!segment.Stuck()) return;
@@ -23,17 +24,22 @@ class ReleaseRecorder : public Observer {
   void OnRelease(const Release& release) override {
     // Released where it stuck: no stuck segment.
     if (release.t_release != stuck_end_) return;
+    const int dof = system_.stops[release.stop].dof;
     Eigen::VectorXd s(2 * x_.size() - 1);
-    s << WithoutIndex(x_, contact_dof_), WithoutIndex(v_, contact_dof_), release.t_release;
-    releases_.push_back(s);
+    s << WithoutIndex(x_, dof), WithoutIndex(v_, dof), release.t_release;
+    releases_.push_back({release.stop, s});
   }
-  const std::vector<Eigen::VectorXd>& Releases() const { return releases_; }
+  struct Recorded {
+    int stop;
+    Eigen::VectorXd state;
+  };
+  const std::vector<Recorded>& Releases() const { return releases_; }
 
  private:
-  int contact_dof_;
+  const System& system_;
   Eigen::VectorXd x_, v_;
   double stuck_end_ = -1.0;
-  std::vector<Eigen::VectorXd> releases_;
+  std::vector<Recorded> releases_;
 };
 
 }  // namespace
@@ -49,13 +55,15 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   const double period = system.ForcingPeriod();
   HybridState state = RestState(system);
   simulator.Run(state, transient * period);
-  ReleaseRecorder recorder(system.stops[0].dof);
+  ReleaseRecorder recorder(system);
   simulator.Run(state, (transient + 2 * max_q + 1) * period, recorder);
-  const std::vector<Eigen::VectorXd>& releases = recorder.Releases();
-  if (releases.empty()) return std::nullopt;
-  // A motion that sticks: its orbit is the release map's, written for one
-  // stop (orbits/sticking_map.hpp).
-  system.SoleStop("the sticking orbit of a motion that sticks (the release map)");
+  if (recorder.Releases().empty()) return std::nullopt;
+  // The release map's section is one stop's releases: the last one's.
+  const int stop = recorder.Releases().back().stop;
+  std::vector<Eigen::VectorXd> releases;
+  for (const auto& [from, s] : recorder.Releases()) {
+    if (from == stop) releases.push_back(s);
+  }
   const Eigen::VectorXd& last = releases.back();
   const Eigen::Index t = last.size() - 1;
   // Largest |entry| of the state part (none for N = 1: the section is t).
@@ -69,7 +77,7 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
     const long q = std::lround(periods);
     if (q < 1 || q > max_q || std::abs(periods - q) > 1e-6) continue;
     if (largest(last - earlier) > 1e-6 * scale) continue;
-    return StickingSeed{static_cast<int>(k), static_cast<int>(q), last};
+    return StickingSeed{stop, static_cast<int>(k), static_cast<int>(q), last};
   }
   return std::nullopt;
 }

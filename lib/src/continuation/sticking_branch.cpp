@@ -526,6 +526,7 @@ StickingBranch ContinueStickingBranch(
   StickingBranchOptions options = requested;  // the family is the start's
   options.orbit.releases = start.releases;
   options.orbit.q = start.q;
+  options.orbit.map.stop = start.stop;
   std::string error;
   if (!options.IsValid(&error)) throw InvalidInput(error);
   const StickingCurve curve(system, options);

@@ -231,12 +231,6 @@ Eigen::MatrixXd ChainCouplingMatrix(int dof) {
   return e;
 }
 
-const StopParameters& System::SoleStop(std::string_view what) const {
-  Require(stops.size() == 1,
-          fmt::format("{}: written for one stop so far; this system has {}", what, stops.size()));
-  return stops.front();
-}
-
 std::string StopParameterName(std::string_view base, int stop) {
   return stop == 0 ? std::string(base) : fmt::format("{}{}", base, stop + 1);
 }

@@ -29,6 +29,9 @@ std::string ToString(StickingMapStatus status) {
       return "the chatter ends with Fs <= 0: the mass is not held (no sticking)";
     case StickingMapStatus::kNoRelease:
       return "no release: the mass stays stuck";
+    case StickingMapStatus::kOtherStop:
+      return "another stop holds a mass, or is met while this one holds its mass (the release "
+             "map follows one stop's sticking per cycle)";
   }
   return "unknown";
 }
@@ -45,6 +48,8 @@ bool StickingMapOptions::IsValid(std::string* error) const {
     return fail(fmt::format("max_stuck_periods must be finite and > 0, got {}", max_stuck_periods));
   }
   if (max_impacts < 1) return fail(fmt::format("max_impacts must be >= 1, got {}", max_impacts));
+  if (stop < 0)
+    return fail(fmt::format("stop must be >= 0 (an index into the stops), got {}", stop));
   return simulation.IsValid(error);
 }
 
@@ -59,20 +64,26 @@ class StickingMap::Cycle {
         with_jacobian_(with_jacobian),
         with_contacts_(with_contacts),
         n_(hybrid.GetSystem().Dof()),
-        c_(hybrid.GetSystem().SoleStop("the sticking map").dof),
+        section_(options.stop),
+        c_(hybrid.GetStop(options.stop).Dof()),
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
-        rule_(options.simulation, hybrid.GetStop(0).Restitution(), hybrid.TimeScale(),
-              hybrid.Free().Contact(0)) {
+        previous_(hybrid.StopCount()) {
+    const Mode& held = hybrid.Holding(StopBit(section_));
     const LinearOutput release =
-        hybrid.GetStop(0)
-            .Release(hybrid.GetSystem(), hybrid.Holding(StopBit(0)).Moving(),
-                     hybrid.Holding(StopBit(0)).HeldPositions())
+        hybrid.GetStop(section_)
+            .Release(hybrid.GetSystem(), held.Moving(), held.HeldPositions())
             .output;
     release_gradient_.resize(2 * (n_ - 1));
     release_gradient_ << release.wx, release.wv;
-    if (with_contacts_) {
-      contact_velocity_ = hybrid.FreeFlow().Prepare(
-          {Eigen::RowVectorXd::Zero(n_), Eigen::RowVectorXd::Unit(n_, c_), 0.0, 0.0});
+    rules_.reserve(hybrid.StopCount());
+    for (int j = 0; j < hybrid.StopCount(); ++j) {
+      rules_.emplace_back(options.simulation, hybrid.GetStop(j).Restitution(), hybrid.TimeScale(),
+                          hybrid.Free().Contact(j));
+      if (with_contacts_) {
+        contact_velocities_.push_back(hybrid.FreeFlow().Prepare(
+            {Eigen::RowVectorXd::Zero(n_), Eigen::RowVectorXd::Unit(n_, hybrid.GetStop(j).Dof()),
+             0.0, 0.0}));
+      }
     }
   }
 
@@ -81,14 +92,25 @@ class StickingMap::Cycle {
                         StickingCycle* cycle);
 
  private:
-  std::optional<double> NextImpact(bool from_release, StickingMapStatus* status);
-  /// The least distance from the stop of x_c's interior turns towards it on
-  /// the flight [begin, end] (the zeros of v_c), infinity if there are none.
+  /// An arrival at a stop: its index and time.
+  struct Arrival {
+    int stop = 0;
+    double t = 0.0;
+  };
+  /// The free flight to the first arrival at any stop.
+  std::optional<Arrival> NextArrival(bool from_release, StickingMapStatus* status);
+  /// The least distance from its stop of each stop's mass at its interior
+  /// turns towards that stop on the flight [begin, end] (the zeros of its
+  /// velocity), infinity if there are none.
   double FlightClearance(double t0, const Eigen::VectorXd& z0, double begin, double end) const;
   /// The least interior minimum of Fs on (begin, end), from w = −Fs: its
   /// maxima are the zeros of w' where it falls; infinity if there is none.
   double HoldMargin(const Signal& release, double begin, double end) const;
-  bool ArrivalEndsChatter(double te, double previous, StickingCycle* cycle, double* t_star);
+  /// True if, while the section's stop holds its mass from te to `end`,
+  /// another stop's mass reaches that stop.
+  bool HeldMeetsOtherStop(const LinearFlow& flow, double te, const Eigen::VectorXd& z0,
+                          double end) const;
+  bool ArrivalEndsChatter(const Arrival& arrival, StickingCycle* cycle, double* t_star);
   StickingMapStatus StickAndRelease(double te, double t_star, StickingCycle* cycle);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
   /// at t1 with witness gradient l and slope ẇ(t1): G = Φ (dy0 − f0 dt0),
@@ -105,14 +127,17 @@ class StickingMap::Cycle {
   const HybridSystem& hybrid_;
   const StickingMapOptions& options_;
   const bool with_jacobian_, with_contacts_;
-  const int n_, c_;
-  PreparedOutput contact_velocity_;  ///< v_c on the free flow (with contacts)
+  const int n_;
+  const int section_;                               ///< the stop whose releases are the section
+  const int c_;                                     ///< and its mass
+  std::vector<PreparedOutput> contact_velocities_;  ///< each stop's v_dof on the free flow
   const EventOptions events_;
   Eigen::RowVectorXd release_gradient_;
   double t_ = 0.0;
-  double deadline_ = 0.0;   ///< the cycle must stick before this time
-  double clearance_ = 0.0;  ///< the cycle's so far (with contacts)
-  const ChatterRule rule_;
+  double deadline_ = 0.0;              ///< the cycle must stick before this time
+  double clearance_ = 0.0;             ///< the cycle's so far (with contacts)
+  std::vector<ChatterRule> rules_;     ///< each stop's
+  std::vector<double> previous_;       ///< each stop's last impact time
   double arrival_acceleration_ = 0.0;  ///< the gap's curvature at the last arrival
   double gap_scale_ = 1.0;             ///< and the gap's length scale (GapLengthScale)
   Eigen::VectorXd x_, v_;
@@ -125,7 +150,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   const System& system = hybrid_.GetSystem();
   const int held = n_ - 1, m = 2 * n_ - 1;
   t_ = s(m - 1);
-  x_ = EmbedAtStop(s.head(held), c_, system.stops[0].position);
+  x_ = EmbedAtStop(s.head(held), c_, hybrid_.GetStop(section_).Position());
   v_ = EmbedAtStop(s.segment(held, held), c_, 0.0);
   if (with_jacobian_) {
     dy_ = Eigen::MatrixXd::Zero(2 * n_, m);
@@ -141,85 +166,98 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   cycle->impacts.clear();
   clearance_ = std::numeric_limits<double>::infinity();
   deadline_ = t_ + options_.max_free_periods * system.ForcingPeriod();
-  double previous = -std::numeric_limits<double>::infinity();
+  std::fill(previous_.begin(), previous_.end(), -std::numeric_limits<double>::infinity());
   StickingMapStatus status = StickingMapStatus::kOk;
-  for (int k = 0; k < options_.max_impacts; ++k) {
-    const std::optional<double> te = NextImpact(k == 0, &status);
-    if (!te) return status;
+  for (int i = 0; i < options_.max_impacts; ++i) {
+    const std::optional<Arrival> arrival = NextArrival(i == 0, &status);
+    if (!arrival) return status;
     double t_star;
-    if (ArrivalEndsChatter(*te, previous, cycle, &t_star)) {
-      cycle->clearance = clearance_;
-      status = StickAndRelease(*te, t_star, cycle);
-      if (status != StickingMapStatus::kOk) return status;
-      next->resize(m);
-      *next << WithoutIndex(x_, c_), WithoutIndex(v_, c_), t_;
-      if (with_jacobian_) {
-        jacobian->resize(m, m);
-        *jacobian << HeldRows(dy_), dt_;
-      }
-      return StickingMapStatus::kOk;
+    if (!ArrivalEndsChatter(*arrival, cycle, &t_star)) {
+      previous_[arrival->stop] = arrival->t;
+      continue;
     }
-    previous = *te;
+    if (arrival->stop != section_) return StickingMapStatus::kOtherStop;
+    cycle->clearance = clearance_;
+    status = StickAndRelease(arrival->t, t_star, cycle);
+    if (status != StickingMapStatus::kOk) return status;
+    next->resize(m);
+    *next << WithoutIndex(x_, c_), WithoutIndex(v_, c_), t_;
+    if (with_jacobian_) {
+      jacobian->resize(m, m);
+      *jacobian << HeldRows(dy_), dt_;
+    }
+    return StickingMapStatus::kOk;
   }
   return StickingMapStatus::kNoChatter;
 }
 
-std::optional<double> StickingMap::Cycle::NextImpact(bool from_release, StickingMapStatus* status) {
-  const System& system = hybrid_.GetSystem();
+std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
+    bool from_release, StickingMapStatus* status) {
   const LinearFlow& flow = hybrid_.FreeFlow();
   const Eigen::VectorXd z0 = flow.Transient(t_, x_, v_);
-  Signal gap = flow.Output(hybrid_.Gap(0), t_, z0);
-  const Stop& stop = hybrid_.GetStop(0);
-  gap.AnchorAt(stop.GapOf(x_), stop.SpeedTowards(v_(c_)));
   // At a release the gap leaves 0 with zero speed and acceleration. Off
   // the release surface (a Newton iterate) a pressing force would turn that
   // tangency into a spurious impact at t0; searching from a short time later
   // keeps the map smooth there, and a gap still closed then means the state
   // is no release.
-  double begin = t_;
-  if (from_release) {
-    begin = t_ + kReleaseClearance * hybrid_.TimeScale();
-    if (gap.Value(begin) >= 0) {
+  const double released = from_release ? t_ + kReleaseClearance * hybrid_.TimeScale() : t_;
+  std::optional<Arrival> first;
+  Signal first_gap;
+  double end = deadline_;
+  for (int j = 0; j < hybrid_.StopCount(); ++j) {
+    const Stop& stop = hybrid_.GetStop(j);
+    Signal gap = flow.Output(hybrid_.Gap(j), t_, z0);
+    gap.AnchorAt(stop.GapOf(x_), stop.SpeedTowards(v_(stop.Dof())));
+    const double begin = j == section_ ? released : t_;
+    if (from_release && j == section_ && gap.Value(begin) >= 0) {
       *status = StickingMapStatus::kNotReleased;
       return std::nullopt;
     }
+    const double scale = GapLengthScale(hybrid_, j, x_, v_, gap);
+    const std::optional<double> te =
+        FirstUpcrossing(gap, begin, end, ArrivalSearch(events_, scale));
+    if (!te || (first && *te >= end)) continue;
+    first = Arrival{j, *te};
+    first_gap = gap;
+    gap_scale_ = scale;
+    end = *te;
   }
-  const double scale = GapLengthScale(hybrid_, 0, x_, v_, gap);
-  const std::optional<double> te =
-      FirstUpcrossing(gap, begin, deadline_, ArrivalSearch(events_, scale));
-  if (!te) {
+  if (!first) {
     *status = from_release ? StickingMapStatus::kNoImpact : StickingMapStatus::kNoChatter;
     return std::nullopt;
   }
-  if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, begin, *te));
+  if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, released, end));
   double value, slope;
-  gap.ValueSlopeCurvature(*te, &value, &slope, &arrival_acceleration_);
-  gap_scale_ = scale;
+  first_gap.ValueSlopeCurvature(end, &value, &slope, &arrival_acceleration_);
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
-  flow.StateFrom(t0, x0, v0, z0, *te, &x_, &v_);
-  x_(c_) = system.stops[0].position;
-  t_ = *te;
+  flow.StateFrom(t0, x0, v0, z0, end, &x_, &v_);
+  const Stop& stop = hybrid_.GetStop(first->stop);
+  x_(stop.Dof()) = stop.Position();
+  t_ = end;
   if (with_jacobian_) {
-    ThroughFlight(flow.Transition(*te - t0), hybrid_.VectorField(t0, x0, v0),
-                  hybrid_.VectorField(*te, x_, v_), Eigen::RowVectorXd::Unit(2 * n_, c_), v_(c_));
+    ThroughFlight(flow.Transition(end - t0), hybrid_.VectorField(t0, x0, v0),
+                  hybrid_.VectorField(end, x_, v_), Eigen::RowVectorXd::Unit(2 * n_, stop.Dof()),
+                  v_(stop.Dof()));
   }
-  return te;
+  return first;
 }
 
 double StickingMap::Cycle::FlightClearance(double t0, const Eigen::VectorXd& z0, double begin,
                                            double end) const {
   const LinearFlow& flow = hybrid_.FreeFlow();
-  const Signal velocity = flow.Output(contact_velocity_, t0, z0);
   double clearance = std::numeric_limits<double>::infinity();
   Eigen::VectorXd x, v;
-  const Stop& stop = hybrid_.GetStop(0);
-  for (const double t : SignChanges(velocity, begin, end, events_)) {
-    // Only the turns towards the stop: maxima of x_c below an upper stop,
-    // minima above a lower one.
-    if (stop.Sign() * velocity.Derivative().Value(t) >= 0) continue;
-    flow.State(t0, z0, t, &x, &v);
-    clearance = std::min(clearance, stop.Sign() * (stop.Position() - x(c_)));
+  for (int j = 0; j < hybrid_.StopCount(); ++j) {
+    const Stop& stop = hybrid_.GetStop(j);
+    const Signal velocity = flow.Output(contact_velocities_[j], t0, z0);
+    for (const double t : SignChanges(velocity, begin, end, events_)) {
+      // Only the turns towards the stop: maxima of x below an upper stop,
+      // minima above a lower one.
+      if (stop.Sign() * velocity.Derivative().Value(t) >= 0) continue;
+      flow.State(t0, z0, t, &x, &v);
+      clearance = std::min(clearance, -stop.GapOf(x));
+    }
   }
   return clearance;
 }
@@ -233,40 +271,55 @@ double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, doubl
   return margin;
 }
 
-/// The simulator's rules at an arrival (hybrid/chatter_rule.hpp): a landing
-/// ends the chatter at once and is no impact; an impact is recorded and
-/// reset, and the chatter ends where the rule says: at once, or at the end
-/// of its tail by the chatter map, if the tail accumulates. True if it
-/// ends, at *t_star.
-bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, StickingCycle* cycle,
+bool StickingMap::Cycle::HeldMeetsOtherStop(const LinearFlow& flow, double te,
+                                            const Eigen::VectorXd& z0, double end) const {
+  const Mode& held = hybrid_.Holding(StopBit(section_));
+  for (int j = 0; j < hybrid_.StopCount(); ++j) {
+    // Null for the stops of the held mass: it does not move.
+    const PreparedOutput* gap = j == section_ ? nullptr : held.Witness(j);
+    if (gap && FirstUpcrossing(flow.Output(*gap, te, z0), te, end, events_)) return true;
+  }
+  return false;
+}
+
+/// The simulator's rules at an arrival (hybrid/chatter_rule.hpp), with the
+/// arrival's stop's law and rule: a landing ends the chatter at once and is
+/// no impact; an impact is recorded and reset, and the chatter ends where
+/// the rule says: at once, or at the end of its tail by the chatter map, if
+/// the tail accumulates. True if it ends, at *t_star.
+bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycle* cycle,
                                             double* t_star) {
-  const Stop& stop = hybrid_.GetStop(0);
+  const int k = arrival.stop;
+  const double te = arrival.t;
+  const Stop& stop = hybrid_.GetStop(k);
+  const int dof = stop.Dof();
+  const ChatterRule& rule = rules_[k];
   // The speed towards the stop (on either side of the mass), at least 0:
   // the search places the crossing to rounding, where it may have the
   // other sign.
-  const double speed = std::max(stop.SpeedTowards(v_(c_)), 0.0);
-  v_(c_) = stop.Sign() * speed;
+  const double speed = std::max(stop.SpeedTowards(v_(dof)), 0.0);
+  v_(dof) = stop.Sign() * speed;
   *t_star = te;
-  if (rule_.IsLanding(speed, arrival_acceleration_, gap_scale_)) {
+  if (rule.IsLanding(speed, arrival_acceleration_, gap_scale_)) {
     stop.Absorb(v_);
     if (with_jacobian_) dy_ = stop.AbsorbJacobian(n_) * dy_;
     return true;
   }
-  cycle->impacts.push_back({te, speed});
+  cycle->impacts.push_back({k, te, speed});
   stop.Reset(v_);
   if (with_jacobian_) dy_ = stop.ResetJacobian(n_) * dy_;
   double jerk;
   Eigen::VectorXd force(n_), acceleration(n_);
   // Towards the stop, as the simulator has it.
   const double a =
-      stop.Sign() * hybrid_.ContactAcceleration(0, te, x_, v_, &jerk, &force, &acceleration);
-  const double rebound = -stop.SpeedTowards(v_(c_));
-  const ChatterDecision decision = rule_.Decide(te, previous, rebound, a, gap_scale_);
+      stop.Sign() * hybrid_.ContactAcceleration(k, te, x_, v_, &jerk, &force, &acceleration);
+  const double rebound = -stop.SpeedTowards(v_(dof));
+  const ChatterDecision decision = rule.Decide(te, previous_[k], rebound, a, gap_scale_);
   if (decision != ChatterDecision::kSumTail) return decision != ChatterDecision::kGoesOn;
-  const LinearFlow& flow = hybrid_.StuckFlow(0);
+  const LinearFlow& flow = hybrid_.StuckFlow(k);
   const Signal release = flow.Output(
-      hybrid_.Release(0), te, flow.Transient(te, WithoutIndex(x_, c_), WithoutIndex(v_, c_)));
-  const ChatterTail tail = rule_.SumTail(release, hybrid_.Free().Contact(0), te, rebound);
+      hybrid_.Release(k), te, flow.Transient(te, WithoutIndex(x_, dof), WithoutIndex(v_, dof)));
+  const ChatterTail tail = rule.SumTail(release, hybrid_.Free().Contact(k), te, rebound);
   *t_star = tail.end;
   return tail.accumulates;
 }
@@ -276,29 +329,30 @@ bool StickingMap::Cycle::ArrivalEndsChatter(double te, double previous, Sticking
 StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
                                                       StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();
-  const LinearFlow& flow = hybrid_.StuckFlow(0);
+  const LinearFlow& flow = hybrid_.StuckFlow(section_);
   const Eigen::VectorXd x0 = WithoutIndex(x_, c_), v0 = WithoutIndex(v_, c_);
   const Eigen::VectorXd z0 = flow.Transient(te, x0, v0);
   Eigen::VectorXd x1, v1;
   flow.StateFrom(te, x0, v0, z0, t_star, &x1, &v1);
   cycle->accumulation = t_star;
-  cycle->contact_force = hybrid_.ContactForce(0, t_star, x1, v1);
+  cycle->contact_force = hybrid_.ContactForce(section_, t_star, x1, v1);
   if (!Stop::Holds(cycle->contact_force)) return StickingMapStatus::kNoSticking;
-  const Signal release = flow.Output(hybrid_.Release(0), te, z0);
+  const Signal release = flow.Output(hybrid_.Release(section_), te, z0);
   const std::optional<double> tr = FirstUpcrossing(
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
   if (!tr) return StickingMapStatus::kNoRelease;
+  if (HeldMeetsOtherStop(flow, te, z0, *tr)) return StickingMapStatus::kOtherStop;
   if (with_contacts_) cycle->hold_margin = HoldMargin(release, t_star, *tr);
   flow.StateFrom(te, x0, v0, z0, *tr, &x1, &v1);
   if (with_jacobian_) {
     double value, slope;
     release.ValueAndSlope(*tr, &value, &slope);
     dy_ = HeldRows(dy_);
-    const Mode& stuck = hybrid_.Holding(StopBit(0));
+    const Mode& stuck = hybrid_.Holding(StopBit(section_));
     ThroughFlight(flow.Transition(*tr - te), stuck.VectorField(te, x0, v0),
                   stuck.VectorField(*tr, x1, v1), release_gradient_, slope);
   }
-  x_ = EmbedAtStop(x1, c_, system.stops[0].position);
+  x_ = EmbedAtStop(x1, c_, hybrid_.GetStop(section_).Position());
   v_ = EmbedAtStop(v1, c_, 0.0);
   t_ = *tr;
   cycle->next_release = *tr;
@@ -328,6 +382,11 @@ StickingMap::StickingMap(std::shared_ptr<const HybridSystem> hybrid,
     : hybrid_(std::move(hybrid)), options_(options) {
   std::string error;
   if (!options_.IsValid(&error)) throw InvalidInput(error);
+  if (options_.stop >= hybrid_->StopCount()) {
+    throw InvalidInput(fmt::format("the release map's stop {} (0-based): the system has {} stop{}",
+                                   options_.stop, hybrid_->StopCount(),
+                                   hybrid_->StopCount() == 1 ? "" : "s"));
+  }
 }
 
 void StickingMap::ValidateSection(const Eigen::VectorXd& s) const {
@@ -386,23 +445,24 @@ Eigen::MatrixXd StickingMap::FiniteDifferenceJacobian(const Eigen::VectorXd& s, 
 }
 
 HybridState StickingMap::ToState(const Eigen::VectorXd& s) const {
-  const int held = GetSystem().Dof() - 1, c = GetSystem().stops[0].dof;
+  const StopParameters& stop = GetSystem().stops[options_.stop];
+  const int held = GetSystem().Dof() - 1, c = stop.dof;
   HybridState state;
   state.t = s(TimeIndex());
-  state.x = EmbedAtStop(s.head(held), c, GetSystem().stops[0].position);
+  state.x = EmbedAtStop(s.head(held), c, stop.position);
   state.v = EmbedAtStop(s.segment(held, held), c, 0.0);
   return state;
 }
 
 double StickingMap::ContactForce(const Eigen::VectorXd& s) const {
   const int held = GetSystem().Dof() - 1;
-  return hybrid_->ContactForce(0, s(TimeIndex()), s.head(held), s.segment(held, held));
+  return hybrid_->ContactForce(options_.stop, s(TimeIndex()), s.head(held), s.segment(held, held));
 }
 
 Eigen::RowVectorXd StickingMap::ContactForceGradient(const Eigen::VectorXd& s) const {
-  const Mode& held = hybrid_->Holding(StopBit(0));
-  const LinearOutput force =
-      hybrid_->GetStop(0).ContactForce(GetSystem(), held.Moving(), held.HeldPositions());
+  const Mode& held = hybrid_->Holding(StopBit(options_.stop));
+  const LinearOutput force = hybrid_->GetStop(options_.stop)
+                                 .ContactForce(GetSystem(), held.Moving(), held.HeldPositions());
   const double omega = GetSystem().omega;
   Eigen::RowVectorXd gradient(Size());
   gradient << force.wx, force.wv, -force.cos_amplitude * omega * std::sin(omega * s(TimeIndex()));

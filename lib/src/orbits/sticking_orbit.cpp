@@ -68,6 +68,7 @@ StickingOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
   const StickingMapResult image = ApplyOrThrow(map, s, releases, true);
   const System& system = map.GetSystem();
   StickingOrbit orbit;
+  orbit.stop = map.SectionStop();
   orbit.releases = releases;
   orbit.q = q;
   orbit.omega = system.omega;

@@ -88,10 +88,6 @@ struct System {
   /// The forcing phase of time t: t mod T, in [0, T).
   double Phase(double t) const;
   int StopCount() const { return static_cast<int>(stops.size()); }
-  /// The one stop of a system that has one. Throws InvalidInput naming
-  /// `what` (a computation written for one stop so far) when it has
-  /// several: a clear error rather than a second stop silently ignored.
-  const StopParameters& SoleStop(std::string_view what) const;
 };
 
 /// The name of a stop's parameter as files and the command line write it:

@@ -1,17 +1,19 @@
 #pragma once
 /// \file sticking_map.hpp
 /// The release map P_R of sticking motions: from one release of the contact
-/// mass c to the next. Its Poincaré section is the release (x_c = xs,
-/// v_c = 0, the contact force Fs falling through 0), with coordinates
+/// mass c from its stop (any of the system's stops, StickingMapOptions::stop)
+/// to the next. Its Poincaré section is the release (x_c = xs, v_c = 0, the
+/// contact force Fs falling through 0), with coordinates
 ///
 ///     s = (x_j for j != c, v_j for j != c, t)            (size 2N − 1)
 ///
 /// t the absolute release time. One application follows, as the simulator
 /// does (hybrid/simulator.hpp):
 ///
-///     free flight from (s, x_c = xs, v_c = 0), impacts one by one
-///     (v_c <- −r v_c), until the simulator's chatter rule ends the sequence
-///     at an impact te (the accumulation point t* predicted from it);
+///     free flight from (s, x_c = xs, v_c = 0), impacts at any stop one by
+///     one (by each stop's law), until the simulator's chatter rule ends a
+///     sequence at this stop at an impact te (the accumulation point t*
+///     predicted from it);
 ///     the other masses follow the stuck subsystem from te (through the
 ///     chatter tail and the stuck phase alike); sticking needs Fs(t*) > 0;
 ///     the next release: Fs falling through 0 after t*.
@@ -31,6 +33,10 @@
 /// surface Fs = 0, a hypersurface of the section coordinates, so D P_R has
 /// one exact zero multiplier besides those of the 2N − 2 dimensional
 /// release section (sticking_orbit.hpp).
+///
+/// With several stops, a cycle may impact the others; it may not stick at
+/// them, nor meet them while this stop holds its mass (kOtherStop): one
+/// cycle follows one stop's sticking phase.
 
 #include <Eigen/Dense>
 #include <limits>
@@ -53,11 +59,14 @@ enum class StickingMapStatus {
   kNoChatter,    ///< impacts for max_free_periods (or max_impacts of them) without sticking
   kNoSticking,   ///< the chatter accumulated with Fs <= 0: the mass is not held
   kNoRelease,    ///< held for max_stuck_periods without a release
+  kOtherStop,    ///< another stop holds a mass, or is met while this one holds its mass
 };
 
 std::string ToString(StickingMapStatus status);
 
 struct StickingMapOptions {
+  /// The stop whose releases are the section (an index into System::stops).
+  int stop = 0;
   /// The chatter rule (method, span or threshold) and the event tolerance:
   /// the map ends chatter exactly as the simulator with these options does.
   SimulationOptions simulation;
@@ -73,21 +82,23 @@ struct StickingMapOptions {
 
 /// One impact between two releases.
 struct StickingImpact {
+  int stop = 0;  ///< the stop hit (an index into System::stops)
   double t = 0.0;
-  double velocity = 0.0;  ///< v_c(t−) > 0
+  double velocity = 0.0;  ///< the speed towards the stop just before, > 0
 };
 
 /// One application of the map: from a release to the next.
 struct StickingCycle {
   double release = 0.0;                 ///< the release it starts from
-  std::vector<StickingImpact> impacts;  ///< simulated impacts, the last one te
+  std::vector<StickingImpact> impacts;  ///< simulated impacts at every stop, the last one te
   double accumulation = 0.0;            ///< t*: the chatter's end, sticking begins
   double contact_force = 0.0;           ///< Fs(t*) > 0
   double next_release = 0.0;            ///< the release it ends at
-  /// xs − the highest interior maximum of x_c in the cycle's free flights:
-  /// > 0 while no flight comes back to the stop before its impact (0 at a
-  /// grazing, a new impact); infinity when no flight has an interior
-  /// maximum. Measured only when Apply is asked for contacts.
+  /// The least distance from its stop of any stop's mass at an interior
+  /// turn towards that stop in the cycle's free flights: > 0 while no
+  /// flight comes back to a stop before its impact (0 at a grazing, a new
+  /// impact); infinity when no flight has such a turn. Measured only when
+  /// Apply is asked for contacts.
   double clearance = std::numeric_limits<double>::infinity();
   /// The least interior minimum of Fs during the stuck phase (t*, release):
   /// > 0 while the stop holds the mass throughout (0: Fs touches 0 before
@@ -107,7 +118,8 @@ struct StickingMapResult {
 
 class StickingMap {
  public:
-  /// Throws InvalidInput for an invalid system or options.
+  /// Throws InvalidInput for an invalid system or options (a stop the
+  /// system lacks included).
   explicit StickingMap(const System& system, const StickingMapOptions& options = {});
   /// On a hybrid system already decomposed. Throws InvalidInput for invalid options.
   StickingMap(std::shared_ptr<const HybridSystem> hybrid, const StickingMapOptions& options = {});
@@ -135,6 +147,8 @@ class StickingMap {
   int TimeIndex() const { return 2 * (GetSystem().Dof() - 1); }
   int Size() const { return 2 * GetSystem().Dof() - 1; }
   const System& GetSystem() const { return hybrid_->GetSystem(); }
+  /// The section's stop.
+  int SectionStop() const { return options_.stop; }
 
   /// Throws InvalidInput naming the problem if s is no section state.
   void ValidateSection(const Eigen::VectorXd& s) const;

@@ -38,6 +38,7 @@ struct StickingOrbitOptions {
 };
 
 struct StickingOrbit {
+  int stop = 0;  ///< the stop it sticks at, whose releases are its section (System::stops)
   int releases = 0;
   int q = 0;
   double omega = 0.0;

@@ -1,0 +1,113 @@
+// Sticking orbits at any stop of a system with several: the release map's
+// section at the stop the motion sticks at, impacts at the others followed
+// through the cycle, and what it cannot follow refused with the reason.
+// Checked against the simulator's own stuck phases (a different code path:
+// the hybrid run, not the release map and its Newton solve).
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <vector>
+
+#include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/core/errors.hpp"
+#include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
+#include "seeded_orbit.hpp"
+
+using namespace impactkit;
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+/// The orbit's stick and release phases against the simulator's stuck
+/// phase 300 periods from rest, at the same stop. The stick phase is the
+/// chatter's predicted accumulation point on both sides, to 5e-8 (as in
+/// test_sticking_orbit.cpp); the release, a root of the contact force, to
+/// 1e-9.
+void CheckAgainstSimulation(const System& system, const StickingOrbit& orbit) {
+  const testing::SimulatedStuckPhase simulated = testing::SimulateStuckPhase(system, 300);
+  CHECK(orbit.stop == simulated.stop);
+  CHECK_THAT(orbit.stick_phases[0], WithinAbs(system.Phase(simulated.interval.begin), 5e-8));
+  CHECK_THAT(orbit.release_phases[0], WithinAbs(system.Phase(simulated.interval.end), 1e-9));
+}
+
+}  // namespace
+
+TEST_CASE("a sticking orbit at the second stop of a system: its section is that stop's",
+          "[stops][sticking]") {
+  // The paper's stop as stop 2, after one on mass 1 far below its motion:
+  // nothing but the index changes, so the orbit is the paper system's.
+  System system = PaperSystem(0.2);
+  system.stops = {{0, StopSide::kLower, -10.0, 0.5}, system.stops[0]};
+  Validate(system);
+  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  CHECK(orbit.stop == 1);
+  CheckAgainstSimulation(system, orbit);
+  CHECK_THAT(orbit.stick_phases[0], WithinAbs(30.464633012, 1e-8));  // docs/cli.md's sample
+  CHECK_THAT(orbit.release_phases[0], WithinAbs(6.633818118, 1e-8));
+  // A map at a stop the system lacks is refused.
+  StickingMapOptions options;
+  options.stop = 2;
+  CHECK_THROWS_AS(StickingMap(system, options), InvalidInput);
+  options.stop = -1;
+  CHECK_THROWS_AS(StickingMap(system, options), InvalidInput);
+}
+
+TEST_CASE("a sticking orbit whose flights impact another stop: the simulator's impacts and phases",
+          "[stops][sticking]") {
+  // The paper's system at Ω = 0.2 with a lower stop under mass 1 at -0.45,
+  // inside its free swing (down to -0.63): it sticks at mass 2's stop each
+  // period and mass 1 strikes its own three times between releases.
+  System system = PaperSystem(0.2);
+  system.stops = {{0, StopSide::kLower, -0.45, 0.8}, system.stops[0]};
+  Validate(system);
+  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  REQUIRE(orbit.stop == 1);
+  CheckAgainstSimulation(system, orbit);
+  std::vector<StickingImpact> at_mass_1;
+  for (const StickingImpact& impact : orbit.cycles[0].impacts) {
+    if (impact.stop == 0) at_mass_1.push_back(impact);
+  }
+  // The simulator's impacts at stop 1 in one steady period, by phase.
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, 300 * system.ForcingPeriod());
+  ImpactRecorder impacts;
+  simulator.Run(state, 301 * system.ForcingPeriod(), impacts);
+  std::vector<Impact> simulated;
+  for (const ImpactView impact : impacts.Impacts()) {
+    if (impact.stop == 0) simulated.push_back(impact.Owned());
+  }
+  REQUIRE(simulated.size() == 3);
+  REQUIRE(at_mass_1.size() == simulated.size());
+  for (std::size_t i = 0; i < simulated.size(); ++i) {
+    CHECK_THAT(system.Phase(at_mass_1[i].t), WithinAbs(simulated[i].phase, 1e-8));
+    CHECK_THAT(at_mass_1[i].velocity, WithinAbs(simulated[i].velocity, 1e-8));
+  }
+  // The analytic Jacobian through those impacts' resets against central
+  // differences of the map (steps 1e-6: their error ~1e-10 of its entries).
+  StickingMapOptions options;
+  options.stop = orbit.stop;
+  const Eigen::MatrixXd fd = StickingMap(system, options).FiniteDifferenceJacobian(orbit.state, 1);
+  REQUIRE(fd.size() > 0);
+  CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() <=
+        1e-6 * std::max(1.0, orbit.jacobian.cwiseAbs().maxCoeff()));
+}
+
+TEST_CASE("a motion that sticks at both stops of a clearance is refused by the release map",
+          "[stops][sticking]") {
+  // Mass 2 in the clearance ±0.1 sticks at both stops every period at
+  // Ω = 0.2 (test_several_stops.cpp): one cycle of the release map follows
+  // one stop's sticking phase, so it says so instead of an orbit.
+  System system = PaperSystem(0.2);
+  system.stops = {{1, StopSide::kUpper, 0.1, 0.7}, {1, StopSide::kLower, -0.1, 0.7}};
+  Validate(system);
+  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
+  REQUIRE(seed);
+  StickingOrbit orbit;
+  CHECK_THROWS_WITH(FindStickingOrbit(system, seed->state, testing::SeedOptions(*seed), &orbit),
+                    Contains("another stop holds a mass"));
+}
