@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/system.hpp"
@@ -95,6 +96,37 @@ TEST_CASE("a sticking orbit whose flights impact another stop: the simulator's i
   REQUIRE(fd.size() > 0);
   CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() <=
         1e-6 * std::max(1.0, orbit.jacobian.cwiseAbs().maxCoeff()));
+}
+
+TEST_CASE("a sticking family at the second stop ends where simulation stops sticking there",
+          "[stops][sticking][continuation]") {
+  // paper-mass1-stop.toml's family continued in Ω from 0.2: its maps stay
+  // at the start's stop, and where it ends (the chatter no longer ends in
+  // sticking) the simulator from rest, independently, sticks at that stop
+  // periodically 1e-3 below and not at all 1e-3 above.
+  System system = PaperSystem(0.2);
+  system.stops = {{0, StopSide::kLower, -0.45, 0.8}, system.stops[0]};
+  Validate(system);
+  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  StickingBranchOptions options;
+  options.lower = 0.1;
+  options.upper = 0.6;
+  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
+  for (const StickingBranchPoint& point : branch.points) {
+    CHECK(point.orbit.stop == 1);
+    CHECK(point.orbit.residual < 1e-9);
+  }
+  const double omega_end = branch.special_points.back().point.parameter;
+  auto at = [&](double omega) {
+    System s = system;
+    s.omega = omega;
+    return SeedStickingFromSimulation(s, 300, 4);
+  };
+  const std::optional<StickingSeed> below = at(omega_end - 1e-3);
+  REQUIRE(below);
+  CHECK(below->stop == 1);
+  CHECK(!at(omega_end + 1e-3));
 }
 
 TEST_CASE("a motion that sticks at both stops of a clearance is refused by the release map",
