@@ -27,21 +27,12 @@ inline PeriodicOrbit SeededOrbit(const System& system, int p, int q) {
   return orbit;
 }
 
-/// The sticking orbit options a seed asks for: its stop, releases and q.
-inline StickingOrbitOptions SeedOptions(const StickingSeed& seed) {
-  StickingOrbitOptions options;
-  options.map.stop = seed.stop;
-  options.releases = seed.releases;
-  options.q = seed.q;
-  return options;
-}
-
 /// The sticking orbit seeded by 200 periods from rest (periods up to 4).
 inline StickingOrbit SeededStickingOrbit(const System& system) {
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
   StickingOrbit orbit;
-  REQUIRE(FindStickingOrbit(system, seed->state, SeedOptions(*seed), &orbit).termination ==
+  REQUIRE(FindStickingOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit).termination ==
           Termination::kConverged);
   return orbit;
 }

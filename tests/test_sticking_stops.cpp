@@ -35,6 +35,16 @@ void CheckAgainstSimulation(const System& system, const StickingOrbit& orbit) {
   CHECK_THAT(orbit.release_phases[0], WithinAbs(system.Phase(simulated.interval.end), 1e-9));
 }
 
+/// examples/systems/paper-mass1-stop.toml: the paper's system at Ω = 0.2
+/// with a lower stop under mass 1 at -0.45, inside its free swing (down to
+/// -0.63), as stop 1 and the paper's stop as stop 2.
+System PaperWithMass1Stop() {
+  System system = PaperSystem(0.2);
+  system.stops = {{0, StopSide::kLower, -0.45, 0.8}, system.stops[0]};
+  Validate(system);
+  return system;
+}
+
 }  // namespace
 
 TEST_CASE("a sticking orbit at the second stop of a system: its section is that stop's",
@@ -59,12 +69,9 @@ TEST_CASE("a sticking orbit at the second stop of a system: its section is that 
 
 TEST_CASE("a sticking orbit whose flights impact another stop: the simulator's impacts and phases",
           "[stops][sticking]") {
-  // The paper's system at Ω = 0.2 with a lower stop under mass 1 at -0.45,
-  // inside its free swing (down to -0.63): it sticks at mass 2's stop each
-  // period and mass 1 strikes its own three times between releases.
-  System system = PaperSystem(0.2);
-  system.stops = {{0, StopSide::kLower, -0.45, 0.8}, system.stops[0]};
-  Validate(system);
+  // It sticks at mass 2's stop each period and mass 1 strikes its own
+  // three times between releases.
+  const System system = PaperWithMass1Stop();
   const StickingOrbit orbit = testing::SeededStickingOrbit(system);
   REQUIRE(orbit.stop == 1);
   CheckAgainstSimulation(system, orbit);
@@ -104,9 +111,7 @@ TEST_CASE("a sticking family at the second stop ends where simulation stops stic
   // at the start's stop, and where it ends (the chatter no longer ends in
   // sticking) the simulator from rest, independently, sticks at that stop
   // periodically 1e-3 below and not at all 1e-3 above.
-  System system = PaperSystem(0.2);
-  system.stops = {{0, StopSide::kLower, -0.45, 0.8}, system.stops[0]};
-  Validate(system);
+  const System system = PaperWithMass1Stop();
   const StickingOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.lower = 0.1;
@@ -140,6 +145,6 @@ TEST_CASE("a motion that sticks at both stops of a clearance is refused by the r
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
   StickingOrbit orbit;
-  CHECK_THROWS_WITH(FindStickingOrbit(system, seed->state, testing::SeedOptions(*seed), &orbit),
+  CHECK_THROWS_WITH(FindStickingOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit),
                     Contains("another stop holds a mass"));
 }

@@ -48,10 +48,7 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
 
 StickingOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
                                   StickingOrbitSummary* summary) {
-  StickingOrbitOptions options;
-  options.map.stop = seed.stop;
-  options.releases = seed.releases;
-  options.q = seed.q;
+  const StickingOrbitOptions options = OrbitOptionsFor(seed);
   StickingOrbit orbit;
   const StickingOrbitSummary result = FindStickingOrbit(system, seed.state, options, &orbit);
   if (result.termination != Termination::kConverged) {

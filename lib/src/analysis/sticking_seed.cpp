@@ -82,4 +82,12 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   return std::nullopt;
 }
 
+StickingOrbitOptions OrbitOptionsFor(const StickingSeed& seed) {
+  StickingOrbitOptions options;
+  options.map.stop = seed.stop;
+  options.releases = seed.releases;
+  options.q = seed.q;
+  return options;
+}
+
 }  // namespace impactkit

@@ -9,6 +9,7 @@
 
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
 
 namespace impactkit {
 
@@ -28,5 +29,9 @@ struct StickingSeed {
 std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int transient = 500,
                                                        int max_q = 32,
                                                        const SimulationOptions& options = {});
+
+/// The options FindStickingOrbit needs from a seed: its stop (the release
+/// map's section), releases and q; everything else at its default.
+StickingOrbitOptions OrbitOptionsFor(const StickingSeed& seed);
 
 }  // namespace impactkit
