@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hybrid/chatter_rule.hpp"
+#include "hybrid/phase_events.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/segment.hpp"
 
@@ -75,14 +76,11 @@ std::string SimulationSummary::BriefReport() const {
 struct Simulator::Impl {
   std::shared_ptr<const HybridSystem> hybrid;
   SimulationOptions options;
-  EventOptions event_options;
 
   Impl(std::shared_ptr<const HybridSystem> h, const SimulationOptions& o)
       : hybrid(std::move(h)), options(o) {
     std::string error;
     if (!options.IsValid(&error)) throw InvalidInput(error);
-    event_options.time_tolerance = options.event_time_tolerance;
-    event_options.time_scale = hybrid->TimeScale();
   }
 };
 
@@ -92,45 +90,28 @@ namespace {
 /// the mode of the stops that hold their masses (none: free flight).
 class HybridRun {
  public:
-  HybridRun(const HybridSystem& hybrid, const SimulationOptions& options,
-            const EventOptions& events, HybridState& state, double t_end, Observer& observer)
+  HybridRun(const HybridSystem& hybrid, const SimulationOptions& options, HybridState& state,
+            double t_end, Observer& observer)
       : hybrid_(hybrid),
         options_(options),
-        events_(events),
         state_(state),
         t_end_(t_end),
         observer_(observer),
-        witnesses_(hybrid.StopCount()),
-        length_scales_(hybrid.StopCount(), 1.0),
+        phase_events_(hybrid, options),
         last_impacts_(hybrid.StopCount(), -std::numeric_limits<double>::infinity()),
         stick_begins_(hybrid.StopCount(), state.t),
         force_scratch_(hybrid_.GetSystem().Dof()),
-        acceleration_scratch_(hybrid_.GetSystem().Dof()) {
-    for (int k = 0; k < hybrid.StopCount(); ++k) {
-      rules_.emplace_back(options, hybrid.GetStop(k).Restitution(), hybrid.TimeScale(),
-                          hybrid.Free().Contact(k));
-    }
-  }
+        acceleration_scratch_(hybrid_.GetSystem().Dof()) {}
 
   SimulationSummary Execute();
 
  private:
-  /// The event that ends a phase: stop `stop`'s witness crossing at `time`.
-  struct Event {
-    int stop = -1;
-    double time = 0.0;
-  };
   void Phase();
-  std::optional<Event> FirstEvent(const Mode& mode, const Eigen::VectorXd& z0);
-  std::optional<double> ReleaseTime(int stop, double end) const;
-  std::optional<double> ImpactTime(int stop, double end);
   void MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, double t);
   void ArriveAtStop(int stop, double te, double speed);
   void ApplyImpact(int stop, double te, double speed, double arrival_acceleration);
   double AccelerationBound(int stop, double arrival_acceleration) const;
   bool OverWorkBound();
-  /// GapLengthScale of stop `stop` from the current state.
-  double LengthScale(int stop) const;
   /// Where the current phase's search stops if no event comes first: t_end,
   /// or kPhaseSlice forcing periods on, so that a run without events still
   /// asks its observers (ShouldStop: Ctrl-C, progress) as it goes.
@@ -138,8 +119,6 @@ class HybridRun {
     return std::min(t_end_, state_.t + kPhaseSlice * hybrid_.GetSystem().ForcingPeriod());
   }
   static constexpr double kPhaseSlice = 1000;
-  EventOptions Search(int stop) const;
-  EventOptions HeldSearch(const Signal& release) const;
   void EndChatter(int stop, double te, double rebound, ChatterDecision decision);
   void LandAtStop(int stop);
   std::int64_t Events() const {
@@ -148,23 +127,20 @@ class HybridRun {
 
   const HybridSystem& hybrid_;
   const SimulationOptions& options_;
-  const EventOptions& events_;
   HybridState& state_;
   const double t_end_;
   Observer& observer_;
-  std::vector<ChatterRule> rules_;  ///< per stop (restitutions differ)
+  PhaseEvents phase_events_;
   SimulationSummary summary_;
-  std::vector<Signal> witnesses_;      ///< per stop, on the current phase's flow
-  std::vector<double> length_scales_;  ///< per stop, of the current flight (LengthScale())
-  std::vector<double> last_impacts_;   ///< per stop
-  std::vector<double> stick_begins_;   ///< per stop
-  Impact impact_;                      ///< reused: no allocation per impact
+  Signal held_witness_;               ///< −Fs of a mode a stop may join (reused storage)
+  std::vector<double> last_impacts_;  ///< per stop
+  std::vector<double> stick_begins_;  ///< per stop
+  Impact impact_;                     ///< reused: no allocation per impact
   Eigen::VectorXd force_scratch_, acceleration_scratch_;
   Eigen::VectorXd phase_transient_;  ///< the current phase's z0 (reused storage)
   static constexpr int kMaxStalledPhases = 1000;
-  static constexpr double kRounding = ChatterRule::kRounding;
   int stalled_phases_ = 0;
-  int last_event_stop_ = 0;         ///< the stop of the last event (FirstEvent's order)
+  int last_event_stop_ = 0;         ///< the stop of the last event (PhaseEvents::First's order)
   double window_begin_ = 0.0;       ///< start of the work bound's current window
   std::int64_t window_events_ = 0;  ///< Events() at window_begin_
 };
@@ -212,8 +188,10 @@ void HybridRun::Phase() {
     flow.Transient(t0, mode.Reduced(state_.x), mode.Reduced(state_.v), &phase_transient_);
   }
   const Eigen::VectorXd& z0 = phase_transient_;
-  const std::optional<Event> event = FirstEvent(mode, z0);
-  const double end = event ? event->time : SliceEnd();
+  phase_events_.Begin(mode, state_, z0);
+  const std::optional<PhaseEvents::Event> event = phase_events_.First(SliceEnd(), last_event_stop_);
+  if (event) last_event_stop_ = event->stop;
+  const double end = event ? event->t : SliceEnd();
   const bool stuck = state_.Stuck();
   if (end > t0) {
     observer_.OnSegment(Segment(flow, t0, z0, t0, end,
@@ -235,53 +213,6 @@ void HybridRun::Phase() {
   ArriveAtStop(k, end, std::max(stop.SpeedTowards(state_.v(stop.Dof())), 0.0));
 }
 
-/// The earliest event of the stops' witnesses on the mode's flow from z0:
-/// each searched up to the earliest found so far (a crossing later than
-/// that cannot end the phase), the first searched on a tie. The stop after
-/// the last event's is searched first: in a clearance the mass crosses to
-/// the other side, and the search of the stop it left then ends there.
-std::optional<HybridRun::Event> HybridRun::FirstEvent(const Mode& mode, const Eigen::VectorXd& z0) {
-  const double t0 = state_.t;
-  std::optional<Event> first;
-  double end = SliceEnd();
-  const int stops = hybrid_.StopCount();
-  for (int i = 1; i <= stops; ++i) {
-    const int k = (last_event_stop_ + i) % stops;
-    const PreparedOutput* witness = mode.Witness(k);
-    if (!witness) continue;
-    mode.Flow().Output(*witness, t0, z0, &witnesses_[k]);
-    const std::optional<double> te = mode.Holds(k) ? ReleaseTime(k, end) : ImpactTime(k, end);
-    if (!te || (first && *te >= end)) continue;
-    first = Event{k, *te};
-    end = *te;
-    if (end == t0) break;  // nothing comes earlier
-  }
-  if (first) last_event_stop_ = first->stop;
-  return first;
-}
-
-/// A held stop's release in (t0, end]: at once if the stop does not hold
-/// the mass here (Stop::Holds), else where −Fs first crosses 0 upwards.
-std::optional<double> HybridRun::ReleaseTime(int stop, double end) const {
-  const Signal& release = witnesses_[stop];
-  const EventOptions search = HeldSearch(release);
-  if (!Stop::Holds(release, state_.t, search)) return state_.t;
-  return FirstUpcrossing(release, state_.t, end, search);
-}
-
-/// An arrival at a stop whose mass moves, in (t0, end]: at once if the
-/// mass is at the stop moving into it, or past it (a near-simultaneous
-/// event at another stop came first, by less than the time tolerance),
-/// else where its gap first crosses 0 upwards.
-std::optional<double> HybridRun::ImpactTime(int stop, double end) {
-  const Stop& s = hybrid_.GetStop(stop);
-  length_scales_[stop] = LengthScale(stop);
-  const double gap = s.GapOf(state_.x);
-  if (gap > 0 || (gap == 0 && s.SpeedTowards(state_.v(s.Dof())) > 0)) return state_.t;
-  witnesses_[stop].AnchorAt(gap, s.SpeedTowards(state_.v(s.Dof())));
-  return FirstUpcrossing(witnesses_[stop], state_.t, end, Search(stop));
-}
-
 /// The state at t along the mode's flow from z0.
 void HybridRun::MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, double t) {
   state_.t = t;
@@ -292,35 +223,6 @@ void HybridRun::MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, d
   Eigen::VectorXd x, v;
   mode.Flow().State(t0, z0, t, &x, &v);
   mode.Expand(x, v, &state_.x, &state_.v);
-}
-
-double HybridRun::LengthScale(int stop) const {
-  return GapLengthScale(hybrid_, stop, state_.x, state_.v, witnesses_[stop]);
-}
-
-/// The event search's options for the flight to stop `stop` from the
-/// current state (ArrivalSearch: crossings above the gap's rounding); one
-/// that leaves the stop from rest starts where the gap and its slope are 0
-/// in truth, to the rounding of the length scale.
-EventOptions HybridRun::Search(int stop) const {
-  const Stop& s = hybrid_.GetStop(stop);
-  EventOptions events = ArrivalSearch(events_, length_scales_[stop]);
-  if (state_.x(s.Dof()) == s.Position() && state_.v(s.Dof()) == 0.0) {
-    events.start_noise = kRounding * length_scales_[stop];
-  }
-  return events;
-}
-
-/// The release search's options on a held phase's witness: it starts where
-/// the contact force may be 0 to the rounding of its terms, and a dip of
-/// the force below 0 that returns within that rounding is no release (a
-/// mass at rest on the stop with no force, at an antiresonance, would
-/// otherwise be certified piece by tiny piece).
-EventOptions HybridRun::HeldSearch(const Signal& release) const {
-  EventOptions events = events_;
-  events.start_noise = kRounding * release.Scale();
-  events.resolution = kRounding * release.Scale();
-  return events;
 }
 
 /// Counts events per window of one forcing period; true once a window holds
@@ -339,9 +241,8 @@ bool HybridRun::OverWorkBound() {
 /// the arrival's height is unresolved (chatter_rule.hpp), otherwise an
 /// impact. The gap's curvature there is the arrival's acceleration.
 void HybridRun::ArriveAtStop(int stop, double te, double speed) {
-  double gap, slope, acceleration;
-  witnesses_[stop].ValueSlopeCurvature(te, &gap, &slope, &acceleration);
-  if (rules_[stop].IsLanding(speed, acceleration, length_scales_[stop])) {
+  double acceleration;
+  if (phase_events_.IsLanding(stop, te, speed, &acceleration)) {
     // Resting on the stop and pushed into it, or touching it tangentially:
     // sticking or a grazing touch, not an impact.
     const Stop& s = hybrid_.GetStop(stop);
@@ -365,7 +266,7 @@ double HybridRun::AccelerationBound(int stop, double arrival_acceleration) const
   const double change = mode.AccelerationChange(stop, state_.v - impact_.v);
   const double rate = 2 * std::numbers::pi / hybrid_.TimeScale();
   return 2.0 * (std::abs(arrival_acceleration) + std::abs(change)) +
-         1e-9 * length_scales_[stop] * rate * rate;
+         1e-9 * phase_events_.LengthScale(stop) * rate * rate;
 }
 
 void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_acceleration) {
@@ -387,8 +288,10 @@ void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_ac
   const double previous = last_impacts_[stop];
   last_impacts_[stop] = te;
   const double rebound = -s.SpeedTowards(state_.v(c));
-  if (!rules_[stop].MayEnd(te, previous, rebound, AccelerationBound(stop, arrival_acceleration),
-                           length_scales_[stop])) {
+  const ChatterRule& rule = phase_events_.Rule(stop);
+  const double length_scale = phase_events_.LengthScale(stop);
+  if (!rule.MayEnd(te, previous, rebound, AccelerationBound(stop, arrival_acceleration),
+                   length_scale)) {
     return;
   }
   // The acceleration after the reset (the rebound's) towards the stop.
@@ -396,7 +299,7 @@ void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_ac
   const double acceleration = mode.Acceleration(stop, te, state_.x, state_.v, &jerk,
                                                 &force_scratch_, &acceleration_scratch_);
   const ChatterDecision decision =
-      rules_[stop].Decide(te, previous, rebound, s.Sign() * acceleration, length_scales_[stop]);
+      rule.Decide(te, previous, rebound, s.Sign() * acceleration, length_scale);
   if (decision != ChatterDecision::kGoesOn) EndChatter(stop, te, rebound, decision);
 }
 
@@ -413,9 +316,9 @@ void HybridRun::EndChatter(int stop, double te, double rebound, ChatterDecision 
       held.Flow().Transient(te, held.Reduced(state_.x), held.Reduced(state_.v));
   double t_star = te;
   if (decision == ChatterDecision::kSumTail) {
-    held.Flow().Output(*held.Witness(stop), te, z0, &witnesses_[stop]);
+    held.Flow().Output(*held.Witness(stop), te, z0, &held_witness_);
     const ChatterTail tail =
-        rules_[stop].SumTail(witnesses_[stop], mode.Contact(stop), te, rebound);
+        phase_events_.Rule(stop).SumTail(held_witness_, mode.Contact(stop), te, rebound);
     if (!tail.accumulates) return;
     if (tail.cut) ++summary_.chatter_cuts;
     t_star = std::min(t_end_, tail.end);
@@ -443,8 +346,8 @@ void HybridRun::LandAtStop(int stop) {
   const Mode& held = hybrid_.Holding(candidate);
   const Eigen::VectorXd z0 =
       held.Flow().Transient(state_.t, held.Reduced(state_.x), held.Reduced(state_.v));
-  held.Flow().Output(*held.Witness(stop), state_.t, z0, &witnesses_[stop]);
-  if (!Stop::Holds(witnesses_[stop], state_.t, HeldSearch(witnesses_[stop]))) return;
+  held.Flow().Output(*held.Witness(stop), state_.t, z0, &held_witness_);
+  if (!Stop::Holds(held_witness_, state_.t, phase_events_.HeldSearch(held_witness_))) return;
   state_.held = candidate;
   stick_begins_[stop] = state_.t;
 }
@@ -465,8 +368,7 @@ SimulationSummary Simulator::Run(HybridState& state, double t_end, Observer& obs
     throw InvalidInput(fmt::format("the end time must be finite and >= the start time {}, got {}",
                                    state.t, t_end));
   }
-  return HybridRun(*impl_->hybrid, impl_->options, impl_->event_options, state, t_end, observer)
-      .Execute();
+  return HybridRun(*impl_->hybrid, impl_->options, state, t_end, observer).Execute();
 }
 
 SimulationSummary Simulator::Run(HybridState& state, double t_end) const {

@@ -5,9 +5,8 @@
 #include <cmath>
 
 #include "dynamics/subsystem.hpp"
-#include "hybrid/chatter_rule.hpp"
 #include "hybrid/event_time.hpp"
-#include "impactkit/dynamics/events.hpp"
+#include "hybrid/phase_events.hpp"
 
 namespace impactkit {
 
@@ -135,32 +134,6 @@ Signal ImpactMap::FlightCoordinate(const Eigen::VectorXd& eta, int dof, int stop
   return flow.Output(coordinate, eta(TimeIndex()), z0);
 }
 
-std::optional<ImpactMap::Arrival> ImpactMap::NextArrival(const HybridState& from,
-                                                         const Eigen::VectorXd& z0, double t_end,
-                                                         int* stop) const {
-  const LinearFlow& flow = hybrid_->FreeFlow();
-  const EventOptions events{options_.simulation.event_time_tolerance, hybrid_->TimeScale()};
-  std::optional<Arrival> first;
-  // The other stops first (a clearance's next impact is on its other side):
-  // the search of the stop just left then ends at their crossing.
-  const int stops = hybrid_->StopCount(), from_stop = *stop;
-  for (int i = 1; i <= stops; ++i) {
-    const int k = (from_stop + i) % stops;
-    Signal gap = flow.Output(hybrid_->Gap(k), from.t, z0);
-    const Stop& watched = hybrid_->GetStop(k);
-    gap.AnchorAt(watched.GapOf(from.x), watched.SpeedTowards(from.v(watched.Dof())));
-    const double scale = GapLengthScale(*hybrid_, k, from.x, from.v, gap);
-    const std::optional<double> te =
-        FirstUpcrossing(gap, from.t, first ? first->t : t_end, ArrivalSearch(events, scale));
-    if (!te || (first && *te >= first->t)) continue;
-    double value, slope, curvature;
-    gap.ValueSlopeCurvature(*te, &value, &slope, &curvature);
-    first = Arrival{*te, curvature, scale};
-    *stop = k;
-  }
-  return first;
-}
-
 std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorXd& eta, int stop,
                                                             double t_end) const {
   ValidateEta(eta, stop);
@@ -169,19 +142,21 @@ std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorX
   end.start = ToState(eta, stop);
   hybrid_->GetStop(stop).Reset(end.start.v);
   const Eigen::VectorXd z0 = flow.Transient(end.start.t, end.start.x, end.start.v);
-  end.stop = stop;
-  const std::optional<Arrival> found = NextArrival(end.start, z0, t_end, &end.stop);
+  PhaseEvents events(*hybrid_, options_.simulation);
+  events.Begin(hybrid_->Free(), end.start, z0);
+  const std::optional<PhaseEvents::Event> found = events.First(t_end, stop);
   if (!found) return std::nullopt;
+  end.stop = found->stop;
   const Stop& arrival = hybrid_->GetStop(end.stop);
   const int c = arrival.Dof();
   end.state.t = found->t;
   flow.StateFrom(end.start.t, end.start.x, end.start.v, z0, found->t, &end.state.x, &end.state.v);
   end.state.x(c) = arrival.Position();
   const double speed = arrival.SpeedTowards(end.state.v(c));
-  // The simulator's rule (hybrid/chatter_rule.hpp): an arrival whose
-  // height is unresolved is a landing there, so no impact here.
-  const ChatterRule rule(options_.simulation, arrival.Restitution(), hybrid_->TimeScale());
-  end.impact = speed > 0 && !rule.IsLanding(speed, found->curvature, found->length_scale);
+  // The simulator's rule: an arrival whose height is unresolved is a
+  // landing there, so no impact here.
+  double acceleration;
+  end.impact = speed > 0 && !events.IsLanding(end.stop, found->t, speed, &acceleration);
   const Eigen::VectorXd f = hybrid_->VectorField(found->t, end.state.x, end.state.v);
   end.pressed = arrival.SpeedTowards(f(GetSystem().Dof() + c)) > 0;
   return end;

@@ -9,8 +9,8 @@
 #include <utility>
 
 #include "dynamics/subsystem.hpp"
-#include "hybrid/chatter_rule.hpp"
 #include "hybrid/event_time.hpp"
+#include "hybrid/phase_events.hpp"
 #include "impactkit/dynamics/events.hpp"
 
 namespace impactkit {
@@ -67,6 +67,7 @@ class StickingMap::Cycle {
         section_(options.stop),
         c_(hybrid.GetStop(options.stop).Dof()),
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
+        phase_events_(hybrid, options.simulation),
         previous_(hybrid.StopCount()) {
     const Mode& held = hybrid.Holding(StopBit(section_));
     const LinearOutput release =
@@ -75,15 +76,10 @@ class StickingMap::Cycle {
             .output;
     release_gradient_.resize(2 * (n_ - 1));
     release_gradient_ << release.wx, release.wv;
-    rules_.reserve(hybrid.StopCount());
-    for (int j = 0; j < hybrid.StopCount(); ++j) {
-      rules_.emplace_back(options.simulation, hybrid.GetStop(j).Restitution(), hybrid.TimeScale(),
-                          hybrid.Free().Contact(j));
-      if (with_contacts_) {
-        contact_velocities_.push_back(hybrid.FreeFlow().Prepare(
-            {Eigen::RowVectorXd::Zero(n_), Eigen::RowVectorXd::Unit(n_, hybrid.GetStop(j).Dof()),
-             0.0, 0.0}));
-      }
+    for (int j = 0; with_contacts_ && j < hybrid.StopCount(); ++j) {
+      contact_velocities_.push_back(hybrid.FreeFlow().Prepare(
+          {Eigen::RowVectorXd::Zero(n_), Eigen::RowVectorXd::Unit(n_, hybrid.GetStop(j).Dof()), 0.0,
+           0.0}));
     }
   }
 
@@ -92,12 +88,8 @@ class StickingMap::Cycle {
                         StickingCycle* cycle);
 
  private:
-  /// An arrival at a stop: its index and time.
-  struct Arrival {
-    int stop = 0;
-    double t = 0.0;
-  };
-  /// The free flight to the first arrival at any stop.
+  using Arrival = PhaseEvents::Event;
+  /// The free flight to the first arrival at any stop (PhaseEvents).
   std::optional<Arrival> NextArrival(bool from_release, StickingMapStatus* status);
   /// The least distance from its stop of each stop's mass at its interior
   /// turns towards that stop on the flight [begin, end] (the zeros of its
@@ -133,13 +125,12 @@ class StickingMap::Cycle {
   std::vector<PreparedOutput> contact_velocities_;  ///< each stop's v_dof on the free flow
   const EventOptions events_;
   Eigen::RowVectorXd release_gradient_;
+  PhaseEvents phase_events_;  ///< the current flight's
   double t_ = 0.0;
-  double deadline_ = 0.0;              ///< the cycle must stick before this time
-  double clearance_ = 0.0;             ///< the cycle's so far (with contacts)
-  std::vector<ChatterRule> rules_;     ///< each stop's
-  std::vector<double> previous_;       ///< each stop's last impact time
-  double arrival_acceleration_ = 0.0;  ///< the gap's curvature at the last arrival
-  double gap_scale_ = 1.0;             ///< and the gap's length scale (GapLengthScale)
+  double deadline_ = 0.0;         ///< the cycle must stick before this time
+  double clearance_ = 0.0;        ///< the cycle's so far (with contacts)
+  std::vector<double> previous_;  ///< each stop's last impact time
+  int last_stop_ = 0;             ///< the stop of the last event (PhaseEvents::First's order)
   Eigen::VectorXd x_, v_;
   Eigen::MatrixXd dy_;     ///< ∂y/∂s of the current state
   Eigen::RowVectorXd dt_;  ///< ∂t/∂s of the current time
@@ -163,6 +154,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
     dt_ = Eigen::RowVectorXd::Unit(m, m - 1);
   }
   cycle->release = t_;
+  last_stop_ = section_;
   cycle->impacts.clear();
   clearance_ = std::numeric_limits<double>::infinity();
   deadline_ = t_ + options_.max_free_periods * system.ForcingPeriod();
@@ -171,6 +163,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   for (int i = 0; i < options_.max_impacts; ++i) {
     const std::optional<Arrival> arrival = NextArrival(i == 0, &status);
     if (!arrival) return status;
+    last_stop_ = arrival->stop;
     double t_star;
     if (!ArrivalEndsChatter(*arrival, cycle, &t_star)) {
       previous_[arrival->stop] = arrival->t;
@@ -194,41 +187,32 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
 std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
     bool from_release, StickingMapStatus* status) {
   const LinearFlow& flow = hybrid_.FreeFlow();
+  HybridState from;
+  from.t = t_;
+  from.x = x_;
+  from.v = v_;
   const Eigen::VectorXd z0 = flow.Transient(t_, x_, v_);
+  phase_events_.Begin(hybrid_.Free(), from, z0);
   // At a release the gap leaves 0 with zero speed and acceleration. Off
   // the release surface (a Newton iterate) a pressing force would turn that
   // tangency into a spurious impact at t0; searching from a short time later
   // keeps the map smooth there, and a gap still closed then means the state
   // is no release.
-  const double released = from_release ? t_ + kReleaseClearance * hybrid_.TimeScale() : t_;
-  std::optional<Arrival> first;
-  Signal first_gap;
-  double end = deadline_;
-  for (int j = 0; j < hybrid_.StopCount(); ++j) {
-    const Stop& stop = hybrid_.GetStop(j);
-    Signal gap = flow.Output(hybrid_.Gap(j), t_, z0);
-    gap.AnchorAt(stop.GapOf(x_), stop.SpeedTowards(v_(stop.Dof())));
-    const double begin = j == section_ ? released : t_;
-    if (from_release && j == section_ && gap.Value(begin) >= 0) {
+  PhaseEvents::LateStart late;
+  if (from_release) {
+    late = {section_, t_ + kReleaseClearance * hybrid_.TimeScale()};
+    if (phase_events_.Witness(section_).Value(late.begin) >= 0) {
       *status = StickingMapStatus::kNotReleased;
       return std::nullopt;
     }
-    const double scale = GapLengthScale(hybrid_, j, x_, v_, gap);
-    const std::optional<double> te =
-        FirstUpcrossing(gap, begin, end, ArrivalSearch(events_, scale));
-    if (!te || (first && *te >= end)) continue;
-    first = Arrival{j, *te};
-    first_gap = gap;
-    gap_scale_ = scale;
-    end = *te;
   }
+  const std::optional<Arrival> first = phase_events_.First(deadline_, last_stop_, late);
   if (!first) {
     *status = from_release ? StickingMapStatus::kNoImpact : StickingMapStatus::kNoChatter;
     return std::nullopt;
   }
+  const double end = first->t, released = from_release ? late.begin : t_;
   if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, released, end));
-  double value, slope;
-  first_gap.ValueSlopeCurvature(end, &value, &slope, &arrival_acceleration_);
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.StateFrom(t0, x0, v0, z0, end, &x_, &v_);
@@ -293,14 +277,16 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
   const double te = arrival.t;
   const Stop& stop = hybrid_.GetStop(k);
   const int dof = stop.Dof();
-  const ChatterRule& rule = rules_[k];
+  const ChatterRule& rule = phase_events_.Rule(k);
+  const double length_scale = phase_events_.LengthScale(k);
   // The speed towards the stop (on either side of the mass), at least 0:
   // the search places the crossing to rounding, where it may have the
   // other sign.
   const double speed = std::max(stop.SpeedTowards(v_(dof)), 0.0);
   v_(dof) = stop.Sign() * speed;
   *t_star = te;
-  if (rule.IsLanding(speed, arrival_acceleration_, gap_scale_)) {
+  double arrival_acceleration;
+  if (phase_events_.IsLanding(k, te, speed, &arrival_acceleration)) {
     stop.Absorb(v_);
     if (with_jacobian_) dy_ = stop.AbsorbJacobian(n_) * dy_;
     return true;
@@ -314,7 +300,7 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
   const double a =
       stop.Sign() * hybrid_.ContactAcceleration(k, te, x_, v_, &jerk, &force, &acceleration);
   const double rebound = -stop.SpeedTowards(v_(dof));
-  const ChatterDecision decision = rule.Decide(te, previous_[k], rebound, a, gap_scale_);
+  const ChatterDecision decision = rule.Decide(te, previous_[k], rebound, a, length_scale);
   if (decision != ChatterDecision::kSumTail) return decision != ChatterDecision::kGoesOn;
   const LinearFlow& flow = hybrid_.StuckFlow(k);
   const Signal release = flow.Output(

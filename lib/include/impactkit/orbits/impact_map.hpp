@@ -8,8 +8,8 @@
 /// with c the DOF of the stop hit, x_c = xs implied, τ the absolute impact
 /// time and s v_c > 0 the impact speed (s = +1 at an upper stop, -1 at a
 /// lower one). One application: v_c <- -r v_c, exact free flight, the next
-/// impact at any stop found by the certified event search (events.hpp),
-/// each stop's gap searched up to the earliest crossing found so far.
+/// impact at any stop found and judged as the simulator does
+/// (hybrid/phase_events.hpp).
 ///
 /// With several stops an impact state belongs to the stop it is at: the
 /// map's section is one stop's impacts (ImpactMapOptions::stop), and
@@ -170,17 +170,6 @@ class ImpactMap {
   /// false with `status` set when it fails.
   bool Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
             Eigen::MatrixXd* jacobian, MapStatus* status) const;
-  /// The first arrival at any stop in (t, t_end] of the flight from the
-  /// state `from` at t (z0 its transient), with the gap's curvature there
-  /// and its length scale (what the arrival rule judges); *stop is the stop
-  /// the flight leaves on entry, the one it reaches on return.
-  struct Arrival {
-    double t = 0.0;
-    double curvature = 0.0;
-    double length_scale = 1.0;
-  };
-  std::optional<Arrival> NextArrival(const HybridState& from, const Eigen::VectorXd& z0,
-                                     double t_end, int* stop) const;
   /// The flow's transient coordinates just after the impact η at `stop`.
   Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta, int stop) const;
   /// ∂y(τ+)/∂η: the embedding of η at `stop` into y(τ−) (x_c = xs fixed, τ
