@@ -5,8 +5,13 @@
 /// event-time correction (saltation) of the impact map, the release map and
 /// the fixed-time orbit equations.
 ///
-/// With G = ∂y(t1)/∂p at the event's time held fixed, l = ∂w/∂y, ẇ the
-/// witness's slope at the event and f1 the vector field there:
+/// A flight from (t0, y0), both depending on p, has at a fixed time t1
+///
+///     G = ∂y(t1)/∂p = Φ (dy0/dp − f0 dt0/dp),   Φ = e^{S (t1 − t0)},
+///
+/// f0 the vector field at its start (moving the start moves the whole
+/// flight). With l = ∂w/∂y, ẇ the witness's slope at the event and f1 the
+/// vector field there:
 ///
 ///     dt1/dp = −l G / ẇ,   dy1/dp = G + f1 dt1/dp.
 
@@ -18,6 +23,12 @@ struct EventDerivatives {
   Eigen::MatrixXd state;    ///< dy1/dp
   Eigen::RowVectorXd time;  ///< dt1/dp
 };
+
+inline Eigen::MatrixXd AtFixedTime(const Eigen::MatrixXd& transition, const Eigen::MatrixXd& start,
+                                   const Eigen::RowVectorXd& start_time,
+                                   const Eigen::VectorXd& start_field) {
+  return transition * (start - start_field * start_time);
+}
 
 inline EventDerivatives ThroughEvent(const Eigen::MatrixXd& g, const Eigen::RowVectorXd& gradient,
                                      double slope, const Eigen::VectorXd& field) {

@@ -96,22 +96,34 @@ void ImpactMap::ValidateEta(const Eigen::VectorXd& eta, int stop) const {
   }
 }
 
-Eigen::MatrixXd ImpactMap::ResetInEta(int stop) const {
+Eigen::MatrixXd ImpactMap::Embedding(int stop) const {
   const int n = GetSystem().Dof(), c = hybrid_->GetStop(stop).Dof();
-  Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n, 2 * n);  // ∂y(τ−)/∂η
+  Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   for (int j = 0, k = 0; j < n; ++j) {
     if (j != c) embedding(j, k++) = 1.0;
   }
   embedding.bottomRightCorner(n, n).setIdentity();
-  return hybrid_->GetStop(stop).ResetJacobian(n) * embedding;
+  return embedding;
+}
+
+HybridState ImpactMap::Departure(const Eigen::VectorXd& eta, int stop) const {
+  HybridState after = ToState(eta, stop);
+  hybrid_->GetStop(stop).Reset(after.v);
+  return after;
+}
+
+Eigen::MatrixXd ImpactMap::FlightJacobian(int stop, const HybridState& departure, double t) const {
+  const int n = GetSystem().Dof();
+  return AtFixedTime(hybrid_->FreeFlow().Transition(t - departure.t),
+                     hybrid_->GetStop(stop).ResetJacobian(n) * Embedding(stop),
+                     Eigen::RowVectorXd::Unit(2 * n, TimeIndex()),
+                     hybrid_->VectorField(departure.t, departure.x, departure.v));
 }
 
 Eigen::VectorXd ImpactMap::FlightTransient(const Eigen::VectorXd& eta, int stop) const {
   ValidateEta(eta, stop);
-  const HybridState before = ToState(eta, stop);
-  Eigen::VectorXd v_after = before.v;
-  hybrid_->GetStop(stop).Reset(v_after);
-  return hybrid_->FreeFlow().Transient(before.t, before.x, v_after);
+  const HybridState after = Departure(eta, stop);
+  return hybrid_->FreeFlow().Transient(after.t, after.x, after.v);
 }
 
 HybridState ImpactMap::FlightState(const Eigen::VectorXd& eta, double t, int stop) const {
@@ -139,8 +151,7 @@ std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorX
   ValidateEta(eta, stop);
   const LinearFlow& flow = hybrid_->FreeFlow();
   FlightEnd end;
-  end.start = ToState(eta, stop);
-  hybrid_->GetStop(stop).Reset(end.start.v);
+  end.start = Departure(eta, stop);
   const Eigen::VectorXd z0 = flow.Transient(end.start.t, end.start.x, end.start.v);
   PhaseEvents events(*hybrid_, options_.simulation);
   events.Begin(hybrid_->Free(), end.start, z0);
@@ -165,8 +176,6 @@ std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorX
 bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
                      Eigen::MatrixXd* jacobian, MapStatus* status) const {
   const System& system = GetSystem();
-  const LinearFlow& flow = hybrid_->FreeFlow();
-  const int n = system.Dof();
   const double t = eta(TimeIndex());
   const std::optional<FlightEnd> end =
       FirstArrival(eta, stop, t + options_.max_flight_periods * system.ForcingPeriod());
@@ -182,13 +191,8 @@ bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next
   const double te = end->state.t;
   const Eigen::VectorXd &x = end->state.x, &v = end->state.v;
   *next = ToEta(te, x, v, *next_stop);
-  if (!jacobian) return true;
-
-  // G = ∂y(t')/∂η at fixed t': the reset, then the flow from (y+, τ).
-  const Eigen::MatrixXd transition = flow.Transition(te - t);
-  Eigen::MatrixXd g = transition * ResetInEta(stop);
-  g.col(n - 1) = -transition * hybrid_->VectorField(t, end->start.x, end->start.v);
-  *jacobian = ArrivalJacobian(g, *next_stop, end->state);
+  if (jacobian)
+    *jacobian = ArrivalJacobian(FlightJacobian(stop, end->start, te), *next_stop, end->state);
   return true;
 }
 
@@ -262,12 +266,11 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
     const HybridState high = above.FlightState(at, t, stop), low = below.FlightState(at, t, stop);
     Eigen::VectorXd rate(2 * n);  // ∂y(t)/∂μ at fixed t
     rate << (high.x - low.x) / delta, (high.v - low.v) / delta;
-    const HybridState arrival = ToState(step.eta, next_stop);
-    const double dt = -(rate(c) - stop_rate) / arrival.v(c);
-    const Eigen::VectorXd dy = rate + hybrid_->VectorField(t, arrival.x, arrival.v) * dt;
-    Eigen::VectorXd partial(2 * n);
-    partial << WithoutIndex(Eigen::VectorXd(dy.head(n)), c), dt, dy.tail(n);
-    derivative = step.jacobian * derivative + partial;
+    // x_c is no coordinate of η: what the event sees is its rate relative
+    // to the moving stop.
+    rate(c) -= stop_rate;
+    derivative =
+        step.jacobian * derivative + ArrivalJacobian(rate, next_stop, ToState(step.eta, next_stop));
     at = step.eta;
     stop = next_stop;
   }

@@ -33,32 +33,16 @@ double ShootingProblem::EndTime(const Eigen::VectorXd& z, int k) const {
   return z(2 * n_ * next + map_.TimeIndex()) + shift;
 }
 
-Eigen::MatrixXd ShootingProblem::Embedding(int stop) const {
-  const int c = hybrid_.GetStop(stop).Dof();
-  Eigen::MatrixXd embedding = Eigen::MatrixXd::Zero(2 * n_, 2 * n_);
-  for (int j = 0, i = 0; j < n_; ++j) {
-    if (j != c) embedding(j, i++) = 1.0;
-  }
-  embedding.bottomRightCorner(n_, n_).setIdentity();
-  return embedding;
-}
-
 ShootingProblem::Flight ShootingProblem::Fly(const Eigen::VectorXd& z, int k,
                                              bool with_derivatives) const {
   const LinearFlow& flow = hybrid_.FreeFlow();
-  const HybridState before = map_.ToState(Eta(z, k), stops_[k]);
-  Eigen::VectorXd v_after = before.v;
-  hybrid_.GetStop(stops_[k]).Reset(v_after);
+  const HybridState after = map_.Departure(Eta(z, k), stops_[k]);
   Flight flight;
   flight.end.t = EndTime(z, k);
-  flow.StateFrom(before.t, before.x, v_after, flow.Transient(before.t, before.x, v_after),
-                 flight.end.t, &flight.end.x, &flight.end.v);
+  flow.StateFrom(after.t, after.x, after.v, flow.Transient(after.t, after.x, after.v), flight.end.t,
+                 &flight.end.x, &flight.end.v);
   if (!with_derivatives) return flight;
-  // G as in ImpactMap's step: the reset, the flow, and the start time's
-  // column −e^{S s} f(y+, τ) (moving the start moves the whole flight).
-  const Eigen::MatrixXd transition = flow.Transition(flight.end.t - before.t);
-  flight.g = transition * hybrid_.GetStop(stops_[k]).ResetJacobian(n_) * Embedding(stops_[k]);
-  flight.g.col(map_.TimeIndex()) = -transition * hybrid_.VectorField(before.t, before.x, v_after);
+  flight.g = map_.FlightJacobian(stops_[k], after, flight.end.t);
   flight.f = hybrid_.VectorField(flight.end.t, flight.end.x, flight.end.v);
   return flight;
 }
@@ -85,7 +69,7 @@ bool ShootingProblem::Jacobian(const Eigen::VectorXd& z, Eigen::MatrixXd* jacobi
     // time (the flight's rate) and the target state.
     jacobian->block(size * k, size * k, size, size) += flight.g;
     auto by_next = jacobian->block(size * k, size * next, size, size);
-    by_next -= Embedding(stops_[next]);
+    by_next -= map_.Embedding(stops_[next]);
     by_next.col(map_.TimeIndex()) += flight.f;
   }
   return jacobian->allFinite();

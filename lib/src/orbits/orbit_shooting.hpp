@@ -59,8 +59,6 @@ class ShootingProblem {
   Flight Fly(const Eigen::VectorXd& z, int k, bool with_derivatives) const;
   /// τ_{k+1}: the next impact's time, τ_0 + qT after the last.
   double EndTime(const Eigen::VectorXd& z, int k) const;
-  /// ∂y/∂η at stop `stop` (x_c = xs fixed; τ no part of y).
-  Eigen::MatrixXd Embedding(int stop) const;
 
   const HybridSystem& hybrid_;
   const ImpactMap& map_;

@@ -348,7 +348,7 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
 void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0,
                                        const Eigen::VectorXd& f1,
                                        const Eigen::RowVectorXd& gradient, double slope) {
-  EventDerivatives d = ThroughEvent(transition * (dy_ - f0 * dt_), gradient, slope, f1);
+  EventDerivatives d = ThroughEvent(AtFixedTime(transition, dy_, dt_, f0), gradient, slope, f1);
   dy_ = std::move(d.state);
   dt_ = std::move(d.time);
 }

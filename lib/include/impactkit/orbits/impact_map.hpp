@@ -148,6 +148,15 @@ class ImpactMap {
   /// None if the flight reaches no stop by t_end (to the search's
   /// resolution). Throws InvalidInput as ValidateEta.
   std::optional<FlightEnd> FirstArrival(const Eigen::VectorXd& eta, int stop, double t_end) const;
+  /// The state just after the impact η at `stop` (its reset applied).
+  HybridState Departure(const Eigen::VectorXd& eta, int stop) const;
+  /// ∂y/∂η at `stop`: the embedding of η into y = (x, v) (x_c = xs fixed, τ
+  /// no part of y).
+  Eigen::MatrixXd Embedding(int stop) const;
+  /// G = ∂y(t)/∂η at a fixed time t of the free flight after an impact at
+  /// `stop` whose Departure is `departure`: the reset, then the flow, with
+  /// τ's column −e^{S(t−τ)} f(y+, τ) (hybrid/event_time.hpp's AtFixedTime).
+  Eigen::MatrixXd FlightJacobian(int stop, const HybridState& departure, double t) const;
   /// ∂η'/∂p of the impact `arrival` at stop `stop` that ends a flight, from
   /// G = ∂y(t')/∂p at its time t' held fixed: the event-time correction
   /// (saltation) of hybrid/event_time.hpp, in η's coordinates.
@@ -172,9 +181,6 @@ class ImpactMap {
             Eigen::MatrixXd* jacobian, MapStatus* status) const;
   /// The flow's transient coordinates just after the impact η at `stop`.
   Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta, int stop) const;
-  /// ∂y(τ+)/∂η: the embedding of η at `stop` into y(τ−) (x_c = xs fixed, τ
-  /// no part of y), then the stop's reset.
-  Eigen::MatrixXd ResetInEta(int stop) const;
 
   std::shared_ptr<const HybridSystem> hybrid_;
   ImpactMapOptions options_;
