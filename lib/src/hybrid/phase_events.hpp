@@ -17,7 +17,8 @@
 ///
 /// An arrival is then an impact or a landing by its stop's ChatterRule
 /// (hybrid/chatter_rule.hpp), judged on the gap's curvature and length scale
-/// at the arrival.
+/// at the arrival; after an impact the same rule says whether and where its
+/// chatter sequence ends (AfterImpact).
 
 #include <optional>
 #include <vector>
@@ -69,6 +70,24 @@ class PhaseEvents {
   /// landing, or a grazing touch). *acceleration: the gap's curvature there.
   bool IsLanding(int stop, double te, double speed, double* acceleration) const;
 
+  /// Where a chatter sequence ends: at t (from the stop's mass at rest
+  /// there the motion goes on stuck, or free if the stop does not push),
+  /// counted as a cut if the rule cut it (ChatterRule).
+  struct SequenceEnd {
+    double t = 0.0;
+    bool cut = false;
+  };
+  /// After the impact at `stop` at te that this phase ends with, its reset
+  /// applied (the state x, v just after it, `v_before` just before;
+  /// `previous` the stop's impact before; `arrival_acceleration` the gap's
+  /// curvature at the arrival): the end of its chatter sequence — at once,
+  /// at a cut, or where the chatter map sums its tail on the flow with the
+  /// stop holding its mass — or none while the impacts go on.
+  std::optional<SequenceEnd> AfterImpact(int stop, double te, double previous,
+                                         const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                                         const Eigen::VectorXd& v_before,
+                                         double arrival_acceleration);
+
   /// The release search on a held phase's witness −Fs: it starts where the
   /// contact force may be 0 to the rounding of its terms, and a dip of the
   /// force below 0 that returns within that rounding is no release (a
@@ -83,6 +102,13 @@ class PhaseEvents {
   /// above the gap's rounding); one that leaves the stop from rest starts
   /// where the gap and its slope are 0 in truth, to the rounding of L.
   EventOptions Search(int stop) const;
+  /// An upper bound of the acceleration towards stop `stop` just after an
+  /// impact: the arrival's (the gap's curvature) changed by the damping of
+  /// the velocity jump from `v_before` to `v`, with a factor 2 and 1e-9 of the motion's
+  /// acceleration scale (L (2π/τ)²) over their rounding. Most impacts go on
+  /// by this bound alone (ChatterRule::MayEnd), without the acceleration.
+  double AccelerationBound(int stop, const Eigen::VectorXd& v, const Eigen::VectorXd& v_before,
+                           double arrival_acceleration) const;
 
   const HybridSystem& hybrid_;
   EventOptions events_;
@@ -94,6 +120,9 @@ class PhaseEvents {
   /// Per stop whose mass moves: due at once (at its stop moving in, or
   /// past it), and leaving the stop from rest (x_c = xs, v_c = 0).
   std::vector<char> due_, from_rest_;
+  /// Scratch of AfterImpact, reused: no allocation per impact.
+  Eigen::VectorXd force_scratch_, acceleration_scratch_, held_transient_;
+  Signal held_witness_;
 };
 
 // Inline: a simulation makes one phase per event, and these run in each

@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -99,9 +98,7 @@ class HybridRun {
         observer_(observer),
         phase_events_(hybrid, options),
         last_impacts_(hybrid.StopCount(), -std::numeric_limits<double>::infinity()),
-        stick_begins_(hybrid.StopCount(), state.t),
-        force_scratch_(hybrid_.GetSystem().Dof()),
-        acceleration_scratch_(hybrid_.GetSystem().Dof()) {}
+        stick_begins_(hybrid.StopCount(), state.t) {}
 
   SimulationSummary Execute();
 
@@ -110,7 +107,6 @@ class HybridRun {
   void MoveTo(const Mode& mode, double t0, const Eigen::VectorXd& z0, double t);
   void ArriveAtStop(int stop, double te, double speed);
   void ApplyImpact(int stop, double te, double speed, double arrival_acceleration);
-  double AccelerationBound(int stop, double arrival_acceleration) const;
   bool OverWorkBound();
   /// Where the current phase's search stops if no event comes first: t_end,
   /// or kPhaseSlice forcing periods on, so that a run without events still
@@ -119,7 +115,7 @@ class HybridRun {
     return std::min(t_end_, state_.t + kPhaseSlice * hybrid_.GetSystem().ForcingPeriod());
   }
   static constexpr double kPhaseSlice = 1000;
-  void EndChatter(int stop, double te, double rebound, ChatterDecision decision);
+  void EndChatter(int stop, double te, const PhaseEvents::SequenceEnd& end);
   void LandAtStop(int stop);
   std::int64_t Events() const {
     return summary_.impacts + summary_.landings + summary_.releases + summary_.chatter_jumps;
@@ -136,8 +132,7 @@ class HybridRun {
   std::vector<double> last_impacts_;  ///< per stop
   std::vector<double> stick_begins_;  ///< per stop
   Impact impact_;                     ///< reused: no allocation per impact
-  Eigen::VectorXd force_scratch_, acceleration_scratch_;
-  Eigen::VectorXd phase_transient_;  ///< the current phase's z0 (reused storage)
+  Eigen::VectorXd phase_transient_;   ///< the current phase's z0 (reused storage)
   static constexpr int kMaxStalledPhases = 1000;
   int stalled_phases_ = 0;
   int last_event_stop_ = 0;         ///< the stop of the last event (PhaseEvents::First's order)
@@ -256,19 +251,6 @@ void HybridRun::ArriveAtStop(int stop, double te, double speed) {
   ApplyImpact(stop, te, speed, acceleration);
 }
 
-/// An upper bound of the acceleration towards stop `stop` just after the
-/// impact whose reset has just been applied (impact_ holds the velocities
-/// before it): the arrival's, `arrival_acceleration` (the gap's curvature),
-/// changed by the damping of the velocity jump, with a factor 2 and 1e-9
-/// of the motion's acceleration scale (L (2π/τ)²) over their rounding.
-double HybridRun::AccelerationBound(int stop, double arrival_acceleration) const {
-  const Mode& mode = hybrid_.Holding(state_.held);
-  const double change = mode.AccelerationChange(stop, state_.v - impact_.v);
-  const double rate = 2 * std::numbers::pi / hybrid_.TimeScale();
-  return 2.0 * (std::abs(arrival_acceleration) + std::abs(change)) +
-         1e-9 * phase_events_.LengthScale(stop) * rate * rate;
-}
-
 void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_acceleration) {
   const System& system = hybrid_.GetSystem();
   const Stop& s = hybrid_.GetStop(stop);
@@ -287,47 +269,24 @@ void HybridRun::ApplyImpact(int stop, double te, double speed, double arrival_ac
   ++summary_.impacts;
   const double previous = last_impacts_[stop];
   last_impacts_[stop] = te;
-  const double rebound = -s.SpeedTowards(state_.v(c));
-  const ChatterRule& rule = phase_events_.Rule(stop);
-  const double length_scale = phase_events_.LengthScale(stop);
-  if (!rule.MayEnd(te, previous, rebound, AccelerationBound(stop, arrival_acceleration),
-                   length_scale)) {
-    return;
-  }
-  // The acceleration after the reset (the rebound's) towards the stop.
-  double jerk;
-  const double acceleration = mode.Acceleration(stop, te, state_.x, state_.v, &jerk,
-                                                &force_scratch_, &acceleration_scratch_);
-  const ChatterDecision decision =
-      rule.Decide(te, previous, rebound, s.Sign() * acceleration, length_scale);
-  if (decision != ChatterDecision::kGoesOn) EndChatter(stop, te, rebound, decision);
+  const std::optional<PhaseEvents::SequenceEnd> end = phase_events_.AfterImpact(
+      stop, te, previous, state_.x, state_.v, impact_.v, arrival_acceleration);
+  if (end) EndChatter(stop, te, *end);
 }
 
-/// The chatter sequence at stop `stop` ends after its impact at te: at
-/// once, at a cut (counted), or where the chatter map puts the end of its
-/// tail, if the tail accumulates (else the impacts go on). The other masses
-/// follow the stuck subsystem to that end (a chatter segment, not
-/// sticking); there x_c = xs, v_c = 0, and the mass sticks if the stop
-/// pushes on it.
-void HybridRun::EndChatter(int stop, double te, double rebound, ChatterDecision decision) {
-  const Mode& mode = hybrid_.Holding(state_.held);
-  const Mode& held = hybrid_.Holding(state_.held | StopBit(stop));
-  const Eigen::VectorXd z0 =
-      held.Flow().Transient(te, held.Reduced(state_.x), held.Reduced(state_.v));
-  double t_star = te;
-  if (decision == ChatterDecision::kSumTail) {
-    held.Flow().Output(*held.Witness(stop), te, z0, &held_witness_);
-    const ChatterTail tail =
-        phase_events_.Rule(stop).SumTail(held_witness_, mode.Contact(stop), te, rebound);
-    if (!tail.accumulates) return;
-    if (tail.cut) ++summary_.chatter_cuts;
-    t_star = std::min(t_end_, tail.end);
-  }
-  if (decision == ChatterDecision::kCut) ++summary_.chatter_cuts;
+/// The chatter sequence at stop `stop` ends after its impact at te, at
+/// end.t (PhaseEvents::AfterImpact). The other masses follow the stuck
+/// subsystem to that end (a chatter segment, not sticking); there x_c = xs,
+/// v_c = 0, and the mass sticks if the stop pushes on it.
+void HybridRun::EndChatter(int stop, double te, const PhaseEvents::SequenceEnd& end) {
+  if (end.cut) ++summary_.chatter_cuts;
+  const double t_star = std::min(t_end_, end.t);
   if (t_star > te) {
-    observer_.OnSegment(Segment(held.Flow(), te, z0, te, t_star, SegmentMode::kChatter,
-                                held.Moving(), held.HeldPositions()));
-    MoveTo(held, te, z0, t_star);
+    const Mode& held = hybrid_.Holding(state_.held | StopBit(stop));
+    held.Flow().Transient(te, held.Reduced(state_.x), held.Reduced(state_.v), &phase_transient_);
+    observer_.OnSegment(Segment(held.Flow(), te, phase_transient_, te, t_star,
+                                SegmentMode::kChatter, held.Moving(), held.HeldPositions()));
+    MoveTo(held, te, phase_transient_, t_star);
   }
   state_.t = t_star;
   state_.v(hybrid_.GetStop(stop).Dof()) = 0.0;

@@ -266,7 +266,7 @@ bool StickingMap::Cycle::HeldMeetsOtherStop(const LinearFlow& flow, double te,
   return false;
 }
 
-/// The simulator's rules at an arrival (hybrid/chatter_rule.hpp), with the
+/// The simulator's rules at an arrival (hybrid/phase_events.hpp), with the
 /// arrival's stop's law and rule: a landing ends the chatter at once and is
 /// no impact; an impact is recorded and reset, and the chatter ends where
 /// the rule says: at once, or at the end of its tail by the chatter map, if
@@ -277,8 +277,6 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
   const double te = arrival.t;
   const Stop& stop = hybrid_.GetStop(k);
   const int dof = stop.Dof();
-  const ChatterRule& rule = phase_events_.Rule(k);
-  const double length_scale = phase_events_.LengthScale(k);
   // The speed towards the stop (on either side of the mass), at least 0:
   // the search places the crossing to rounding, where it may have the
   // other sign.
@@ -292,22 +290,14 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
     return true;
   }
   cycle->impacts.push_back({k, te, speed});
+  const Eigen::VectorXd v_before = v_;
   stop.Reset(v_);
   if (with_jacobian_) dy_ = stop.ResetJacobian(n_) * dy_;
-  double jerk;
-  Eigen::VectorXd force(n_), acceleration(n_);
-  // Towards the stop, as the simulator has it.
-  const double a =
-      stop.Sign() * hybrid_.ContactAcceleration(k, te, x_, v_, &jerk, &force, &acceleration);
-  const double rebound = -stop.SpeedTowards(v_(dof));
-  const ChatterDecision decision = rule.Decide(te, previous_[k], rebound, a, length_scale);
-  if (decision != ChatterDecision::kSumTail) return decision != ChatterDecision::kGoesOn;
-  const LinearFlow& flow = hybrid_.StuckFlow(k);
-  const Signal release = flow.Output(
-      hybrid_.Release(k), te, flow.Transient(te, WithoutIndex(x_, dof), WithoutIndex(v_, dof)));
-  const ChatterTail tail = rule.SumTail(release, hybrid_.Free().Contact(k), te, rebound);
-  *t_star = tail.end;
-  return tail.accumulates;
+  const std::optional<PhaseEvents::SequenceEnd> end =
+      phase_events_.AfterImpact(k, te, previous_[k], x_, v_, v_before, arrival_acceleration);
+  if (!end) return false;
+  *t_star = end->t;
+  return true;
 }
 
 /// From the impact at te that ends the chatter, the stuck flow: through
