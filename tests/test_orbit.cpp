@@ -165,7 +165,7 @@ TEST_CASE("the finite-difference Jacobian's multipliers are reported when it is 
   REQUIRE(summary.termination == Termination::kConverged);
   const ImpactMap map(PaperSystem(1.4));
   // The reported Jacobian is the central-difference one at the orbit ...
-  const Eigen::MatrixXd expected = map.FiniteDifferenceJacobian(fd.eta, 1);
+  const Eigen::MatrixXd expected = FiniteDifferenceJacobian(map, fd.eta, 1);
   CHECK((fd.jacobian - expected).cwiseAbs().maxCoeff() == 0.0);
   // ... which differs from the analytic one by its truncation and rounding
   // error (~1e-7 relative), no more.

@@ -18,6 +18,7 @@
 #include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 #include "seeded_orbit.hpp"
 
@@ -138,7 +139,7 @@ TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sti
       for (int k : {1, 2}) {
         const StickingMapResult image = map.Apply(s, k, true);
         REQUIRE(image.status == StickingMapStatus::kOk);
-        const Eigen::MatrixXd fd = map.FiniteDifferenceJacobian(s, k);
+        const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, s, k);
         REQUIRE(fd.size() == image.jacobian.size());
         // Map rounding ~1e-12 over steps of 1e-6: ~1e-6 absolute at most.
         CHECK((image.jacobian - fd).cwiseAbs().maxCoeff() < 1e-5);
@@ -159,7 +160,7 @@ TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sti
         GeneralSystem(mass, damping, stiffness, Eigen::Vector3d(0.5, 0.0, 0.0), 0.2, 0.1, 0.7);
     const StickingOrbit orbit = testing::SeededStickingOrbit(system);
     const StickingMap map(system);
-    const Eigen::MatrixXd fd = map.FiniteDifferenceJacobian(orbit.state, orbit.releases);
+    const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, orbit.state, orbit.releases);
     REQUIRE(fd.size() == orbit.jacobian.size());
     CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() < 1e-5);
   }
@@ -214,11 +215,35 @@ TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
     CHECK_THROWS_WITH(FindStickingOrbit(system, held, options, &out),
                       Catch::Matchers::Contains("not a release"));
   }
-  SECTION("a guess at a system that does not stick (Omega = 0.5: impacts, no chatter)") {
-    const System impacting = PaperSystem(0.5);
-    CHECK_THROWS_WITH(FindStickingOrbit(impacting, orbit.state, options, &out),
-                      Catch::Matchers::Contains("no sticking orbit"));
-  }
+}
+
+TEST_CASE("sticking orbits: a release state the map cannot follow is a failure, as for impacts",
+          "[sticking]") {
+  // Ω = 0.5: the motion impacts without a chatter sequence accumulating.
+  // The guess is a release state; no sticking orbit goes through it, which
+  // FindStickingOrbit reports as FindOrbit does a guess whose impact is lost.
+  const StickingOrbit orbit = testing::SeededStickingOrbit(PaperSystem(0.2));
+  StickingOrbit out;
+  const StickingOrbitSummary summary =
+      FindStickingOrbit(PaperSystem(0.5), orbit.state, StickingOrbitOptions{}, &out);
+  CHECK(summary.termination == Termination::kFailure);
+  CHECK_THAT(summary.message,
+             Catch::Matchers::Contains("the map failed at the seed: after 0 of 1 releases, "
+                                       "impacts without a chatter sequence accumulating"));
+  CHECK(out.state == orbit.state);
+
+  // The same for an impact state whose next impact comes after the map's
+  // longest flight (here a millionth of a period).
+  PeriodicOrbit impacting;
+  Eigen::VectorXd eta(4);
+  eta << 0.0, 0.0, 0.1, 0.5;
+  OrbitOptions short_flights;
+  short_flights.map.max_flight_periods = 1e-6;
+  short_flights.shooting_fallback = false;
+  const OrbitSummary lost = FindOrbit(PaperSystem(0.5), eta, short_flights, &impacting);
+  CHECK(lost.termination == Termination::kFailure);
+  CHECK_THAT(lost.message, Catch::Matchers::Contains(
+                               "the map failed at the seed: after 0 of 1 impacts, lost impact"));
 }
 TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation stops sticking",
           "[sticking][continuation]") {

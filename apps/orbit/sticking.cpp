@@ -117,7 +117,7 @@ void RunStickingOrbit(const System& system, const StickingSeed& seed, double min
     StickingMapOptions map;
     map.stop = orbit.stop;
     const Eigen::MatrixXd fd =
-        StickingMap(system, map).FiniteDifferenceJacobian(orbit.state, orbit.releases);
+        FiniteDifferenceJacobian(StickingMap(system, map), orbit.state, orbit.releases);
     if (fd.size() == 0) {
       throw std::runtime_error(
           "the finite-difference Jacobian cannot be formed here: a perturbed map does not stick");

@@ -278,23 +278,21 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
   return derivative;
 }
 
-Eigen::MatrixXd ImpactMap::FiniteDifferenceJacobian(const Eigen::VectorXd& eta, int p,
-                                                    double relative_step) const {
-  const Eigen::Index dim = eta.size();
-  Eigen::MatrixXd jacobian(dim, dim);
-  for (Eigen::Index j = 0; j < dim; ++j) {
-    // τ is an absolute time: its natural scale is the forcing period, not |τ|.
-    const double scale =
-        j == TimeIndex() ? GetSystem().ForcingPeriod() : std::max(1.0, std::abs(eta(j)));
-    const double h = relative_step * scale;
-    Eigen::VectorXd plus = eta, minus = eta;
-    plus(j) += h;
-    minus(j) -= h;
-    const MapResult forward = Apply(plus, p, false), backward = Apply(minus, p, false);
-    if (forward.status != MapStatus::kOk || backward.status != MapStatus::kOk) return {};
-    jacobian.col(j) = (forward.eta - backward.eta) / (2.0 * h);
+SectionImage ImpactMap::Iterate(const Eigen::VectorXd& eta, int p, bool with_jacobian) const {
+  SectionImage image;
+  if (eta.size() != Size() || !eta.allFinite() || !(Speed(eta, SectionStop()) > 0)) {
+    image.failure = "not an impact state at the section's stop";
+    return image;
   }
-  return jacobian;
+  MapResult result = Apply(eta, p, with_jacobian);
+  if (result.status != MapStatus::kOk) {
+    image.failure =
+        fmt::format("after {} of {} impacts, {}", result.impacts_done, p, ToString(result.status));
+    return image;
+  }
+  image.state = std::move(result.eta);
+  image.jacobian = std::move(result.jacobian);
+  return image;
 }
 
 }  // namespace impactkit

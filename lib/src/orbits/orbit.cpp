@@ -10,72 +10,10 @@
 #include <utility>
 
 #include "impactkit/orbits/grazing_limit.hpp"
+#include "orbits/fixed_point.hpp"
 #include "orbits/orbit_shooting.hpp"
 
 namespace impactkit {
-namespace {
-
-/// The same impact state with τ moved into [0, T): the map commutes with
-/// shifts by T, and small times keep event times precise.
-Eigen::VectorXd WithPhase(const ImpactMap& map, Eigen::VectorXd eta) {
-  const int i = map.TimeIndex();
-  eta(i) = map.GetSystem().Phase(eta(i));
-  return eta;
-}
-
-/// U(η) = P_I^p(η) - η - q T e_τ and its Jacobian, as callbacks for the
-/// nonlinear solvers; a failing map (or an η that is no impact state)
-/// tells the solver to shorten its step.
-class FixedPointProblem {
- public:
-  FixedPointProblem(const ImpactMap& map, const OrbitOptions& options)
-      : map_(map), options_(options) {}
-
-  bool Residual(const Eigen::VectorXd& eta, Eigen::VectorXd* u) const {
-    // Newton asks for the Jacobian where it has just asked for the residual:
-    // the analytic one costs little beside the map, so compute both at once.
-    const bool analytic = options_.jacobian == JacobianMethod::kAnalytic;
-    const std::optional<MapResult> image = Map(eta, analytic);
-    if (!image) return false;
-    if (analytic) {
-      cached_eta_ = eta;
-      cached_jacobian_ = image->jacobian;
-    }
-    *u = image->eta - eta;
-    (*u)(map_.TimeIndex()) -= options_.q * map_.GetSystem().ForcingPeriod();
-    return u->allFinite();
-  }
-
-  bool Jacobian(const Eigen::VectorXd& eta, Eigen::MatrixXd* jacobian) const {
-    if (options_.jacobian == JacobianMethod::kFiniteDifference) {
-      *jacobian = map_.FiniteDifferenceJacobian(eta, options_.p);
-      if (jacobian->size() == 0) return false;
-    } else if (cached_eta_.size() == eta.size() && cached_eta_ == eta) {
-      *jacobian = cached_jacobian_;
-    } else {
-      const std::optional<MapResult> image = Map(eta, true);
-      if (!image) return false;
-      *jacobian = image->jacobian;
-    }
-    jacobian->diagonal().array() -= 1.0;
-    return jacobian->allFinite();
-  }
-
- private:
-  std::optional<MapResult> Map(const Eigen::VectorXd& eta, bool with_jacobian) const {
-    if (!eta.allFinite() || !(map_.Speed(eta, map_.SectionStop()) > 0)) return std::nullopt;
-    MapResult image = map_.Apply(eta, options_.p, with_jacobian);
-    if (image.status != MapStatus::kOk) return std::nullopt;
-    return image;
-  }
-
-  const ImpactMap& map_;
-  const OrbitOptions& options_;
-  mutable Eigen::VectorXd cached_eta_;  ///< where cached_jacobian_ was computed
-  mutable Eigen::MatrixXd cached_jacobian_;
-};
-
-}  // namespace
 
 OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
                             double tolerance) {
@@ -101,7 +39,7 @@ namespace {
 /// D P_I^p at η by finite differences; throws where a perturbed map fails.
 Eigen::MatrixXd FiniteDifferenceJacobianOrThrow(const ImpactMap& map, const Eigen::VectorXd& eta,
                                                 int p) {
-  Eigen::MatrixXd jacobian = map.FiniteDifferenceJacobian(eta, p);
+  Eigen::MatrixXd jacobian = FiniteDifferenceJacobian(map, eta, p);
   if (jacobian.size() == 0) {
     throw InvalidInput(
         "the finite-difference Jacobian cannot be formed here: a perturbed map loses or grazes an "
@@ -286,8 +224,7 @@ std::string OrbitSummary::BriefReport() const {
         "floor {:.2e})",
         shooting_residual, residual_floor);
   }
-  return fmt::format("{}: residual {:.2e} after {} iterations{}{}, {:.3g} s{}",
-                     ToString(termination), residual, iterations,
+  return fmt::format("{}{}{}, {:.3g} s{}", SolveReport(termination, residual, iterations),
                      used_fallback ? " (Levenberg-Marquardt fallback)" : "", shooting, seconds,
                      message.empty() ? "" : " (" + message + ")");
 }
@@ -317,40 +254,22 @@ PeriodicOrbit DescribeFixedPoint(const HybridSystem& hybrid, const ImpactMap& ma
                       FixedPointResidual(map, eta, options.q, image));
 }
 
-/// Newton on U, then Levenberg–Marquardt from the guess: kConverged with
-/// *orbit described, or why not, with *eta the best point.
+/// Newton on U, then Levenberg–Marquardt from the guess (SolveFixedPoint):
+/// kConverged with *orbit described, or why not, with *eta the best point.
 OrbitSummary SolveOnMap(const HybridSystem& hybrid, const ImpactMap& map,
                         const OrbitOptions& options, const Eigen::VectorXd& guess,
                         Eigen::VectorXd* eta, PeriodicOrbit* orbit) {
-  const FixedPointProblem problem(map, options);
-  const Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
-    return problem.Residual(x, f);
-  };
-  const Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
-    return problem.Jacobian(x, j);
-  };
+  const FixedPointProblem problem(map, options.p, options.q,
+                                  options.jacobian == JacobianMethod::kAnalytic);
+  const FixedPointSolve solved =
+      SolveFixedPoint(problem, guess, options.newton, options.least_squares_fallback);
   OrbitSummary summary;
-  *eta = guess;
-  Eigen::VectorXd u;
-  if (!problem.Residual(*eta, &u)) {
-    const MapResult image = map.Apply(*eta, options.p, false);
-    summary.termination = Termination::kFailure;
-    summary.message = fmt::format("the map failed at the seed after {} of {} impacts: {}",
-                                  image.impacts_done, options.p, ToString(image.status));
-    return summary;
-  }
-  SolveSummary solve = SolveNewton(residual, jacobian, options.newton, eta);
-  summary.iterations = solve.iterations;
-  if (solve.termination != Termination::kConverged && options.least_squares_fallback) {
-    *eta = guess;
-    solve = SolveLeastSquares(residual, jacobian, options.newton, eta);
-    summary.iterations += solve.iterations;
-    summary.used_fallback = true;
-  }
-  summary.termination = solve.termination;
-  summary.message = solve.message;
-  summary.residual = solve.residual_norm;
-  *eta = WithPhase(map, *eta);
+  summary.iterations = solved.iterations;
+  summary.used_fallback = solved.used_fallback;
+  summary.termination = solved.solve.termination;
+  summary.message = solved.solve.message;
+  summary.residual = solved.solve.residual_norm;
+  *eta = solved.x;
   if (summary.termination != Termination::kConverged) return summary;
   try {
     *orbit = DescribeFixedPoint(hybrid, map, options, *eta);
@@ -516,9 +435,9 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
   map.ValidateEta(guess);
 
   Eigen::VectorXd eta;
-  OrbitSummary summary = SolveOnMap(*hybrid, map, options, WithPhase(map, guess), &eta, orbit);
+  OrbitSummary summary = SolveOnMap(*hybrid, map, options, map.WithPhase(guess), &eta, orbit);
   if (summary.termination != Termination::kConverged && options.shooting_fallback) {
-    OrbitSummary shooting = SolveByShooting(*hybrid, map, options, WithPhase(map, guess), orbit);
+    OrbitSummary shooting = SolveByShooting(*hybrid, map, options, map.WithPhase(guess), orbit);
     shooting.iterations += summary.iterations;
     shooting.used_fallback = summary.used_fallback;
     if (shooting.termination == Termination::kConverged) {

@@ -400,24 +400,21 @@ StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_
   return result;
 }
 
-Eigen::MatrixXd StickingMap::FiniteDifferenceJacobian(const Eigen::VectorXd& s, int k,
-                                                      double relative_step) const {
-  Eigen::MatrixXd jacobian(Size(), Size());
-  for (int j = 0; j < Size(); ++j) {
-    // t is an absolute time: its natural scale is the forcing period.
-    const double scale =
-        j == TimeIndex() ? GetSystem().ForcingPeriod() : std::max(1.0, std::abs(s(j)));
-    const double h = relative_step * scale;
-    Eigen::VectorXd plus = s, minus = s;
-    plus(j) += h;
-    minus(j) -= h;
-    const StickingMapResult forward = Apply(plus, k, false), backward = Apply(minus, k, false);
-    if (forward.status != StickingMapStatus::kOk || backward.status != StickingMapStatus::kOk) {
-      return {};
-    }
-    jacobian.col(j) = (forward.state - backward.state) / (2.0 * h);
+SectionImage StickingMap::Iterate(const Eigen::VectorXd& s, int k, bool with_jacobian) const {
+  SectionImage image;
+  if (s.size() != Size() || !s.allFinite()) {
+    image.failure = "not a release state";
+    return image;
   }
-  return jacobian;
+  StickingMapResult result = Apply(s, k, with_jacobian);
+  if (result.status != StickingMapStatus::kOk) {
+    image.failure =
+        fmt::format("after {} of {} releases, {}", result.cycles_done, k, ToString(result.status));
+    return image;
+  }
+  image.state = std::move(result.state);
+  image.jacobian = std::move(result.jacobian);
+  return image;
 }
 
 HybridState StickingMap::ToState(const Eigen::VectorXd& s) const {

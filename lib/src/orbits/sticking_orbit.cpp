@@ -7,15 +7,10 @@
 #include <cmath>
 #include <limits>
 
+#include "orbits/fixed_point.hpp"
+
 namespace impactkit {
 namespace {
-
-/// The same section state with t moved into [0, T): the map commutes with
-/// shifts by T, and small times keep event times precise.
-Eigen::VectorXd WithPhase(const StickingMap& map, Eigen::VectorXd s) {
-  s(map.TimeIndex()) = map.GetSystem().Phase(s(map.TimeIndex()));
-  return s;
-}
 
 StickingMapResult ApplyOrThrow(const StickingMap& map, const Eigen::VectorXd& s, int k,
                                bool with_contacts = false) {
@@ -41,8 +36,8 @@ bool StickingOrbitOptions::IsValid(std::string* error) const {
 }
 
 std::string StickingOrbitSummary::BriefReport() const {
-  return fmt::format("{}: residual {:.2e} after {} iterations, {:.3g} s{}", ToString(termination),
-                     residual, iterations, seconds, message.empty() ? "" : " (" + message + ")");
+  return fmt::format("{}, {:.3g} s{}", SolveReport(termination, residual, iterations), seconds,
+                     message.empty() ? "" : " (" + message + ")");
 }
 
 Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorXd& s,
@@ -101,48 +96,27 @@ StickingOrbitSummary FindStickingOrbit(const System& system, const Eigen::Vector
   if (!options.IsValid(&error)) throw InvalidInput(error);
   const StickingMap map(system, options.map);
   map.ValidateSection(guess);
-  const double shift = options.q * system.ForcingPeriod();
-  const int k = options.releases;
-  Eigen::VectorXd s = WithPhase(map, guess);
-  ApplyOrThrow(map, s, k);  // a guess that does not release or stick again is bad input
-
-  // Newton asks for the Jacobian where it has just asked for the residual:
-  // the analytic one costs little beside the map, so both come at once.
-  Eigen::VectorXd cached_at;
-  Eigen::MatrixXd cached_jacobian;
-  const Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* u) {
-    const StickingMapResult image = map.Apply(x, k, true);
-    if (image.status != StickingMapStatus::kOk) return false;
-    cached_at = x;
-    cached_jacobian = image.jacobian;
-    *u = image.state - x;
-    (*u)(map.TimeIndex()) -= shift;
-    return u->allFinite();
-  };
-  const Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
-    if (cached_at.size() == x.size() && cached_at == x) {
-      *j = cached_jacobian;
-    } else {
-      const StickingMapResult image = map.Apply(x, k, true);
-      if (image.status != StickingMapStatus::kOk) return false;
-      *j = image.jacobian;
-    }
-    j->diagonal().array() -= 1.0;
-    return j->allFinite();
-  };
-  const SolveSummary solve = SolveNewton(residual, jacobian, options.newton, &s);
-  StickingOrbitSummary summary;
-  summary.iterations = solve.iterations;
-  summary.termination = solve.termination;
-  summary.message = solve.message;
-  summary.residual = solve.residual_norm;
-  s = WithPhase(map, s);
-  if (summary.termination == Termination::kConverged) {
-    *orbit = DescribeStickingOrbit(map, s, k, options.q);
-  } else {
-    orbit->state = s;
+  const Eigen::VectorXd seed = map.WithPhase(guess);
+  // A state the stop still pushes on is no section state, as an impact
+  // state moving away from its stop is none (ImpactMap::ValidateEta).
+  const StickingMapStatus first = map.Apply(seed, 1, false).status;
+  if (first == StickingMapStatus::kNotReleased) {
+    throw InvalidInput("the guess is " + ToString(first));
   }
-  orbit->residual = solve.residual_norm;
+  const FixedPointProblem problem(map, options.releases, options.q, true);
+  const FixedPointSolve solved =
+      SolveFixedPoint(problem, seed, options.newton, /*least_squares_fallback=*/false);
+  StickingOrbitSummary summary;
+  summary.iterations = solved.iterations;
+  summary.termination = solved.solve.termination;
+  summary.message = solved.solve.message;
+  summary.residual = solved.solve.residual_norm;
+  if (summary.termination == Termination::kConverged) {
+    *orbit = DescribeStickingOrbit(map, solved.x, options.releases, options.q);
+  } else {
+    orbit->state = solved.x;
+  }
+  orbit->residual = summary.residual;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

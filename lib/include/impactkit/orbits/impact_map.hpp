@@ -34,6 +34,7 @@
 #include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/section_map.hpp"
 
 namespace impactkit {
 
@@ -75,7 +76,7 @@ struct MapResult {
   std::vector<int> stops;             ///< the stop of each of them (its η's coordinates)
 };
 
-class ImpactMap {
+class ImpactMap : public SectionMap {
  public:
   /// Throws InvalidInput for an invalid system or options.
   explicit ImpactMap(const System& system, const ImpactMapOptions& options = {});
@@ -92,13 +93,14 @@ class ImpactMap {
   /// p impacts on from an impact at stop `stop`, wherever they fall.
   MapResult Follow(const Eigen::VectorXd& eta, int stop, int p, bool with_jacobian) const;
 
-  /// The Jacobian of P_I^p by central differences (the paper's method,
-  /// Foale & Thompson): 2N map applications per side. Empty if a perturbed
-  /// map fails. Each map carries event-time rounding of ~1e-12, so the
-  /// best step is near its cube root: 1e-5 (of the period for τ) gives
-  /// ~1e-7 relative accuracy, 1e-6 only ~1e-6.
-  Eigen::MatrixXd FiniteDifferenceJacobian(const Eigen::VectorXd& eta, int p,
-                                           double relative_step = 1e-5) const;
+  /// SectionMap: P_I^p as Apply, its failures (a state that is no impact
+  /// state at the section's stop included) as SectionImage::failure.
+  int Size() const override { return 2 * GetSystem().Dof(); }
+  SectionImage Iterate(const Eigen::VectorXd& eta, int p, bool with_jacobian) const override;
+  /// Each map carries event-time rounding of ~1e-12, so the best step is
+  /// near its cube root: 1e-5 (of the period for τ) gives ~1e-7 relative
+  /// accuracy, 1e-6 only ~1e-6.
+  double FiniteDifferenceStep() const override { return 1e-5; }
 
   /// ∂P_I^p(η; μ)/∂μ at fixed η, for a scalar parameter μ of which `below`
   /// and `above` are this map's system at μ - δ₋ and μ + δ₊ (δ₋ + δ₊ =
@@ -163,11 +165,11 @@ class ImpactMap {
   Eigen::MatrixXd ArrivalJacobian(const Eigen::MatrixXd& g, int stop,
                                   const HybridState& arrival) const;
   /// Index of τ in η (N - 1).
-  int TimeIndex() const { return GetSystem().Dof() - 1; }
+  int TimeIndex() const override { return GetSystem().Dof() - 1; }
   /// The impact speed s v_c of η at `stop` (> 0 for an impact state).
   double Speed(const Eigen::VectorXd& eta, int stop) const;
-  int SectionStop() const { return options_.stop; }
-  const System& GetSystem() const { return hybrid_->GetSystem(); }
+  int SectionStop() const override { return options_.stop; }
+  const System& GetSystem() const override { return hybrid_->GetSystem(); }
 
   /// Throws InvalidInput naming the problem if η is not an impact state at
   /// `stop` (the section's by default).

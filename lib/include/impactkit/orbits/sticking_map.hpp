@@ -47,6 +47,7 @@
 #include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/section_map.hpp"
 
 namespace impactkit {
 
@@ -116,7 +117,7 @@ struct StickingMapResult {
   std::vector<StickingCycle> cycles;  ///< what each application did
 };
 
-class StickingMap {
+class StickingMap : public SectionMap {
  public:
   /// Throws InvalidInput for an invalid system or options (a stop the
   /// system lacks included).
@@ -131,10 +132,13 @@ class StickingMap {
   StickingMapResult Apply(const Eigen::VectorXd& s, int k, bool with_jacobian,
                           bool with_contacts = false) const;
 
-  /// D P_R^k by central differences, steps relative_step × max(1, |s_j|)
-  /// (the forcing period for t). Empty if a perturbed map fails.
-  Eigen::MatrixXd FiniteDifferenceJacobian(const Eigen::VectorXd& s, int k,
-                                           double relative_step = 1e-6) const;
+  /// SectionMap: P_R^k as Apply, its failures (a state of the wrong size
+  /// or with a non-finite entry included) as SectionImage::failure.
+  SectionImage Iterate(const Eigen::VectorXd& s, int k, bool with_jacobian) const override;
+  /// 1e-6, below the impact map's: a perturbed cycle must end its chatter
+  /// at the same impact as the unperturbed one (a step across a threshold
+  /// of the chatter rule would difference two branches of the map).
+  double FiniteDifferenceStep() const override { return 1e-6; }
 
   /// The hybrid state (free, x_c = xs, v_c = 0) of a section state.
   HybridState ToState(const Eigen::VectorXd& s) const;
@@ -144,11 +148,11 @@ class StickingMap {
   Eigen::RowVectorXd ContactForceGradient(const Eigen::VectorXd& s) const;
 
   /// Index of t in s (2N − 2) and the size of s (2N − 1).
-  int TimeIndex() const { return 2 * (GetSystem().Dof() - 1); }
-  int Size() const { return 2 * GetSystem().Dof() - 1; }
-  const System& GetSystem() const { return hybrid_->GetSystem(); }
+  int TimeIndex() const override { return 2 * (GetSystem().Dof() - 1); }
+  int Size() const override { return 2 * GetSystem().Dof() - 1; }
+  const System& GetSystem() const override { return hybrid_->GetSystem(); }
   /// The section's stop.
-  int SectionStop() const { return options_.stop; }
+  int SectionStop() const override { return options_.stop; }
 
   /// Throws InvalidInput naming the problem if s is no section state.
   void ValidateSection(const Eigen::VectorXd& s) const;

@@ -1,0 +1,66 @@
+#pragma once
+/// \file section_map.hpp
+/// A Poincaré map of the hybrid motion on a section of one stop's events:
+/// its impacts (the impact map, impact_map.hpp) or its releases (the
+/// release map, sticking_map.hpp). What a periodic orbit needs of either:
+/// the k-th iterate with its Jacobian, the section's size and where its
+/// time sits. A periodic orbit of k events in q forcing periods is a zero of
+///
+///     U(x) = P^k(x) − x − q T e_t,
+///
+/// solved the same way on either map (orbits/fixed_point.hpp).
+
+#include <Eigen/Dense>
+#include <string>
+
+#include "impactkit/model/system.hpp"
+
+namespace impactkit {
+
+/// P^k(x), or why the map could not follow it.
+struct SectionImage {
+  Eigen::VectorXd state;     ///< P^k(x), when ok
+  Eigen::MatrixXd jacobian;  ///< D P^k(x), when asked and ok
+  /// Empty when ok; else what stopped the map, and after how many of the k
+  /// events ("after 0 of 1 impacts, lost impact (no further impact)").
+  std::string failure;
+  bool Ok() const { return failure.empty(); }
+};
+
+class SectionMap {
+ public:
+  virtual ~SectionMap() = default;
+
+  /// The dimension of the section's coordinates x.
+  virtual int Size() const = 0;
+  /// The index of the event's absolute time in x.
+  virtual int TimeIndex() const = 0;
+  /// The stop whose events are the section (an index into System::stops).
+  virtual int SectionStop() const = 0;
+  virtual const System& GetSystem() const = 0;
+  /// P^k(x) and, if `with_jacobian`, its analytic Jacobian; not ok (no
+  /// exception) where x is no state of the section or the map fails.
+  virtual SectionImage Iterate(const Eigen::VectorXd& x, int k, bool with_jacobian) const = 0;
+  /// The relative step of the map's central differences: near the cube
+  /// root of its event-time rounding (FiniteDifferenceJacobian).
+  virtual double FiniteDifferenceStep() const = 0;
+
+  /// x with its time moved into [0, T): the map commutes with shifts by T,
+  /// and small times keep event times precise.
+  Eigen::VectorXd WithPhase(Eigen::VectorXd x) const {
+    x(TimeIndex()) = GetSystem().Phase(x(TimeIndex()));
+    return x;
+  }
+};
+
+/// D P^k(x) by central differences (the paper's method, Foale & Thompson):
+/// steps `relative_step` × max(1, |x_j|), the forcing period for the time;
+/// 2 Size() map applications. Empty if a perturbed map fails.
+Eigen::MatrixXd FiniteDifferenceJacobian(const SectionMap& map, const Eigen::VectorXd& x, int k,
+                                         double relative_step);
+inline Eigen::MatrixXd FiniteDifferenceJacobian(const SectionMap& map, const Eigen::VectorXd& x,
+                                                int k) {
+  return FiniteDifferenceJacobian(map, x, k, map.FiniteDifferenceStep());
+}
+
+}  // namespace impactkit
