@@ -45,7 +45,7 @@ nlohmann::json PointJson(const StickingBranchPoint& p) {
   nlohmann::json multipliers = nlohmann::json::array();
   for (const std::complex<double>& m : o.multipliers) multipliers.push_back({m.real(), m.imag()});
   return {
-      {"parameter", p.parameter},
+      {"param", p.parameter},
       {"stick_phases", o.stick_phases},
       {"release_phases", o.release_phases},
       {"stuck_durations", o.stuck_durations},
@@ -88,12 +88,15 @@ void RunStickingContinue(const System& system, const StickingOrbit& start,
     j["parameter"] = options.parameter;
     j["releases"] = branch.releases;
     j["q"] = branch.q;
-    j["end"] = ToString(branch.end);
+    j["end_reason"] = ToString(branch.end);
     j["end_message"] = branch.end_message;
+    j["param_range"] = {branch.points.front().parameter, branch.points.back().parameter};
     j["special_points"] = nlohmann::json::array();
     for (const StickingSpecialPoint& s : branch.special_points) {
       nlohmann::json point = PointJson(s.point);
       point["type"] = ToString(s.type);
+      point["parameter"] = options.parameter;
+      point["description"] = s.Describe(options.parameter);
       j["special_points"].push_back(point);
     }
     j["points"] = nlohmann::json::array();

@@ -15,7 +15,8 @@ grep -q '^start: *sticking P(inf,1) at omega = 0.2, stable' "$work/stdout" ||
   fail "unexpected start: $(cat "$work/stdout")"
 grep -q '^end: *no_sticking' "$work/stdout" || fail "unexpected end: $(cat "$work/stdout")"
 json=$(tr -d ' \n' <"$work/b.json")
-for field in '"kind":"sticking"' '"end":"no_sticking"' '"type":"no_sticking"' '"points":[{'; do
+for field in '"kind":"sticking"' '"end_reason":"no_sticking"' '"type":"no_sticking"' \
+  '"points":[{"clearance":' '"param":0.2,' '"parameter":"omega"' '"param_range":[0.2,'; do
   [[ $json == *"$field"* ]] || fail "JSON lacks $field"
 done
 columns_of "$work/b.csv" | grep -q '^omega,stick_phase,release_phase,stuck_duration,contact_margin' ||
