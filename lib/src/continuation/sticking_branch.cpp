@@ -10,6 +10,7 @@
 #include <optional>
 #include <utility>
 
+#include "continuation/section_curve.hpp"
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit {
@@ -84,128 +85,46 @@ bool StickingBranchOptions::IsValid(std::string* error) const {
 
 namespace {
 
-/// The curve U(s, μ) = 0 of one sticking family as a function of X = (s, μ),
-/// with the bordered corrector and the tangent.
+/// The release map's SectionCurve (continuation/section_curve.hpp) with
+/// what a sticking family adds: its points' orbits, its corrector's
+/// iteration bound, and its start's sense by `increasing`.
 class StickingCurve {
  public:
   StickingCurve(const System& base, const StickingBranchOptions& options)
-      : base_(base), options_(options), m_(2 * base.Dof() - 1) {
-    if (!FindParameter(base, options.parameter)) {
-      throw InvalidInput(fmt::format("the system has no parameter '{}'", options.parameter));
-    }
-  }
+      : curve_(base, options.parameter, options.orbit.releases, options.orbit.q, 2 * base.Dof() - 1,
+               [map = options.orbit.map](const System& system) {
+                 return std::make_unique<StickingMap>(system, map);
+               }),
+        options_(options) {}
 
-  int Size() const { return m_ + 1; }
-  Eigen::VectorXd State(const Eigen::VectorXd& x) const { return x.head(m_); }
-  static double Mu(const Eigen::VectorXd& x) { return x(x.size() - 1); }
-
-  /// The release map at μ, or null where μ is not valid for the system.
-  /// The last few are kept: a Jacobian needs μ and μ ± h together.
-  const StickingMap* MapAt(double mu) const {
-    for (const auto& [at, map] : maps_) {
-      if (at == mu) return map.get();
-    }
-    std::unique_ptr<StickingMap> map;
-    try {
-      System system = base_;
-      SetParameter(system, options_.parameter, mu);
-      map = std::make_unique<StickingMap>(system, options_.orbit.map);
-    } catch (const InvalidInput&) {
-      return nullptr;
-    }
-    if (maps_.size() == 3) maps_.erase(maps_.begin());
-    maps_.emplace_back(mu, std::move(map));
-    return maps_.back().second.get();
-  }
-
-  bool Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u, Eigen::MatrixXd* u_s) const {
-    const StickingMap* map = MapAt(Mu(x));
-    if (!map || !x.allFinite()) return false;
-    const StickingMapResult image = map->Apply(State(x), options_.orbit.releases, u_s != nullptr);
-    // Past the family's end the chatter either accumulates where the stop
-    // no longer pushes, or (the acceleration towards the stop vanishing)
-    // no longer accumulates at all: both say it stops ending in sticking.
-    if (image.status == StickingMapStatus::kNoSticking ||
-        image.status == StickingMapStatus::kNoChatter) {
-      saw_no_sticking_ = true;
-    }
-    if (image.status != StickingMapStatus::kOk) return false;
-    *u = image.state - State(x);
-    (*u)(m_ - 1) -= options_.orbit.q * map->GetSystem().ForcingPeriod();
-    if (u_s) {
-      *u_s = image.jacobian;
-      u_s->diagonal().array() -= 1.0;
-    }
-    return u->allFinite();
-  }
-
-  /// [U_s U_μ], U_μ by central differences (Newton needs only an
-  /// approximate one; the map has no closed-form parameter derivative),
-  /// one-sided within h of the family's end, where the map fails on the
-  /// far side: without that the corrector failed there, and the branch
-  /// stopped a difference step (1e-6) short of its end.
-  bool Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian) const {
-    Eigen::VectorXd u, plus, minus;
-    Eigen::MatrixXd u_s;
-    if (!Residual(x, &u, &u_s)) return false;
-    const double h = 1e-6 * std::max(1.0, std::abs(Mu(x)));
-    Eigen::VectorXd xp = x, xm = x;
-    xp(m_) += h;
-    xm(m_) -= h;
-    const bool has_plus = Residual(xp, &plus, nullptr), has_minus = Residual(xm, &minus, nullptr);
-    if (!has_plus && !has_minus) return false;
-    jacobian->resize(m_, m_ + 1);
-    if (has_plus && has_minus) {
-      *jacobian << u_s, (plus - minus) / (2 * h);
-    } else {
-      *jacobian << u_s,
-          has_plus ? Eigen::VectorXd((plus - u) / h) : Eigen::VectorXd((u - minus) / h);
-    }
-    return true;
-  }
+  int Size() const { return curve_.Size(); }
+  static double Mu(const Eigen::VectorXd& x) { return detail::SectionCurve::Mu(x); }
 
   /// U(X) = 0 with c · X = value, from `guess`.
   std::optional<Eigen::VectorXd> Correct(const Eigen::VectorXd& guess, const Eigen::VectorXd& c,
                                          double value) const {
-    const impactkit::Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
-      Eigen::VectorXd u;
-      if (!Residual(x, &u, nullptr)) return false;
-      *f << u, c.dot(x) - value;
-      return f->allFinite();
-    };
-    const impactkit::Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
-      Eigen::MatrixXd top;
-      if (!Jacobian(x, &top)) return false;
-      *j << top, c.transpose();
-      return j->allFinite();
-    };
     NewtonOptions newton = options_.orbit.newton;
     newton.max_iterations = kCorrectorIterations;
-    Eigen::VectorXd x = guess;
-    const SolveSummary summary = SolveNewton(residual, jacobian, newton, &x);
-    if (summary.termination != Termination::kConverged) return std::nullopt;
-    return x;
+    int iterations = 0;
+    return curve_.Correct(guess, c, value, newton, &iterations);
   }
 
-  /// The unit null vector of [U_s U_μ], oriented along `previous` (or
-  /// along ±μ by `increasing` when it is empty).
+  /// The unit tangent, continuing `previous` (or along ±μ by `increasing`
+  /// when it is empty).
   std::optional<Eigen::VectorXd> Tangent(const Eigen::VectorXd& x, const Eigen::VectorXd& previous,
                                          bool increasing) const {
-    Eigen::MatrixXd jacobian;
-    if (!Jacobian(x, &jacobian)) return std::nullopt;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
-    Eigen::VectorXd t = svd.matrixV().col(m_);
-    const double sense = previous.size() ? t.dot(previous) : (increasing ? t(m_) : -t(m_));
-    if (sense < 0) t = -t;
+    std::optional<Eigen::VectorXd> t = curve_.Tangent(x, previous);
+    if (t && previous.size() == 0 && (increasing ? t->tail(1)(0) : -t->tail(1)(0)) < 0) *t = -*t;
     return t;
   }
 
   std::optional<StickingBranchPoint> Describe(const Eigen::VectorXd& x) const {
-    const StickingMap* map = MapAt(Mu(x));
+    const auto* map = static_cast<const StickingMap*>(curve_.MapAt(Mu(x)));
     if (!map) return std::nullopt;
     try {
-      return StickingBranchPoint{
-          Mu(x), DescribeStickingOrbit(*map, State(x), options_.orbit.releases, options_.orbit.q)};
+      return StickingBranchPoint{Mu(x),
+                                 DescribeStickingOrbit(*map, detail::SectionCurve::State(x),
+                                                       options_.orbit.releases, options_.orbit.q)};
     } catch (const InvalidInput&) {
       return std::nullopt;
     }
@@ -213,15 +132,12 @@ class StickingCurve {
 
   /// Whether the map found chatter not ending in sticking since the last
   /// call (at a trial point of the corrector, say), and forget it.
-  bool TakeNoSticking() const { return std::exchange(saw_no_sticking_, false); }
+  bool TakeNoSticking() const { return curve_.TakeStoppedSticking(); }
 
  private:
   static constexpr int kCorrectorIterations = 8;
-  System base_;
+  detail::SectionCurve curve_;
   const StickingBranchOptions& options_;
-  int m_;
-  mutable std::vector<std::pair<double, std::unique_ptr<StickingMap>>> maps_;
-  mutable bool saw_no_sticking_ = false;
 };
 
 /// Π(λ_i − 1) and Π(λ_i + 1) over the section multipliers: real, and zero

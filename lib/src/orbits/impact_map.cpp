@@ -278,6 +278,15 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
   return derivative;
 }
 
+SectionImage ImpactMap::ParameterRate(const Eigen::VectorXd& eta, int p, const SectionMap& below,
+                                      const SectionMap& above, double delta) const {
+  SectionImage rate;
+  rate.state = ParameterDerivative(eta, p, dynamic_cast<const ImpactMap&>(below),
+                                   dynamic_cast<const ImpactMap&>(above), delta);
+  if (rate.state.size() == 0) rate.failure = "the map fails beside the parameter's value";
+  return rate;
+}
+
 SectionImage ImpactMap::Iterate(const Eigen::VectorXd& eta, int p, bool with_jacobian) const {
   SectionImage image;
   if (eta.size() != Size() || !eta.allFinite() || !(Speed(eta, SectionStop()) > 0)) {

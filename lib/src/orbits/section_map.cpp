@@ -25,4 +25,13 @@ Eigen::MatrixXd FiniteDifferenceJacobian(const SectionMap& map, const Eigen::Vec
   return jacobian;
 }
 
+SectionImage SectionMap::ParameterRate(const Eigen::VectorXd& x, int k, const SectionMap& below,
+                                       const SectionMap& above, double delta) const {
+  SectionImage low = below.Iterate(x, k, false), high = above.Iterate(x, k, false);
+  if (!low.Ok()) return low;
+  if (!high.Ok()) return high;
+  high.state = (high.state - low.state) / delta;
+  return high;
+}
+
 }  // namespace impactkit

@@ -407,6 +407,11 @@ SectionImage StickingMap::Iterate(const Eigen::VectorXd& s, int k, bool with_jac
     return image;
   }
   StickingMapResult result = Apply(s, k, with_jacobian);
+  // Past a sticking family's end the chatter either accumulates where the
+  // stop no longer pushes, or (the acceleration towards the stop vanishing)
+  // no longer accumulates at all: both say it stops ending in sticking.
+  image.stops_sticking = result.status == StickingMapStatus::kNoSticking ||
+                         result.status == StickingMapStatus::kNoChatter;
   if (result.status != StickingMapStatus::kOk) {
     image.failure =
         fmt::format("after {} of {} releases, {}", result.cycles_done, k, ToString(result.status));

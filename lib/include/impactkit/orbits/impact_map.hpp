@@ -101,6 +101,9 @@ class ImpactMap : public SectionMap {
   /// near its cube root: 1e-5 (of the period for τ) gives ~1e-7 relative
   /// accuracy, 1e-6 only ~1e-6.
   double FiniteDifferenceStep() const override { return 1e-5; }
+  /// ParameterDerivative, for `below` and `above` impact maps.
+  SectionImage ParameterRate(const Eigen::VectorXd& eta, int p, const SectionMap& below,
+                             const SectionMap& above, double delta) const override;
 
   /// ∂P_I^p(η; μ)/∂μ at fixed η, for a scalar parameter μ of which `below`
   /// and `above` are this map's system at μ - δ₋ and μ + δ₊ (δ₋ + δ₊ =

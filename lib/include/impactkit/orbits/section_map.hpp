@@ -24,6 +24,9 @@ struct SectionImage {
   /// Empty when ok; else what stopped the map, and after how many of the k
   /// events ("after 0 of 1 impacts, lost impact (no further impact)").
   std::string failure;
+  /// The release map's chatter stopped ending in sticking (beyond a
+  /// sticking family's end); false for the impact map.
+  bool stops_sticking = false;
   bool Ok() const { return failure.empty(); }
 };
 
@@ -44,6 +47,12 @@ class SectionMap {
   /// The relative step of the map's central differences: near the cube
   /// root of its event-time rounding (FiniteDifferenceJacobian).
   virtual double FiniteDifferenceStep() const = 0;
+  /// ∂P^k(x; μ)/∂μ at fixed x (in `state`) for a scalar parameter μ, of
+  /// which `below` and `above` are this map's kind at μ − δ₋ and μ + δ₊
+  /// (δ₋ + δ₊ = `delta`; either may be this map). By default the
+  /// difference of their images; not ok where either fails.
+  virtual SectionImage ParameterRate(const Eigen::VectorXd& x, int k, const SectionMap& below,
+                                     const SectionMap& above, double delta) const;
 
   /// x with its time moved into [0, T): the map commutes with shifts by T,
   /// and small times keep event times precise.
