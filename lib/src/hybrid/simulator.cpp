@@ -9,7 +9,6 @@
 
 #include "hybrid/chatter_rule.hpp"
 #include "hybrid/phase_events.hpp"
-#include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/segment.hpp"
 
 namespace impactkit {
