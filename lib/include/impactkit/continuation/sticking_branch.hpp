@@ -6,8 +6,9 @@
 ///
 ///     U(s, μ) = P_R^k(s; μ) − s − q T(μ) e_t = 0          (sticking_orbit.hpp)
 ///
-/// with the same predictor and bordered KINSOL corrector as continuation.hpp
-/// (U_s the release map's analytic Jacobian, U_μ a central difference).
+/// with the same predictor, bordered KINSOL corrector and tangent as
+/// continuation.hpp (U_s the release map's analytic Jacobian, U_μ a
+/// central difference of its images, one-sided within a step of the end).
 ///
 /// What ends a sticking family, watched at every point:
 ///   - the chatter no longer ends in sticking: the least Fs(t*) of the

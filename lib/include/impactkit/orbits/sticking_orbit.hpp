@@ -77,9 +77,12 @@ struct StickingOrbitSummary : Summary {
   std::string BriefReport() const;
 };
 
-/// Solves U(s) = 0 from `guess`, a section state. Throws InvalidInput for
-/// bad options, system or guess, and for a guess from which the map cannot
-/// follow k releases (it does not release, or does not stick again).
+/// Solves U(s) = 0 from `guess`, a section state, by the fixed-point solve
+/// FindOrbit makes on the impact map. Throws InvalidInput for bad options,
+/// system or guess (the wrong size, a non-finite entry, or a state the stop
+/// still pushes on: no release). A guess from which the map cannot follow
+/// k releases (it does not stick again) is kFailure, the message saying
+/// after how many releases and why, as FindOrbit's for a lost impact.
 StickingOrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& guess,
                                        const StickingOrbitOptions& options, StickingOrbit* orbit);
 
