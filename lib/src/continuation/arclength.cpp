@@ -42,4 +42,29 @@ std::optional<Eigen::VectorXd> ArclengthTangent(const Eigen::MatrixXd& j,
   return t.normalized();
 }
 
+std::optional<Eigen::VectorXd> CorrectBordered(const Residual& residual, const Jacobian& jacobian,
+                                               const Eigen::VectorXd& guess,
+                                               const Eigen::VectorXd& c, double value,
+                                               const NewtonOptions& newton, int* iterations) {
+  const Eigen::Index n = guess.size() - 1;
+  const Residual bordered = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
+    Eigen::VectorXd fx;
+    if (!residual(x, &fx)) return false;
+    *f << fx, c.dot(x) - value;
+    return f->allFinite();
+  };
+  const Jacobian bordered_jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
+    Eigen::MatrixXd jx;
+    if (!jacobian(x, &jx)) return false;
+    j->topRows(n) = jx;
+    j->row(n) = c.transpose();
+    return true;
+  };
+  Eigen::VectorXd x = guess;
+  const SolveSummary summary = SolveNewton(bordered, bordered_jacobian, newton, &x);
+  *iterations = summary.iterations;
+  if (summary.termination != Termination::kConverged) return std::nullopt;
+  return x;
+}
+
 }  // namespace impactkit

@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "impactkit/solvers/nonlinear_solve.hpp"
+
 namespace impactkit {
 
 /// What is wrong with the step controls, or nothing: 0 < min_step <=
@@ -23,6 +25,15 @@ std::optional<std::string> StepControlProblem(double min_step, double initial_st
 /// folds and continuing `previous` (previous · t = 1 > 0); without (size 0)
 /// the null vector of J from its SVD, of either sign. Nothing where J is
 /// singular or not finite.
+/// The bordered corrector: solves F(x) = 0 (n equations, `residual`, with
+/// its n x (n + 1) Jacobian `jacobian`) together with c · x = value (the
+/// pseudo-arclength constraint, or a parameter held fixed) by Newton from
+/// `guess`. Empty if Newton does not converge; *iterations gets its count.
+std::optional<Eigen::VectorXd> CorrectBordered(const Residual& residual, const Jacobian& jacobian,
+                                               const Eigen::VectorXd& guess,
+                                               const Eigen::VectorXd& c, double value,
+                                               const NewtonOptions& newton, int* iterations);
+
 std::optional<Eigen::VectorXd> ArclengthTangent(const Eigen::MatrixXd& j,
                                                 const Eigen::VectorXd& previous);
 

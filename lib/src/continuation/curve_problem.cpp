@@ -214,25 +214,10 @@ std::optional<Eigen::VectorXd> CurveProblem::Correct(const Eigen::VectorXd& gues
                                                      const Eigen::VectorXd& c, double value,
                                                      const NewtonOptions& newton,
                                                      int* iterations) const {
-  const int n = size_ - 1;
-  const impactkit::Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
-    Eigen::VectorXd fx;
-    if (!Residual(x, &fx)) return false;
-    *f << fx, c.dot(x) - value;
-    return f->allFinite();
-  };
-  const impactkit::Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
-    Eigen::MatrixXd jx;
-    if (!Jacobian(x, &jx)) return false;
-    j->topRows(n) = jx;
-    j->row(n) = c.transpose();
-    return true;
-  };
-  Eigen::VectorXd x = Inside(guess);
-  const SolveSummary summary = SolveNewton(residual, jacobian, newton, &x);
-  *iterations = summary.iterations;
-  if (summary.termination != Termination::kConverged) return std::nullopt;
-  return x;
+  return CorrectBordered(
+      [this](const Eigen::VectorXd& x, Eigen::VectorXd* u) { return Residual(x, u); },
+      [this](const Eigen::VectorXd& x, Eigen::MatrixXd* j) { return Jacobian(x, j); },
+      Inside(guess), c, value, newton, iterations);
 }
 
 std::optional<Eigen::VectorXd> CurveProblem::Tangent(const Eigen::VectorXd& x,

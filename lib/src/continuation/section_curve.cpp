@@ -120,25 +120,10 @@ std::optional<Eigen::VectorXd> SectionCurve::Correct(const Eigen::VectorXd& gues
                                                      const Eigen::VectorXd& c, double value,
                                                      const NewtonOptions& newton,
                                                      int* iterations) const {
-  const int n = size_ - 1;
-  const impactkit::Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* f) {
-    Eigen::VectorXd u;
-    if (!Residual(x, &u)) return false;
-    *f << u, c.dot(x) - value;
-    return f->allFinite();
-  };
-  const impactkit::Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
-    Eigen::MatrixXd ju;
-    if (!Jacobian(x, &ju)) return false;
-    j->topRows(n) = ju;
-    j->row(n) = c.transpose();
-    return true;
-  };
-  Eigen::VectorXd x = guess;
-  const SolveSummary summary = SolveNewton(residual, jacobian, newton, &x);
-  *iterations = summary.iterations;
-  if (summary.termination != Termination::kConverged) return std::nullopt;
-  return x;
+  return CorrectBordered(
+      [this](const Eigen::VectorXd& x, Eigen::VectorXd* u) { return Residual(x, u); },
+      [this](const Eigen::VectorXd& x, Eigen::MatrixXd* j) { return Jacobian(x, j); }, guess, c,
+      value, newton, iterations);
 }
 
 std::optional<Eigen::VectorXd> SectionCurve::Tangent(const Eigen::VectorXd& x,
