@@ -66,7 +66,7 @@ int main() {
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 20, 2);
   if (!seed) return 1;
   StickingOrbitOptions options;
-  StickingOrbit orbit;
+  PeriodicOrbit orbit;
   const double solve = PerCall([&] { FindStickingOrbit(system, seed->state, options, &orbit); });
   const Simulator simulator(system);
   const StickingMap map(system);
@@ -81,7 +81,7 @@ int main() {
   const System low = PaperSystem(0.1);
   const std::optional<StickingSeed> low_seed = SeedStickingFromSimulation(low, 200, 2);
   if (!low_seed) return 1;
-  StickingOrbit start;
+  PeriodicOrbit start;
   FindStickingOrbit(low, low_seed->state, options, &start);
   StickingBranchOptions branch_options;
   branch_options.lower = 0.1;
@@ -92,14 +92,13 @@ int main() {
   const double continuation = CpuSeconds() - begin;
   begin = CpuSeconds();
   int failed = 0;
-  Eigen::VectorXd guess = start.state;
+  Eigen::VectorXd guess = start.eta;
   for (const StickingBranchPoint& p : branch.points) {
-    StickingOrbit natural;
+    PeriodicOrbit natural;
     try {
-      const StickingOrbitSummary s =
-          FindStickingOrbit(PaperSystem(p.parameter), guess, options, &natural);
+      const OrbitSummary s = FindStickingOrbit(PaperSystem(p.parameter), guess, options, &natural);
       if (s.termination == Termination::kConverged) {
-        guess = natural.state;
+        guess = natural.eta;
       } else {
         ++failed;
       }

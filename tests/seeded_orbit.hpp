@@ -28,10 +28,10 @@ inline PeriodicOrbit SeededOrbit(const System& system, int p, int q) {
 }
 
 /// The sticking orbit seeded by 200 periods from rest (periods up to 4).
-inline StickingOrbit SeededStickingOrbit(const System& system) {
+inline PeriodicOrbit SeededStickingOrbit(const System& system) {
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
-  StickingOrbit orbit;
+  PeriodicOrbit orbit;
   REQUIRE(FindStickingOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit).termination ==
           Termination::kConverged);
   return orbit;

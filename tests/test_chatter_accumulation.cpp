@@ -44,8 +44,8 @@ TEST_CASE("sticking begins at the accumulation point of its chatter, near the fa
   for (const Reference& expected : references) {
     INFO("omega " << expected.omega);
     const System system = SingleMass(1.0, 0.1, 1.2, expected.omega, 0.3, 0.6);
-    const StickingOrbit orbit = testing::SeededStickingOrbit(system);
-    CHECK_THAT(orbit.stick_phases[0], WithinAbs(expected.accumulation_phase, 1e-9));
+    const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
+    CHECK_THAT(orbit.stuck[0].stick_phase, WithinAbs(expected.accumulation_phase, 1e-9));
     // The issue's bound, 1e-8 relative. Near the end the accumulation point
     // moves by ~10⁴ times an impact's time error: at Ω = 0.461812 (4e-8
     // from the end) the rounding of the absolute impact times alone (half
@@ -54,7 +54,7 @@ TEST_CASE("sticking begins at the accumulation point of its chatter, near the fa
     // the floor of any double computation; ours is within 6e-10 there
     // (docs/theory.md §4).
     const double relative_error =
-        std::abs(orbit.stuck_durations[0] - expected.stuck_duration) / expected.stuck_duration;
+        std::abs(orbit.stuck[0].Duration() - expected.stuck_duration) / expected.stuck_duration;
     CAPTURE(relative_error);
     CHECK(relative_error <= 1e-8);
   }
@@ -71,7 +71,7 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   // over which such a bounce decides the end, 7e-9 here (docs/theory.md §5a).
   constexpr double kEnd = 0.46181203954564;
   const System system = SingleMass(1.0, 0.1, 1.2, 0.45, 0.3, 0.6);
-  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.lower = 0.44;
   options.upper = 0.47;

@@ -223,18 +223,23 @@ TEST_CASE("a lower stop's sticking orbit is the mirror image of the upper one's"
   System lower = upper;
   lower.forcing = -upper.forcing;
   lower.stops = {{1, StopSide::kLower, -0.1, 0.7}};
-  const StickingOrbit a = testing::SeededStickingOrbit(upper);
-  const StickingOrbit b = testing::SeededStickingOrbit(lower);
-  REQUIRE(b.stick_phases.size() == a.stick_phases.size());
-  CHECK_THAT(b.stick_phases[0], WithinAbs(a.stick_phases[0], 1e-9));
-  CHECK_THAT(b.release_phases[0], WithinAbs(a.release_phases[0], 1e-9));
-  CHECK_THAT(a.stick_phases[0], WithinAbs(30.464633012, 1e-8));  // docs/cli.md's sample
-  REQUIRE(b.cycles.size() == a.cycles.size());
-  CHECK(b.cycles[0].impacts.size() == a.cycles[0].impacts.size());
-  CHECK(a.cycles[0].impacts.size() == 27);
-  CHECK_THAT(b.contact_margin, WithinAbs(a.contact_margin, 1e-9));
-  CHECK_THAT(b.clearance, WithinAbs(a.clearance, 1e-9));
-  CHECK(((b.state.head(2) + a.state.head(2)).cwiseAbs().maxCoeff() < 1e-9));
+  const PeriodicOrbit a = testing::SeededStickingOrbit(upper);
+  const PeriodicOrbit b = testing::SeededStickingOrbit(lower);
+  REQUIRE(b.stuck.size() == a.stuck.size());
+  CHECK_THAT(b.stuck[0].stick_phase, WithinAbs(a.stuck[0].stick_phase, 1e-9));
+  CHECK_THAT(b.stuck[0].release_phase, WithinAbs(a.stuck[0].release_phase, 1e-9));
+  CHECK_THAT(a.stuck[0].stick_phase, WithinAbs(30.464633012, 1e-8));  // docs/cli.md's sample
+  REQUIRE(b.stuck.size() == a.stuck.size());
+  CHECK(b.stuck[0].impacts == a.stuck[0].impacts);
+  CHECK(a.stuck[0].impacts == 27);
+  CHECK_THAT(b.contacts.contact_margin, WithinAbs(a.contacts.contact_margin, 1e-9));
+  // Neither flight turns back towards the stop before the chatter.
+  CHECK_FALSE(a.contacts.clearance);
+  CHECK_FALSE(b.contacts.clearance);
+  // The mirror image's extent in x2 is the paper system's negated.
+  CHECK_THAT(b.contacts.contact_min, WithinAbs(-a.contacts.contact_max, 1e-9));
+  CHECK_THAT(b.contacts.contact_max, WithinAbs(-a.contacts.contact_min, 1e-9));
+  CHECK(((b.eta.head(2) + a.eta.head(2)).cwiseAbs().maxCoeff() < 1e-9));
   REQUIRE(b.multipliers.size() == a.multipliers.size());
   for (Eigen::Index i = 0; i < a.multipliers.size(); ++i) {
     CHECK(std::abs(b.multipliers(i) - a.multipliers(i)) < 1e-9);

@@ -35,9 +35,9 @@ std::optional<StickingSeed> SteadySticking(System system, const std::string& nam
 }
 
 /// The state a time `after` past the orbit's first release, by simulation.
-HybridState OnOrbit(const System& system, const StickingMap& map, const StickingOrbit& orbit,
+HybridState OnOrbit(const System& system, const StickingMap& map, const PeriodicOrbit& orbit,
                     double after) {
-  HybridState state = map.ToState(orbit.state);
+  HybridState state = map.ToState(orbit.eta);
   Simulator(system).Run(state, state.t + after);
   return state;
 }
@@ -65,9 +65,9 @@ Eigen::VectorXcd SortedEigenvalues(const Eigen::MatrixXd& matrix) {
 /// the orbit's q periods, from a point in the free flight after its first
 /// release, by central differences (an independent monodromy: no release
 /// map).
-Eigen::VectorXcd SimulatorMultipliers(const System& system, const StickingOrbit& orbit) {
+Eigen::VectorXcd SimulatorMultipliers(const System& system, const PeriodicOrbit& orbit) {
   const StickingMap map(system);
-  const double flight = orbit.cycles[0].impacts[0].t - orbit.cycles[0].release;
+  const double flight = orbit.impacts[0].t - orbit.eta(orbit.eta.size() - 1);
   const HybridState start = OnOrbit(system, map, orbit, 0.5 * flight);
   const int n = 2 * system.Dof();
   Eigen::VectorXd y(n);
@@ -91,7 +91,7 @@ Eigen::VectorXcd SimulatorMultipliers(const System& system, const StickingOrbit&
 TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long simulation",
           "[sticking]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
   REQUIRE(orbit.releases == 1);
   REQUIRE(orbit.q == 1);
   CHECK(orbit.residual < 1e-11);
@@ -105,16 +105,30 @@ TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long si
   // last bits (a changed root refinement did that) differ there by a few
   // 1e-9, so that is the bound; the release, a root of the contact force on
   // the stuck flow, is compared to 1e-9.
-  CHECK_THAT(orbit.stick_phases[0], WithinAbs(system.Phase(stuck.begin), 5e-8));
-  CHECK_THAT(orbit.release_phases[0], WithinAbs(system.Phase(stuck.end), 1e-9));
-  CHECK_THAT(orbit.stuck_durations[0], WithinAbs(stuck.end - stuck.begin, 5e-8));
+  CHECK_THAT(orbit.stuck[0].stick_phase, WithinAbs(system.Phase(stuck.begin), 5e-8));
+  CHECK_THAT(orbit.stuck[0].release_phase, WithinAbs(system.Phase(stuck.end), 1e-9));
+  CHECK_THAT(orbit.stuck[0].Duration(), WithinAbs(stuck.end - stuck.begin, 5e-8));
   CHECK(orbit.stable);
+  CHECK(orbit.p == orbit.stuck[0].impacts);
+  CHECK(orbit.contacts.contact_margin == orbit.stuck[0].contact_force);
+  // The extent of x2 over the orbit against the simulator's exact extrema
+  // of a steady period (its interior turns found like events, recorders.hpp).
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, 300 * system.ForcingPeriod());
+  ExtremaRecorder extrema(system.ForcingPeriod());
+  simulator.Run(state, 303 * system.ForcingPeriod(), extrema);
+  const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
+  REQUIRE(!periods.empty());
+  const PeriodExtrema& period = periods.front();
+  CHECK_THAT(orbit.contacts.contact_max, WithinAbs(period.max(1), 1e-9));
+  CHECK_THAT(orbit.contacts.contact_min, WithinAbs(period.min(1), 1e-9));
 }
 
 TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator's monodromy",
           "[sticking]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
   const Eigen::VectorXcd lambda = SimulatorMultipliers(system, orbit);
   // Sticking collapses x_2 and v_2: two zero multipliers of the strobe map.
   CHECK(std::abs(lambda(2)) < 1e-5);
@@ -130,12 +144,12 @@ TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator'
 TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sticking]") {
   SECTION("paper system, Omega = 0.2, at the orbit and off it, one and two releases") {
     const System system = PaperSystem(0.2);
-    const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+    const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
     const StickingMap map(system);
-    Eigen::VectorXd off = orbit.state;
+    Eigen::VectorXd off = orbit.eta;
     off(0) -= 2e-3;  // Fs lower: released a little earlier, still a release
     off(1) += 1e-3;
-    for (const Eigen::VectorXd& s : {orbit.state, off}) {
+    for (const Eigen::VectorXd& s : {orbit.eta, off}) {
       for (int k : {1, 2}) {
         const StickingMapResult image = map.Apply(s, k, true);
         REQUIRE(image.status == StickingMapStatus::kOk);
@@ -158,9 +172,9 @@ TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sti
     const Eigen::MatrixXd damping = 0.1 * stiffness;
     const System system =
         GeneralSystem(mass, damping, stiffness, Eigen::Vector3d(0.5, 0.0, 0.0), 0.2, 0.1, 0.7);
-    const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+    const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
     const StickingMap map(system);
-    const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, orbit.state, orbit.releases);
+    const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, orbit.eta, orbit.releases);
     REQUIRE(fd.size() == orbit.jacobian.size());
     CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() < 1e-5);
   }
@@ -175,42 +189,42 @@ TEST_CASE("N = 1: the sticking orbit's release has the closed form cos(Omega t) 
   const double k = 1.0, xs = 0.1, a = 0.5, omega = 0.2;
   const System system =
       UniformChain({1, 1.0, k, 0.1}, Eigen::VectorXd::Constant(1, a), omega, xs, 0.7);
-  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
   const double release = std::acos(k * xs / a) / omega;
-  CHECK_THAT(orbit.release_phases[0], WithinAbs(release, 1e-12));
-  CHECK_THAT(orbit.state(0), WithinAbs(release, 1e-12));
+  CHECK_THAT(orbit.stuck[0].release_phase, WithinAbs(release, 1e-12));
+  CHECK_THAT(orbit.eta(0), WithinAbs(release, 1e-12));
   CHECK(orbit.jacobian.cwiseAbs().maxCoeff() < 1e-12);
   CHECK(orbit.multipliers.size() == 0);
   CHECK(orbit.stable);
   // Sticking can only begin where the stop pushes: Fs(t*) > 0.
-  const double t_star = orbit.stick_phases[0];
+  const double t_star = orbit.stuck[0].stick_phase;
   CHECK(a * std::cos(omega * t_star) - k * xs > 0);
-  CHECK_THAT(orbit.stuck_durations[0],
+  CHECK_THAT(orbit.stuck[0].Duration(),
              WithinAbs(std::fmod(release - t_star + system.ForcingPeriod(), system.ForcingPeriod()),
                        1e-12));
 }
 
 TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
   StickingOrbitOptions options;
-  StickingOrbit out;
+  PeriodicOrbit out;
   SECTION("q = 0 or no releases") {
     options.q = 0;
-    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.state, options, &out), InvalidInput);
+    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.eta, options, &out), InvalidInput);
     options.q = 1;
     options.releases = 0;
-    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.state, options, &out), InvalidInput);
+    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.eta, options, &out), InvalidInput);
   }
   SECTION("a guess of the wrong size or with a NaN") {
     CHECK_THROWS_AS(FindStickingOrbit(system, Eigen::VectorXd::Zero(2), options, &out),
                     InvalidInput);
-    Eigen::VectorXd nan = orbit.state;
+    Eigen::VectorXd nan = orbit.eta;
     nan(0) = std::nan("");
     CHECK_THROWS_AS(FindStickingOrbit(system, nan, options, &out), InvalidInput);
   }
   SECTION("a guess where the stop still pushes (no release)") {
-    Eigen::VectorXd held = orbit.state;
+    Eigen::VectorXd held = orbit.eta;
     held(2) = 0.0;  // Fs = 0.5 + x1 - 0.1 > 0 at t = 0
     CHECK_THROWS_WITH(FindStickingOrbit(system, held, options, &out),
                       Catch::Matchers::Contains("not a release"));
@@ -222,15 +236,15 @@ TEST_CASE("sticking orbits: a release state the map cannot follow is a failure, 
   // Ω = 0.5: the motion impacts without a chatter sequence accumulating.
   // The guess is a release state; no sticking orbit goes through it, which
   // FindStickingOrbit reports as FindOrbit does a guess whose impact is lost.
-  const StickingOrbit orbit = testing::SeededStickingOrbit(PaperSystem(0.2));
-  StickingOrbit out;
-  const StickingOrbitSummary summary =
-      FindStickingOrbit(PaperSystem(0.5), orbit.state, StickingOrbitOptions{}, &out);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(PaperSystem(0.2));
+  PeriodicOrbit out;
+  const OrbitSummary summary =
+      FindStickingOrbit(PaperSystem(0.5), orbit.eta, StickingOrbitOptions{}, &out);
   CHECK(summary.termination == Termination::kFailure);
   CHECK_THAT(summary.message,
              Catch::Matchers::Contains("the map failed at the seed: after 0 of 1 releases, "
                                        "impacts without a chatter sequence accumulating"));
-  CHECK(out.state == orbit.state);
+  CHECK(out.eta == orbit.eta);
 
   // The same for an impact state whose next impact comes after the map's
   // longest flight (here a millionth of a period).
@@ -248,7 +262,7 @@ TEST_CASE("sticking orbits: a release state the map cannot follow is a failure, 
 TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation stops sticking",
           "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.lower = 0.1;
   options.upper = 0.6;
@@ -264,15 +278,15 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   // Recomputed from the located point: an orbit there, whose chatter only
   // just ends in sticking (Fs(t*) small beside its ~0.2 mid-branch) ...
   StickingOrbitOptions orbit_options;
-  StickingOrbit again;
-  REQUIRE(FindStickingOrbit(PaperSystem(omega_end), end.point.orbit.state, orbit_options, &again)
+  PeriodicOrbit again;
+  REQUIRE(FindStickingOrbit(PaperSystem(omega_end), end.point.orbit.eta, orbit_options, &again)
               .termination == Termination::kConverged);
-  CHECK((again.state - end.point.orbit.state).cwiseAbs().maxCoeff() < 1e-8);
-  CHECK(again.contact_margin > 0);
-  CHECK(again.contact_margin < 5e-3);
+  CHECK((again.eta - end.point.orbit.eta).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK(again.contacts.contact_margin > 0);
+  CHECK(again.contacts.contact_margin < 5e-3);
   // ... and no sticking orbit just beyond it.
-  Eigen::VectorXd beyond_guess = again.state;
-  StickingOrbit beyond;
+  Eigen::VectorXd beyond_guess = again.eta;
+  PeriodicOrbit beyond;
   bool sticks = true;
   try {
     sticks = FindStickingOrbit(PaperSystem(omega_end + 1e-4), beyond_guess, orbit_options, &beyond)
@@ -300,7 +314,7 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
 TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
           "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
-  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.parameter = "xs";
   options.lower = 0.0;
@@ -312,11 +326,11 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   // holds (Fs's interior minimum small beside its Fs(t*) ~ 0.09) ...
   System at_end = system;
   at_end.stops[0].position = end.parameter;
-  StickingOrbit again;
-  REQUIRE(FindStickingOrbit(at_end, end.orbit.state, StickingOrbitOptions{}, &again).termination ==
+  PeriodicOrbit again;
+  REQUIRE(FindStickingOrbit(at_end, end.orbit.eta, StickingOrbitOptions{}, &again).termination ==
           Termination::kConverged);
-  CHECK(again.hold_margin > 0);
-  CHECK(again.hold_margin < 1e-3);
+  CHECK(again.contacts.hold_margin > 0);
+  CHECK(again.contacts.hold_margin < 1e-3);
   // ... and the simulation 1e-3 beyond it sticks twice per period: the
   // early release and the sticking that follows it.
   const std::optional<StickingSeed> seed = SteadySticking(system, "xs", end.parameter + 1e-3);
@@ -330,7 +344,7 @@ TEST_CASE(
     "monodromy and its period-2 sticking beyond",
     "[sticking][continuation]") {
   const System system = PaperSystem(0.27);
-  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.parameter = "c";
   options.lower = 0.01;
@@ -348,10 +362,9 @@ TEST_CASE(
   // 1e-6, and the simulator's own monodromy there one within 1e-4.
   System at = system;
   SetParameter(at, "c", c);
-  StickingOrbit again;
-  REQUIRE(
-      FindStickingOrbit(at, pd->point.orbit.state, StickingOrbitOptions{}, &again).termination ==
-      Termination::kConverged);
+  PeriodicOrbit again;
+  REQUIRE(FindStickingOrbit(at, pd->point.orbit.eta, StickingOrbitOptions{}, &again).termination ==
+          Termination::kConverged);
   double nearest = 1e300;
   for (const std::complex<double>& m : again.multipliers)
     nearest = std::min(nearest, std::abs(m + 1.0));
@@ -379,7 +392,7 @@ TEST_CASE(
   // Fs(t*) = 0.37.
   System system = PaperSystem(0.25);
   SetParameter(system, "A1", 0.5);
-  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.parameter = "A1";
   options.lower = 0.5;
@@ -387,31 +400,29 @@ TEST_CASE(
   const StickingBranch branch = ContinueStickingBranch(system, start, options);
   REQUIRE(branch.end == StickingBranchEnd::kNewImpact);
   const StickingBranchPoint& end = branch.special_points.back().point;
-  CHECK(end.orbit.contact_margin > 0.3);  // the chatter still ends firmly in sticking
+  CHECK(end.orbit.contacts.contact_margin > 0.3);  // the chatter still ends firmly in sticking
   System at_end = system;
   SetParameter(at_end, "A1", end.parameter);
-  StickingOrbit again;
-  REQUIRE(FindStickingOrbit(at_end, end.orbit.state, StickingOrbitOptions{}, &again).termination ==
+  PeriodicOrbit again;
+  REQUIRE(FindStickingOrbit(at_end, end.orbit.eta, StickingOrbitOptions{}, &again).termination ==
           Termination::kConverged);
-  CHECK((again.state - end.orbit.state).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK((again.eta - end.orbit.eta).cwiseAbs().maxCoeff() < 1e-8);
   // Independently: CVODE from the release over the flight to the first
   // impact rises to the stop (to 1e-7) in between.
-  const StickingCycle& cycle = again.cycles.front();
-  const HybridState released = StickingMap(at_end).ToState(again.state);
+  const HybridState released = StickingMap(at_end).ToState(again.eta);
   const std::optional<double> top =
-      testing::CvodeFlightTop(at_end, released.t, released.x, released.v, cycle.impacts.front().t);
+      testing::CvodeFlightTop(at_end, released.t, released.x, released.v, again.impacts.front().t);
   REQUIRE(top.has_value());
   CHECK(std::abs(at_end.stops[0].position - *top) < 1e-7);
   // Beyond it the first impact after the release is that swing's, ten
   // times sooner.
   System beyond = system;
   SetParameter(beyond, "A1", end.parameter + 1e-4);
-  StickingOrbit past;
-  REQUIRE(FindStickingOrbit(beyond, end.orbit.state, StickingOrbitOptions{}, &past).termination ==
+  PeriodicOrbit past;
+  REQUIRE(FindStickingOrbit(beyond, end.orbit.eta, StickingOrbitOptions{}, &past).termination ==
           Termination::kConverged);
-  const double delay = cycle.impacts.front().t - cycle.release;
-  const StickingCycle& past_cycle = past.cycles.front();
-  CHECK(past_cycle.impacts.front().t - past_cycle.release < 0.2 * delay);
+  const double delay = again.impacts.front().t - released.t;
+  CHECK(past.impacts.front().t - past.eta(past.eta.size() - 1) < 0.2 * delay);
   // Followed back from there, that first impact slows to a graze at the
   // same A1: the family beyond ends where this one did. Its corrector stops
   // with the impact at a speed of ~2e-6 (the release map's Jacobian grows
@@ -424,10 +435,10 @@ TEST_CASE(
   CHECK_THAT(other_end.parameter, WithinAbs(end.parameter, 1e-5));
   System at_other = system;
   SetParameter(at_other, "A1", other_end.parameter);
-  StickingOrbit resolved;
-  REQUIRE(FindStickingOrbit(at_other, other_end.orbit.state, StickingOrbitOptions{}, &resolved)
+  PeriodicOrbit resolved;
+  REQUIRE(FindStickingOrbit(at_other, other_end.orbit.eta, StickingOrbitOptions{}, &resolved)
               .termination == Termination::kConverged);
-  CHECK(resolved.cycles.front().impacts.front().velocity < 1e-5);
+  CHECK(resolved.impacts.front().velocity < 1e-5);
 }
 
 TEST_CASE(

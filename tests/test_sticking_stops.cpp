@@ -28,11 +28,11 @@ namespace {
 /// chatter's predicted accumulation point on both sides, to 5e-8 (as in
 /// test_sticking_orbit.cpp); the release, a root of the contact force, to
 /// 1e-9.
-void CheckAgainstSimulation(const System& system, const StickingOrbit& orbit) {
+void CheckAgainstSimulation(const System& system, const PeriodicOrbit& orbit) {
   const testing::SimulatedStuckPhase simulated = testing::SimulateStuckPhase(system, 300);
   CHECK(orbit.stop == simulated.stop);
-  CHECK_THAT(orbit.stick_phases[0], WithinAbs(system.Phase(simulated.interval.begin), 5e-8));
-  CHECK_THAT(orbit.release_phases[0], WithinAbs(system.Phase(simulated.interval.end), 1e-9));
+  CHECK_THAT(orbit.stuck[0].stick_phase, WithinAbs(system.Phase(simulated.interval.begin), 5e-8));
+  CHECK_THAT(orbit.stuck[0].release_phase, WithinAbs(system.Phase(simulated.interval.end), 1e-9));
 }
 
 /// examples/systems/paper-mass1-stop.toml: the paper's system at Ω = 0.2
@@ -54,11 +54,11 @@ TEST_CASE("a sticking orbit at the second stop of a system: its section is that 
   System system = PaperSystem(0.2);
   system.stops = {{0, StopSide::kLower, -10.0, 0.5}, system.stops[0]};
   Validate(system);
-  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
   CHECK(orbit.stop == 1);
   CheckAgainstSimulation(system, orbit);
-  CHECK_THAT(orbit.stick_phases[0], WithinAbs(30.464633012, 1e-8));  // docs/cli.md's sample
-  CHECK_THAT(orbit.release_phases[0], WithinAbs(6.633818118, 1e-8));
+  CHECK_THAT(orbit.stuck[0].stick_phase, WithinAbs(30.464633012, 1e-8));  // docs/cli.md's sample
+  CHECK_THAT(orbit.stuck[0].release_phase, WithinAbs(6.633818118, 1e-8));
   // A map at a stop the system lacks is refused.
   StickingMapOptions options;
   options.stop = 2;
@@ -72,11 +72,11 @@ TEST_CASE("a sticking orbit whose flights impact another stop: the simulator's i
   // It sticks at mass 2's stop each period and mass 1 strikes its own
   // three times between releases.
   const System system = PaperWithMass1Stop();
-  const StickingOrbit orbit = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
   REQUIRE(orbit.stop == 1);
   CheckAgainstSimulation(system, orbit);
-  std::vector<StickingImpact> at_mass_1;
-  for (const StickingImpact& impact : orbit.cycles[0].impacts) {
+  std::vector<OrbitImpact> at_mass_1;
+  for (const OrbitImpact& impact : orbit.impacts) {
     if (impact.stop == 0) at_mass_1.push_back(impact);
   }
   // The simulator's impacts at stop 1 in one steady period, by phase.
@@ -99,7 +99,7 @@ TEST_CASE("a sticking orbit whose flights impact another stop: the simulator's i
   // differences of the map (steps 1e-6: their error ~1e-10 of its entries).
   StickingMapOptions options;
   options.stop = orbit.stop;
-  const Eigen::MatrixXd fd = FiniteDifferenceJacobian(StickingMap(system, options), orbit.state, 1);
+  const Eigen::MatrixXd fd = FiniteDifferenceJacobian(StickingMap(system, options), orbit.eta, 1);
   REQUIRE(fd.size() > 0);
   CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() <=
         1e-6 * std::max(1.0, orbit.jacobian.cwiseAbs().maxCoeff()));
@@ -112,7 +112,7 @@ TEST_CASE("a sticking family at the second stop ends where simulation stops stic
   // sticking) the simulator from rest, independently, sticks at that stop
   // periodically 1e-3 below and not at all 1e-3 above.
   const System system = PaperWithMass1Stop();
-  const StickingOrbit start = testing::SeededStickingOrbit(system);
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   StickingBranchOptions options;
   options.lower = 0.1;
   options.upper = 0.6;
@@ -144,8 +144,8 @@ TEST_CASE("a motion that sticks at both stops of a clearance is refused by the r
   Validate(system);
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
-  StickingOrbit orbit;
-  const StickingOrbitSummary summary =
+  PeriodicOrbit orbit;
+  const OrbitSummary summary =
       FindStickingOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit);
   CHECK(summary.termination == Termination::kFailure);
   CHECK_THAT(summary.message, Contains("another stop holds a mass"));

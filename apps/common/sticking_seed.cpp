@@ -46,11 +46,11 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
   return found;
 }
 
-StickingOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
-                                  StickingOrbitSummary* summary) {
+PeriodicOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
+                                  OrbitSummary* summary) {
   const StickingOrbitOptions options = OrbitOptionsFor(seed);
-  StickingOrbit orbit;
-  const StickingOrbitSummary result = FindStickingOrbit(system, seed.state, options, &orbit);
+  PeriodicOrbit orbit;
+  const OrbitSummary result = FindStickingOrbit(system, seed.state, options, &orbit);
   if (result.termination != Termination::kConverged) {
     throw std::runtime_error(
         fmt::format("no sticking P(inf,{}) orbit found: {}", options.q, result.BriefReport()));

@@ -33,7 +33,7 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
                                                const StickingSeedOptions& request);
 
 /// FindStickingOrbit from the seed; throws std::runtime_error if it fails.
-StickingOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
-                                  StickingOrbitSummary* summary = nullptr);
+PeriodicOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
+                                  OrbitSummary* summary = nullptr);
 
 }  // namespace impactkit::cli

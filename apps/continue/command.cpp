@@ -143,7 +143,7 @@ void ReportGrazingFollowed(const std::vector<TracedBranch>& branches) {
 /// A sticking start: its family through the library's sticking branch
 /// (continue/sticking.hpp); the options the impact branches alone have are
 /// refused.
-void RunSticking(const ContinueRequest& request, const System& system, const StickingOrbit& start,
+void RunSticking(const ContinueRequest& request, const System& system, const PeriodicOrbit& start,
                  OutputSet& outputs, AtomicOutputFile* out, AtomicOutputFile* json) {
   if (request.start || request.switch_period_doubling || request.follow_grazing ||
       !request.plot.empty()) {

@@ -14,7 +14,7 @@ namespace impactkit::cli {
 namespace {
 
 /// The largest section multiplier's modulus (0 where the section has none: N = 1).
-double LeadingModulus(const StickingOrbit& orbit) {
+double LeadingModulus(const PeriodicOrbit& orbit) {
   return orbit.multipliers.size() ? std::abs(orbit.multipliers(0)) : 0.0;
 }
 
@@ -27,39 +27,45 @@ std::vector<std::string> Columns(const std::string& parameter) {
 /// One row; `impacts` and `v1` (the first, fastest impact after the
 /// release) of the first sticking phase.
 std::vector<double> Row(const StickingBranchPoint& p) {
-  const StickingOrbit& o = p.orbit;
-  const StickingCycle& cycle = o.cycles.front();
+  const PeriodicOrbit& o = p.orbit;
+  const StuckPhase& stuck = o.stuck.front();
   return {p.parameter,
-          o.stick_phases.front(),
-          o.release_phases.front(),
-          o.stuck_durations.front(),
-          o.contact_margin,
+          stuck.stick_phase,
+          stuck.release_phase,
+          stuck.Duration(),
+          o.contacts.contact_margin,
           LeadingModulus(o),
           o.stable ? 1.0 : 0.0,
-          static_cast<double>(cycle.impacts.size()),
-          cycle.impacts.front().velocity};
+          static_cast<double>(stuck.impacts),
+          o.impacts.front().velocity};
 }
 
 nlohmann::json PointJson(const StickingBranchPoint& p) {
-  const StickingOrbit& o = p.orbit;
+  const PeriodicOrbit& o = p.orbit;
   nlohmann::json multipliers = nlohmann::json::array();
   for (const std::complex<double>& m : o.multipliers) multipliers.push_back({m.real(), m.imag()});
-  return {
-      {"param", p.parameter},
-      {"stick_phases", o.stick_phases},
-      {"release_phases", o.release_phases},
-      {"stuck_durations", o.stuck_durations},
-      {"contact_margin", o.contact_margin},
-      // null where no free flight has an interior maximum of x_c
-      {"clearance", std::isfinite(o.clearance) ? nlohmann::json(o.clearance) : nlohmann::json()},
-      {"multipliers", multipliers},
-      {"stable", o.stable},
-      {"state", std::vector<double>(o.state.data(), o.state.data() + o.state.size())}};
+  std::vector<double> stick_phases, release_phases, stuck_durations;
+  for (const StuckPhase& stuck : o.stuck) {
+    stick_phases.push_back(stuck.stick_phase);
+    release_phases.push_back(stuck.release_phase);
+    stuck_durations.push_back(stuck.Duration());
+  }
+  return {{"param", p.parameter},
+          {"stick_phases", stick_phases},
+          {"release_phases", release_phases},
+          {"stuck_durations", stuck_durations},
+          {"contact_margin", o.contacts.contact_margin},
+          // null where no free flight has an interior maximum of x_c
+          {"clearance",
+           o.contacts.clearance ? nlohmann::json(*o.contacts.clearance) : nlohmann::json()},
+          {"multipliers", multipliers},
+          {"stable", o.stable},
+          {"state", std::vector<double>(o.eta.data(), o.eta.data() + o.eta.size())}};
 }
 
 }  // namespace
 
-void RunStickingContinue(const System& system, const StickingOrbit& start,
+void RunStickingContinue(const System& system, const PeriodicOrbit& start,
                          const StickingBranchOptions& options, OutputSet& outputs,
                          AtomicOutputFile* out, AtomicOutputFile* json,
                          const Provenance& provenance) {

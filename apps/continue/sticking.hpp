@@ -17,7 +17,7 @@ namespace impactkit::cli {
 /// adds its table to `out` and its JSON to `json` (either may be null),
 /// all committed by the caller. Throws std::runtime_error if the branch
 /// cannot leave its start.
-void RunStickingContinue(const System& system, const StickingOrbit& start,
+void RunStickingContinue(const System& system, const PeriodicOrbit& start,
                          const StickingBranchOptions& options, OutputSet& outputs,
                          AtomicOutputFile* out, AtomicOutputFile* json,
                          const Provenance& provenance);

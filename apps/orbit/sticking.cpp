@@ -21,17 +21,20 @@ std::vector<double> ToVector(const Eigen::VectorXd& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
-/// The impacts of a cycle faster than the bound (the chatter's tail of ever
-/// slower impacts left out).
-std::vector<StickingImpact> FastImpacts(const StickingCycle& cycle, double min_speed) {
-  std::vector<StickingImpact> fast;
-  for (const StickingImpact& i : cycle.impacts) {
-    if (i.velocity > min_speed) fast.push_back(i);
+/// The impacts of stuck phase k's cycle (from the release before it to its
+/// accumulation) faster than the bound: the chatter's tail of ever slower
+/// impacts left out.
+std::vector<OrbitImpact> FastImpacts(const PeriodicOrbit& orbit, std::size_t k, double min_speed) {
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < k; ++i) first += orbit.stuck[i].impacts;
+  std::vector<OrbitImpact> fast;
+  for (std::size_t i = first; i < first + orbit.stuck[k].impacts; ++i) {
+    if (orbit.impacts[i].velocity > min_speed) fast.push_back(orbit.impacts[i]);
   }
   return fast;
 }
 
-void Print(const System& system, const StickingOrbit& orbit, const StickingOrbitSummary& summary,
+void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary& summary,
            double min_speed) {
   fmt::print("system:      {}\n", DescribeSystem(system));
   const std::string at_stop =
@@ -43,18 +46,17 @@ void Print(const System& system, const StickingOrbit& orbit, const StickingOrbit
       "sticking:    stick phase          release phase        stuck duration  "
       "(t mod T, T = {:.6g})\n",
       system.ForcingPeriod());
-  for (std::size_t i = 0; i < orbit.cycles.size(); ++i) {
-    fmt::print("             {:<20.12f} {:<20.12f} {:.12f}\n", orbit.stick_phases[i],
-               orbit.release_phases[i], orbit.stuck_durations[i]);
+  for (const StuckPhase& stuck : orbit.stuck) {
+    fmt::print("             {:<20.12f} {:<20.12f} {:.12f}\n", stuck.stick_phase,
+               stuck.release_phase, stuck.Duration());
   }
-  for (const StickingCycle& cycle : orbit.cycles) {
-    const std::vector<StickingImpact> fast = FastImpacts(cycle, min_speed);
+  for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
+    const std::vector<OrbitImpact> fast = FastImpacts(orbit, k, min_speed);
     fmt::print("impacts:     {} before the accumulation at phase {:.12f}, {} faster than {}:\n",
-               cycle.impacts.size(), system.Phase(cycle.accumulation), fast.size(), min_speed);
-    for (const StickingImpact& i : fast) {
+               orbit.stuck[k].impacts, orbit.stuck[k].stick_phase, fast.size(), min_speed);
+    for (const OrbitImpact& i : fast) {
       const std::string at = system.StopCount() > 1 ? fmt::format("  stop {}", i.stop + 1) : "";
-      fmt::print("             phase {:<22.12f} velocity {:.12f}{}\n", system.Phase(i.t),
-                 i.velocity, at);
+      fmt::print("             phase {:<22.12f} velocity {:.12f}{}\n", i.phase, i.velocity, at);
     }
   }
   fmt::print("multipliers: on the release section (sticking collapses x{0}, v{0})\n",
@@ -65,8 +67,8 @@ void Print(const System& system, const StickingOrbit& orbit, const StickingOrbit
   fmt::print("solve:       {}\n", summary.BriefReport());
 }
 
-nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
-                         const StickingOrbitSummary& summary, double min_speed) {
+nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
+                         const OrbitSummary& summary, double min_speed) {
   nlohmann::json j;
   j["kind"] = "sticking";
   j["stop"] = orbit.stop + 1;  // 1-based, as in the system file and --stop
@@ -76,27 +78,32 @@ nlohmann::json OrbitJson(const System& system, const StickingOrbit& orbit,
   j["stable"] = orbit.stable;
   j["residual"] = orbit.residual;
   j["iterations"] = summary.iterations;
-  j["stick_phases"] = orbit.stick_phases;
-  j["release_phases"] = orbit.release_phases;
-  j["stuck_durations"] = orbit.stuck_durations;
+  std::vector<double> stick_phases, release_phases, stuck_durations;
+  for (const StuckPhase& stuck : orbit.stuck) {
+    stick_phases.push_back(stuck.stick_phase);
+    release_phases.push_back(stuck.release_phase);
+    stuck_durations.push_back(stuck.Duration());
+  }
+  j["stick_phases"] = stick_phases;
+  j["release_phases"] = release_phases;
+  j["stuck_durations"] = stuck_durations;
   j["min_speed"] = min_speed;
   j["chatter"] = nlohmann::json::array();
-  for (const StickingCycle& cycle : orbit.cycles) {
+  for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
     nlohmann::json impacts = nlohmann::json::array();
-    for (const StickingImpact& i : FastImpacts(cycle, min_speed)) {
-      impacts.push_back(
-          {{"t", i.t}, {"phase", system.Phase(i.t)}, {"v", i.velocity}, {"stop", i.stop + 1}});
+    for (const OrbitImpact& i : FastImpacts(orbit, k, min_speed)) {
+      impacts.push_back({{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}, {"stop", i.stop + 1}});
     }
-    j["chatter"].push_back({{"impacts", cycle.impacts.size()},
-                            {"accumulation", cycle.accumulation},
-                            {"contact_force", cycle.contact_force},
+    j["chatter"].push_back({{"impacts", orbit.stuck[k].impacts},
+                            {"accumulation", orbit.stuck[k].stick},
+                            {"contact_force", orbit.stuck[k].contact_force},
                             {"fast_impacts", impacts}});
   }
   j["multipliers"] = nlohmann::json::array();
   for (const std::complex<double>& m : orbit.multipliers) {
     j["multipliers"].push_back({m.real(), m.imag()});
   }
-  j["state"] = ToVector(orbit.state);
+  j["state"] = ToVector(orbit.eta);
   j["system"] = nlohmann::json::parse(SystemToJson(system));
   return j;
 }
@@ -107,8 +114,8 @@ void RunStickingOrbit(const System& system, const StickingSeed& seed, double min
                       bool check_jacobian, const std::string& json, const SystemOptions& source) {
   std::optional<AtomicOutputFile> file;  // created first: a bad path fails before the work
   if (!json.empty()) file.emplace(json);
-  StickingOrbitSummary summary;
-  const StickingOrbit orbit = RefineStickingOrbit(system, seed, &summary);
+  OrbitSummary summary;
+  const PeriodicOrbit orbit = RefineStickingOrbit(system, seed, &summary);
   Print(system, orbit, summary, min_speed);
   nlohmann::json j = OrbitJson(system, orbit, summary, min_speed);
   j["provenance"] =
@@ -117,7 +124,7 @@ void RunStickingOrbit(const System& system, const StickingSeed& seed, double min
     StickingMapOptions map;
     map.stop = orbit.stop;
     const Eigen::MatrixXd fd =
-        FiniteDifferenceJacobian(StickingMap(system, map), orbit.state, orbit.releases);
+        FiniteDifferenceJacobian(StickingMap(system, map), orbit.eta, orbit.releases);
     if (fd.size() == 0) {
       throw std::runtime_error(
           "the finite-difference Jacobian cannot be formed here: a perturbed map does not stick");

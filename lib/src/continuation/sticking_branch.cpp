@@ -54,10 +54,10 @@ std::string ToString(StickingBranchEnd end) {
 }
 
 std::string StickingSpecialPoint::Describe(const std::string& parameter_name) const {
-  const StickingOrbit& o = point.orbit;
+  const PeriodicOrbit& o = point.orbit;
   return fmt::format("{} at {} = {:.10g} (stick phase {:.9g}, release phase {:.9g}, Fs(t*) {:.3g})",
-                     ToString(type), parameter_name, point.parameter, o.stick_phases.front(),
-                     o.release_phases.front(), o.contact_margin);
+                     ToString(type), parameter_name, point.parameter, o.stuck.front().stick_phase,
+                     o.stuck.front().release_phase, o.contacts.contact_margin);
 }
 
 bool StickingBranchOptions::IsValid(std::string* error) const {
@@ -142,7 +142,7 @@ class StickingCurve {
 
 /// Π(λ_i − 1) and Π(λ_i + 1) over the section multipliers: real, and zero
 /// at a fold or a period doubling.
-double TestFunction(const StickingOrbit& orbit, StickingEvent type) {
+double TestFunction(const PeriodicOrbit& orbit, StickingEvent type) {
   const double shift = type == StickingEvent::kFold ? -1.0 : 1.0;
   std::complex<double> product = 1.0;
   for (const std::complex<double>& lambda : orbit.multipliers) product *= lambda + shift;
@@ -154,11 +154,28 @@ double TestFunction(const StickingOrbit& orbit, StickingEvent type) {
 constexpr double kDelayJump = 0.25;
 
 /// Why a point cannot be on the sticking family, if it cannot.
-std::optional<StickingEvent> Violation(const StickingOrbit& orbit) {
-  if (!(orbit.contact_margin > 0)) return StickingEvent::kNoSticking;
-  if (!(orbit.clearance > 0)) return StickingEvent::kNewImpact;
-  if (!(orbit.hold_margin > 0)) return StickingEvent::kEarlyRelease;
+std::optional<StickingEvent> Violation(const PeriodicOrbit& orbit) {
+  const OrbitContacts& c = orbit.contacts;
+  if (!(c.contact_margin > 0)) return StickingEvent::kNoSticking;
+  if (!(c.clearance.value_or(1.0) > 0)) return StickingEvent::kNewImpact;
+  if (!(c.hold_margin > 0)) return StickingEvent::kEarlyRelease;
   return std::nullopt;
+}
+
+/// The delay from each release to the first impact after it (NaN for a
+/// cycle without impacts), in the order of the orbit's stuck phases.
+std::vector<double> FirstImpactDelays(const PeriodicOrbit& orbit) {
+  std::vector<double> delays;
+  std::size_t first = 0;  // the cycle's first impact
+  for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
+    // The cycle starts at the release of the section state, or the last.
+    const double release = k == 0 ? orbit.eta(orbit.eta.size() - 1) : orbit.stuck[k - 1].release;
+    const int impacts = orbit.stuck[k].impacts;
+    delays.push_back(impacts > 0 ? orbit.impacts[first].t - release
+                                 : std::numeric_limits<double>::quiet_NaN());
+    first += impacts;
+  }
+  return delays;
 }
 
 /// Where the impacts before the chatter changed between two neighbouring
@@ -167,38 +184,27 @@ std::optional<StickingEvent> Violation(const StickingOrbit& orbit) {
 /// or to a later one (it vanished). Along the family that delay moves
 /// continuously; a jump of a quarter of it between two points is none of
 /// that motion.
-std::optional<StickingEvent> ImpactChange(const StickingOrbit& a, const StickingOrbit& b) {
-  if (a.cycles.size() != b.cycles.size()) return std::nullopt;
-  for (std::size_t k = 0; k < a.cycles.size(); ++k) {
-    const StickingCycle &from = a.cycles[k], &to = b.cycles[k];
-    if (from.impacts.empty() || to.impacts.empty()) continue;
-    const double before = from.impacts.front().t - from.release;
-    const double after = to.impacts.front().t - to.release;
-    if (after < (1.0 - kDelayJump) * before) return StickingEvent::kNewImpact;
-    if (after > (1.0 + kDelayJump) * before) return StickingEvent::kVanishingImpact;
+std::optional<StickingEvent> ImpactChange(const PeriodicOrbit& a, const PeriodicOrbit& b) {
+  if (a.stuck.size() != b.stuck.size()) return std::nullopt;
+  const std::vector<double> from = FirstImpactDelays(a), to = FirstImpactDelays(b);
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    if (to[k] < (1.0 - kDelayJump) * from[k]) return StickingEvent::kNewImpact;
+    if (to[k] > (1.0 + kDelayJump) * from[k]) return StickingEvent::kVanishingImpact;
   }
   return std::nullopt;
 }
 
-/// The speed of the slowest first impact after a release: it falls to 0
-/// where a vanishing impact ends the family (infinity without impacts).
-double FirstImpactSpeed(const StickingOrbit& orbit) {
-  double speed = std::numeric_limits<double>::infinity();
-  for (const StickingCycle& cycle : orbit.cycles) {
-    if (!cycle.impacts.empty()) speed = std::min(speed, cycle.impacts.front().velocity);
-  }
-  return speed;
-}
-
 /// The ending monitors of an orbit, in StickingEvent order.
-std::array<double, 4> Monitors(const StickingOrbit& orbit) {
-  return {orbit.contact_margin, orbit.clearance, orbit.hold_margin, FirstImpactSpeed(orbit)};
+std::array<double, 4> Monitors(const PeriodicOrbit& orbit) {
+  const OrbitContacts& c = orbit.contacts;
+  return {c.contact_margin, c.clearance.value_or(std::numeric_limits<double>::infinity()),
+          c.hold_margin, c.first_impact_speed};
 }
 
 /// The monitor that linear extrapolation from the last two points drives
 /// to 0 first, within `reach` in arclength; none if none does.
-std::optional<StickingEvent> NearestZero(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
-                                         const Eigen::VectorXd& b, const StickingOrbit& orbit_b,
+std::optional<StickingEvent> NearestZero(const Eigen::VectorXd& a, const PeriodicOrbit& orbit_a,
+                                         const Eigen::VectorXd& b, const PeriodicOrbit& orbit_b,
                                          double reach) {
   const double step = (b - a).norm();
   const std::array<double, 4> before = Monitors(orbit_a), after = Monitors(orbit_b);
@@ -241,8 +247,8 @@ class StickingMarch {
  private:
   /// One step from x_ of length `step`; the new point, or why not.
   std::optional<Eigen::VectorXd> Try(double step, std::optional<StickingEvent>* blocked);
-  void LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
-                          const Eigen::VectorXd& b, const StickingOrbit& orbit_b);
+  void LocateBifurcations(const Eigen::VectorXd& a, const PeriodicOrbit& orbit_a,
+                          const Eigen::VectorXd& b, const PeriodicOrbit& orbit_b);
   void End(StickingBranchEnd end, std::string message);
   /// Moves the last point to the family's end: bisection in μ between it
   /// and `beyond_` (a trial μ with no orbit of the family), each μ solved
@@ -268,7 +274,7 @@ class StickingMarch {
   const StickingBranchOptions& options_;
   StickingBranch& branch_;
   Eigen::VectorXd x_, tangent_, previous_;
-  StickingOrbit orbit_, previous_orbit_;
+  PeriodicOrbit orbit_, previous_orbit_;
   /// μ of the last trial that was blocked (NaN if none since the last point).
   double beyond_ = std::numeric_limits<double>::quiet_NaN();
 };
@@ -338,13 +344,13 @@ void StickingMarch::LocateEnd() {
     }
   }
   if (!last) return;
-  x_ << last->orbit.state, last->parameter;
+  x_ << last->orbit.eta, last->parameter;
   orbit_ = last->orbit;
   branch_.points.push_back(*std::move(last));
 }
 
-void StickingMarch::LocateBifurcations(const Eigen::VectorXd& a, const StickingOrbit& orbit_a,
-                                       const Eigen::VectorXd& b, const StickingOrbit& orbit_b) {
+void StickingMarch::LocateBifurcations(const Eigen::VectorXd& a, const PeriodicOrbit& orbit_a,
+                                       const Eigen::VectorXd& b, const PeriodicOrbit& orbit_b) {
   for (const StickingEvent type : {StickingEvent::kFold, StickingEvent::kPeriodDoubling}) {
     double g_a = TestFunction(orbit_a, type);
     if ((g_a > 0) == (TestFunction(orbit_b, type) > 0)) continue;
@@ -436,7 +442,7 @@ void StickingMarch::Run(const Eigen::VectorXd& start,
 }  // namespace
 
 StickingBranch ContinueStickingBranch(
-    const System& system, const StickingOrbit& start, const StickingBranchOptions& requested,
+    const System& system, const PeriodicOrbit& start, const StickingBranchOptions& requested,
     const std::function<void(const StickingBranchPoint&)>& progress) {
   const auto begin = std::chrono::steady_clock::now();
   StickingBranchOptions options = requested;  // the family is the start's
@@ -451,7 +457,7 @@ StickingBranch ContinueStickingBranch(
     throw InvalidInput(fmt::format("the start {} = {} lies outside [{}, {}]", options.parameter, mu,
                                    options.lower, options.upper));
   }
-  if (start.state.size() != curve.Size() - 1) {
+  if (start.eta.size() != curve.Size() - 1) {
     throw InvalidInput("the start is not a sticking orbit of this system (wrong size)");
   }
   StickingBranch branch;
@@ -459,7 +465,7 @@ StickingBranch ContinueStickingBranch(
   branch.releases = options.orbit.releases;
   branch.q = options.orbit.q;
   Eigen::VectorXd x(curve.Size());
-  x << start.state, mu;
+  x << start.eta, mu;
   StickingMarch(curve, options, &branch).Run(x, progress);
   branch.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return branch;

@@ -199,6 +199,10 @@ double ResidualFloor(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& eta
          jacobian.cwiseAbs().rowwise().sum().maxCoeff() * std::max(1.0, eta.cwiseAbs().maxCoeff());
 }
 
+std::string ToString(OrbitSection section) {
+  return section == OrbitSection::kImpact ? "impact" : "release";
+}
+
 std::string ToString(JacobianMethod method) {
   return method == JacobianMethod::kAnalytic ? "analytic" : "finite-difference";
 }

@@ -90,11 +90,14 @@ class StickingMap::Cycle {
  private:
   using Arrival = PhaseEvents::Event;
   /// The free flight to the first arrival at any stop (PhaseEvents).
-  std::optional<Arrival> NextArrival(bool from_release, StickingMapStatus* status);
-  /// The least distance from its stop of each stop's mass at its interior
-  /// turns towards that stop on the flight [begin, end] (the zeros of its
-  /// velocity), infinity if there are none.
-  double FlightClearance(double t0, const Eigen::VectorXd& z0, double begin, double end) const;
+  std::optional<Arrival> NextArrival(bool from_release, StickingCycle* cycle,
+                                     StickingMapStatus* status);
+  /// Takes into `cycle` the interior turns (the zeros of a velocity) on the
+  /// flight [begin, end]: the least distance from its stop of each stop's
+  /// mass at a turn towards that stop (its clearance), and the section
+  /// stop's mass's extent.
+  void MeasureFlight(double t0, const Eigen::VectorXd& z0, double begin, double end,
+                     StickingCycle* cycle) const;
   /// The least interior minimum of Fs on (begin, end), from w = −Fs: its
   /// maxima are the zeros of w' where it falls; infinity if there is none.
   double HoldMargin(const Signal& release, double begin, double end) const;
@@ -128,7 +131,6 @@ class StickingMap::Cycle {
   PhaseEvents phase_events_;  ///< the current flight's
   double t_ = 0.0;
   double deadline_ = 0.0;         ///< the cycle must stick before this time
-  double clearance_ = 0.0;        ///< the cycle's so far (with contacts)
   std::vector<double> previous_;  ///< each stop's last impact time
   int last_stop_ = 0;             ///< the stop of the last event (PhaseEvents::First's order)
   Eigen::VectorXd x_, v_;
@@ -156,12 +158,13 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
   cycle->release = t_;
   last_stop_ = section_;
   cycle->impacts.clear();
-  clearance_ = std::numeric_limits<double>::infinity();
+  cycle->clearance = std::numeric_limits<double>::infinity();
+  cycle->contact_min = cycle->contact_max = hybrid_.GetStop(section_).Position();
   deadline_ = t_ + options_.max_free_periods * system.ForcingPeriod();
   std::fill(previous_.begin(), previous_.end(), -std::numeric_limits<double>::infinity());
   StickingMapStatus status = StickingMapStatus::kOk;
   for (int i = 0; i < options_.max_impacts; ++i) {
-    const std::optional<Arrival> arrival = NextArrival(i == 0, &status);
+    const std::optional<Arrival> arrival = NextArrival(i == 0, cycle, &status);
     if (!arrival) return status;
     last_stop_ = arrival->stop;
     double t_star;
@@ -170,7 +173,6 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
       continue;
     }
     if (arrival->stop != section_) return StickingMapStatus::kOtherStop;
-    cycle->clearance = clearance_;
     status = StickAndRelease(arrival->t, t_star, cycle);
     if (status != StickingMapStatus::kOk) return status;
     next->resize(m);
@@ -185,7 +187,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
 }
 
 std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
-    bool from_release, StickingMapStatus* status) {
+    bool from_release, StickingCycle* cycle, StickingMapStatus* status) {
   const LinearFlow& flow = hybrid_.FreeFlow();
   HybridState from;
   from.t = t_;
@@ -212,7 +214,7 @@ std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
     return std::nullopt;
   }
   const double end = first->t, released = from_release ? late.begin : t_;
-  if (with_contacts_) clearance_ = std::min(clearance_, FlightClearance(t_, z0, released, end));
+  if (with_contacts_) MeasureFlight(t_, z0, released, end, cycle);
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.StateFrom(t0, x0, v0, z0, end, &x_, &v_);
@@ -227,23 +229,26 @@ std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
   return first;
 }
 
-double StickingMap::Cycle::FlightClearance(double t0, const Eigen::VectorXd& z0, double begin,
-                                           double end) const {
+void StickingMap::Cycle::MeasureFlight(double t0, const Eigen::VectorXd& z0, double begin,
+                                       double end, StickingCycle* cycle) const {
   const LinearFlow& flow = hybrid_.FreeFlow();
-  double clearance = std::numeric_limits<double>::infinity();
   Eigen::VectorXd x, v;
   for (int j = 0; j < hybrid_.StopCount(); ++j) {
     const Stop& stop = hybrid_.GetStop(j);
     const Signal velocity = flow.Output(contact_velocities_[j], t0, z0);
     for (const double t : SignChanges(velocity, begin, end, events_)) {
-      // Only the turns towards the stop: maxima of x below an upper stop,
-      // minima above a lower one.
-      if (stop.Sign() * velocity.Derivative().Value(t) >= 0) continue;
       flow.State(t0, z0, t, &x, &v);
-      clearance = std::min(clearance, -stop.GapOf(x));
+      if (stop.Dof() == c_) {
+        cycle->contact_min = std::min(cycle->contact_min, x(c_));
+        cycle->contact_max = std::max(cycle->contact_max, x(c_));
+      }
+      // Only the turns towards the stop count for its clearance: maxima of
+      // x below an upper stop, minima above a lower one.
+      if (stop.Sign() * velocity.Derivative().Value(t) < 0) {
+        cycle->clearance = std::min(cycle->clearance, -stop.GapOf(x));
+      }
     }
   }
-  return clearance;
 }
 
 double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, double end) const {

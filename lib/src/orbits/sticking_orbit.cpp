@@ -35,11 +35,6 @@ bool StickingOrbitOptions::IsValid(std::string* error) const {
   return newton.IsValid(error) && map.IsValid(error);
 }
 
-std::string StickingOrbitSummary::BriefReport() const {
-  return fmt::format("{}, {:.3g} s{}", SolveReport(termination, residual, iterations), seconds,
-                     message.empty() ? "" : " (" + message + ")");
-}
-
 Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorXd& s,
                                     const Eigen::MatrixXd& jacobian) {
   // An orthonormal basis of the tangent space ker ∇Fs: the last m − 1
@@ -58,28 +53,41 @@ Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorX
   return lambda;
 }
 
-StickingOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorXd& s, int releases,
+PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorXd& s, int releases,
                                     int q) {
   const StickingMapResult image = ApplyOrThrow(map, s, releases, true);
   const System& system = map.GetSystem();
-  StickingOrbit orbit;
+  PeriodicOrbit orbit;
+  orbit.section = OrbitSection::kRelease;
   orbit.stop = map.SectionStop();
   orbit.releases = releases;
   orbit.q = q;
   orbit.omega = system.omega;
-  orbit.state = s;
-  orbit.cycles = image.cycles;
-  orbit.contact_margin = std::numeric_limits<double>::infinity();
-  orbit.clearance = std::numeric_limits<double>::infinity();
-  orbit.hold_margin = std::numeric_limits<double>::infinity();
+  orbit.eta = s;
+  OrbitContacts& contacts = orbit.contacts;
+  contacts.slowest_depth = std::numeric_limits<double>::infinity();
+  contacts.contact_min = contacts.contact_max = system.stops[orbit.stop].position;
+  double clearance = std::numeric_limits<double>::infinity();
   for (const StickingCycle& cycle : image.cycles) {
-    orbit.contact_margin = std::min(orbit.contact_margin, cycle.contact_force);
-    orbit.clearance = std::min(orbit.clearance, cycle.clearance);
-    orbit.hold_margin = std::min(orbit.hold_margin, cycle.hold_margin);
-    orbit.stick_phases.push_back(system.Phase(cycle.accumulation));
-    orbit.release_phases.push_back(system.Phase(cycle.next_release));
-    orbit.stuck_durations.push_back(cycle.next_release - cycle.accumulation);
+    for (const StickingImpact& impact : cycle.impacts) {
+      orbit.impacts.push_back({impact.t, system.Phase(impact.t), impact.velocity, impact.stop});
+    }
+    orbit.stuck.push_back({orbit.stop, cycle.accumulation, system.Phase(cycle.accumulation),
+                           cycle.next_release, system.Phase(cycle.next_release),
+                           cycle.contact_force, cycle.hold_margin,
+                           static_cast<int>(cycle.impacts.size())});
+    contacts.contact_min = std::min(contacts.contact_min, cycle.contact_min);
+    contacts.contact_max = std::max(contacts.contact_max, cycle.contact_max);
+    contacts.contact_margin = std::min(contacts.contact_margin, cycle.contact_force);
+    contacts.hold_margin = std::min(contacts.hold_margin, cycle.hold_margin);
+    clearance = std::min(clearance, cycle.clearance);
+    if (!cycle.impacts.empty()) {
+      contacts.first_impact_speed =
+          std::min(contacts.first_impact_speed, cycle.impacts.front().velocity);
+    }
   }
+  if (std::isfinite(clearance)) contacts.clearance = clearance;
+  orbit.p = static_cast<int>(orbit.impacts.size());
   orbit.jacobian = image.jacobian;
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(s.size());
   shift(map.TimeIndex()) = q * system.ForcingPeriod();
@@ -89,8 +97,8 @@ StickingOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
   return orbit;
 }
 
-StickingOrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& guess,
-                                       const StickingOrbitOptions& options, StickingOrbit* orbit) {
+OrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& guess,
+                               const StickingOrbitOptions& options, PeriodicOrbit* orbit) {
   const auto start = std::chrono::steady_clock::now();
   std::string error;
   if (!options.IsValid(&error)) throw InvalidInput(error);
@@ -106,7 +114,7 @@ StickingOrbitSummary FindStickingOrbit(const System& system, const Eigen::Vector
   const FixedPointProblem problem(map, options.releases, options.q, true);
   const FixedPointSolve solved =
       SolveFixedPoint(problem, seed, options.newton, /*least_squares_fallback=*/false);
-  StickingOrbitSummary summary;
+  OrbitSummary summary;
   summary.iterations = solved.iterations;
   summary.termination = solved.solve.termination;
   summary.message = solved.solve.message;
@@ -114,7 +122,7 @@ StickingOrbitSummary FindStickingOrbit(const System& system, const Eigen::Vector
   if (summary.termination == Termination::kConverged) {
     *orbit = DescribeStickingOrbit(map, solved.x, options.releases, options.q);
   } else {
-    orbit->state = solved.x;
+    orbit->eta = solved.x;
   }
   orbit->residual = summary.residual;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

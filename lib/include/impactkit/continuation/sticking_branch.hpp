@@ -85,7 +85,7 @@ std::string ToString(StickingEvent event);
 
 struct StickingBranchPoint {
   double parameter = 0.0;
-  StickingOrbit orbit;
+  PeriodicOrbit orbit;
 };
 
 struct StickingSpecialPoint {
@@ -124,7 +124,7 @@ struct StickingBranch {
 /// Throws InvalidInput for bad options, a parameter the system lacks,
 /// bounds not holding the start, or a start that is not an orbit.
 StickingBranch ContinueStickingBranch(
-    const System& system, const StickingOrbit& start, const StickingBranchOptions& options,
+    const System& system, const PeriodicOrbit& start, const StickingBranchOptions& options,
     const std::function<void(const StickingBranchPoint&)>& progress = {});
 
 }  // namespace impactkit

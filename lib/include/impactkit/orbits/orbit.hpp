@@ -53,6 +53,15 @@ struct OrbitOptions {
   bool IsValid(std::string* error) const;
 };
 
+/// The Poincaré section an orbit's fixed point lies on (section_map.hpp).
+enum class OrbitSection {
+  kImpact,   ///< an impact: the impact map P_I (impact_map.hpp), η
+  kRelease,  ///< a release from sticking: the release map P_R (sticking_map.hpp), s
+};
+
+/// "impact", "release".
+std::string ToString(OrbitSection section);
+
 /// One impact of the orbit.
 struct OrbitImpact {
   double t = 0.0;
@@ -61,18 +70,57 @@ struct OrbitImpact {
   int stop = 0;           ///< which stop (an index into System::stops)
 };
 
+/// One sticking phase of an orbit: the contact mass held at `stop` from the
+/// accumulation point of the chatter that leads to it to its release.
+struct StuckPhase {
+  int stop = 0;                ///< which stop holds the mass (an index into System::stops)
+  double stick = 0.0;          ///< t*, the chatter's accumulation point: sticking begins
+  double stick_phase = 0.0;    ///< t* mod T, in [0, T)
+  double release = 0.0;        ///< the release that ends it
+  double release_phase = 0.0;  ///< release mod T, in [0, T)
+  double contact_force = 0.0;  ///< Fs(t*) > 0: the stop's hold on the mass as it sticks
+  /// The least interior minimum of Fs on (t*, release): 0 where Fs touches
+  /// 0 before the release (an early release); infinity when it has none.
+  double hold_margin = 0.0;
+  /// Impacts simulated since the previous release, the chatter's included
+  /// (its tail beyond them, summed by the chatter rule, is not counted).
+  int impacts = 0;
+  double Duration() const { return release - stick; }
+};
+
+/// A periodic orbit: a fixed point of a section map, iterated k times in q
+/// forcing periods. On the impact section it is P(p, q), p = k impacts; on
+/// the release section a sticking orbit P(∞, q) with k = `releases`
+/// sticking phases, each reached through chatter (sticking_orbit.hpp).
 struct PeriodicOrbit {
+  OrbitSection section = OrbitSection::kImpact;
+  /// Impacts per orbit: the impact map's iterations; on the release section
+  /// the impacts simulated before its accumulations (impacts.size()).
   int p = 0;
   int q = 0;
+  /// Sticking phases per orbit: the release map's iterations (0 on the
+  /// impact section).
+  int releases = 0;
   double omega = 0.0;
-  Eigen::VectorXd eta;               ///< the fixed point, τ in [0, T)
-  int stop = 0;                      ///< the stop η is at: its map's section
-  std::vector<OrbitImpact> impacts;  ///< the p impacts from eta on, in time order
-  Eigen::MatrixXd jacobian;          ///< D P_I^p at eta
-  Eigen::VectorXcd multipliers;      ///< eigenvalues of `jacobian`, by decreasing modulus
-  bool stable = false;               ///< every |multiplier| < 1
-  double residual = 0.0;             ///< max |U(eta)|
-  OrbitContacts contacts;            ///< extent in x_c and the grazing monitors
+  /// The fixed point in the section's coordinates, its time in [0, T): η
+  /// (impact_map.hpp) or s (sticking_map.hpp).
+  Eigen::VectorXd eta;
+  int stop = 0;  ///< the stop of the section (each event of the section map is at it)
+  /// The impacts from eta on, in time order: the p impacts of P(p, q); of
+  /// a sticking orbit, every simulated impact of its flights and chatter.
+  std::vector<OrbitImpact> impacts;
+  std::vector<StuckPhase> stuck;  ///< the sticking phases in time order (release section)
+  Eigen::MatrixXd jacobian;       ///< D P^k at eta: the section map's k iterations
+  /// By decreasing modulus: the eigenvalues of `jacobian` on the impact
+  /// section; on the release section those restricted to the release
+  /// surface (2N − 2 of them: `jacobian` has one more, exactly 0).
+  Eigen::VectorXcd multipliers;
+  bool stable = false;     ///< every |multiplier| < 1
+  double residual = 0.0;   ///< max |U(eta)|
+  OrbitContacts contacts;  ///< extent in x_c and the monitors of the orbit's end
+  bool Sticks() const { return section == OrbitSection::kRelease; }
+  /// The section map's iterations per orbit: p, or `releases`.
+  int SectionEvents() const { return Sticks() ? releases : p; }
 };
 
 /// The orbit P(p, q) through the fixed point `eta` of P_I^p: impacts,

@@ -20,6 +20,7 @@
 ///    accumulate (sticking onset).
 
 #include <Eigen/Dense>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -27,6 +28,9 @@
 
 namespace impactkit {
 
+/// Of a sticking orbit (sticking_orbit.hpp) the extent, the least
+/// clearance of its flights and the sticking monitors are measured; where
+/// that clearance lies and the next one are not.
 struct OrbitContacts {
   double contact_min = 0.0;  ///< least x_c over the orbit (c: the section stop's mass)
   double contact_max = 0.0;  ///< greatest x_c over the orbit
@@ -40,10 +44,20 @@ struct OrbitContacts {
   /// flight): on a grazing curve, whose own touch is `clearance`, the
   /// monitor of a second contact. Empty with fewer than two.
   std::optional<double> next_clearance;
-  /// v² / (2|a|) of the slowest impact (the one with the least depth).
+  /// v² / (2|a|) of the slowest impact (the one with the least depth); a
+  /// sticking orbit's chatter has impacts of every depth down to 0, so
+  /// there it is not measured (infinity): its first impacts after each
+  /// release are watched instead (first_impact_speed).
   double slowest_depth = 0.0;
   int slowest_impact = 0;        ///< its index among the orbit's p impacts
   bool slowest_pressed = false;  ///< a > 0 there: pressed into the stop
+  /// Sticking orbits only (infinity otherwise), each 0 where the family
+  /// ends: the least Fs(t*) of its stuck phases (the chatter stops ending
+  /// in sticking), the least hold margin (an early release), and the
+  /// slowest first impact after a release (a vanishing impact).
+  double contact_margin = std::numeric_limits<double>::infinity();
+  double hold_margin = std::numeric_limits<double>::infinity();
+  double first_impact_speed = std::numeric_limits<double>::infinity();
   double Range() const { return contact_max - contact_min; }
 };
 

@@ -106,6 +106,11 @@ struct StickingCycle {
   /// the release, an early release); infinity when Fs has no interior
   /// minimum. Measured only when Apply is asked for contacts.
   double hold_margin = std::numeric_limits<double>::infinity();
+  /// The least and greatest position of the section stop's mass over the
+  /// cycle (its flights' turns and the stop). Measured only when Apply is
+  /// asked for contacts.
+  double contact_min = 0.0;
+  double contact_max = 0.0;
 };
 
 /// The result of P_R^k(s).
