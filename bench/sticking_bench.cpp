@@ -16,7 +16,7 @@
 
 #include "cpu_time.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
-#include "impactkit/continuation/sticking_branch.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 
 namespace {
@@ -83,17 +83,17 @@ int main() {
   if (!low_seed) return 1;
   PeriodicOrbit start;
   FindStickingOrbit(low, low_seed->state, options, &start);
-  StickingBranchOptions branch_options;
+  ContinuationOptions branch_options;
   branch_options.lower = 0.1;
   branch_options.upper = 0.6;
-  StickingBranch branch;
+  Branch branch;
   double begin = CpuSeconds();
-  branch = ContinueStickingBranch(low, start, branch_options);
+  branch = ContinueBranch({low, start, {}}, branch_options);
   const double continuation = CpuSeconds() - begin;
   begin = CpuSeconds();
   int failed = 0;
   Eigen::VectorXd guess = start.eta;
-  for (const StickingBranchPoint& p : branch.points) {
+  for (const BranchPoint& p : branch.points) {
     PeriodicOrbit natural;
     try {
       const OrbitSummary s = FindStickingOrbit(PaperSystem(p.parameter), guess, options, &natural);
@@ -108,9 +108,9 @@ int main() {
   }
   const double peer = CpuSeconds() - begin;
   fmt::print("| job | points | end | CPU seconds |\n|---|---|---|---|\n");
-  fmt::print("| ContinueStickingBranch, Ω 0.1 to its end | {} | {} at {:.8f} | {:.3f} |\n",
-             branch.points.size(), ToString(branch.end), branch.points.back().parameter,
-             continuation);
+  fmt::print(
+      "| ContinueBranch of the sticking family, Ω 0.1 to its end | {} | {} at {:.8f} | {:.3f} |\n",
+      branch.points.size(), ToString(branch.end), branch.points.back().parameter, continuation);
   fmt::print(
       "| FindStickingOrbit at the same Ω values, no location | {} ({} failed) | - | {:.3f} |\n",
       branch.points.size(), failed, peer);

@@ -35,7 +35,7 @@ awk -F, '!/^#/ && ++row > 1 {
 # values with --follow-grazing (one impact more or fewer at each grazing),
 # drawn over the brute-force impact speeds: fig7_branches.png.
 "$impactkit" continue --from 0.1 --to 0.6 --out "$data/fig7-sticking-branch.csv" |
-  grep -E '^(branch|special|end):' | sed 's/^/    /'
+  grep -E '^(branch|  )' | sed 's/^/    /'
 branches=()
 for start in 0.307 0.308 0.309 0.31 0.316 0.32 0.33 0.35 0.4 0.45 0.5 0.55; do
   if "$impactkit" continue --from "$start" --to 0.6 --follow-grazing \
@@ -48,7 +48,11 @@ for start in 0.307 0.308 0.309 0.31 0.316 0.32 0.33 0.35 0.4 0.45 0.5 0.55; do
 done
 # One gnuplot term per impact-speed column v1, v2, ... of each branch file.
 terms="'$data/fig7-impacts.csv' using 1:4 with points pt 7 ps 0.25 lc rgb '#555555' title 'simulation (sweep)'"
-terms+=", '$data/fig7-sticking-branch.csv' using 1:(\$7 > 0 ? \$9 : 1/0) with lines lw 2"
+# Its columns v1 (the first impact after the release) and stable, by name.
+sticking_columns=$(grep -m1 -v '^#' "$data/fig7-sticking-branch.csv" | tr ',' '\n' | grep -n '')
+v1=$(grep ':v1$' <<<"$sticking_columns" | cut -d: -f1)
+stable=$(grep ':stable$' <<<"$sticking_columns" | cut -d: -f1)
+terms+=", '$data/fig7-sticking-branch.csv' using 1:(\$$stable > 0 ? \$$v1 : 1/0) with lines lw 2"
 terms+=" lc rgb '#d62728' title 'sticking P(inf,1): first impact'"
 first=1
 for file in "${branches[@]}"; do

@@ -131,9 +131,21 @@ def simulate(
 
 class Orbit:
     @property
+    def section(self) -> Literal["impact", "release"]: ...
+    @property
     def p(self) -> int: ...
     @property
     def q(self) -> int: ...
+    @property
+    def releases(self) -> int: ...
+    @property
+    def stick_phases(self) -> FloatArray: ...
+    @property
+    def release_phases(self) -> FloatArray: ...
+    @property
+    def stuck_durations(self) -> FloatArray: ...
+    @property
+    def contact_margin(self) -> Optional[float]: ...
     @property
     def omega(self) -> float: ...
     @property
@@ -171,12 +183,25 @@ def find_orbit(
     transient: int = 500,
 ) -> Orbit: ...
 
+def find_sticking_orbit(
+    system: System,
+    *,
+    seed: Optional[npt.ArrayLike] = None,
+    releases: int = 1,
+    q: int = 1,
+    stop: int = 0,
+    residual_tolerance: float = 1e-11,
+    max_iterations: int = 50,
+    transient: int = 500,
+) -> Orbit: ...
+
 SpecialPointType = Literal[
     "fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point",
-    "pitchfork"
+    "pitchfork", "no_sticking", "early_release"
 ]
 BranchEnd = Literal[
-    "parameter_bound", "grazing", "sticking", "branch_point", "max_points", "corrector_failed"
+    "parameter_bound", "grazing", "sticking", "branch_point", "max_points", "corrector_failed",
+    "no_sticking", "early_release"
 ]
 
 class SpecialPoint:
@@ -202,9 +227,13 @@ class Branch:
     @property
     def parameter(self) -> str: ...
     @property
+    def section(self) -> Literal["impact", "release"]: ...
+    @property
     def p(self) -> int: ...
     @property
     def q(self) -> int: ...
+    @property
+    def releases(self) -> int: ...
     @property
     def values(self) -> FloatArray: ...
     @property

@@ -114,8 +114,8 @@ def rows(run):
         (4, "sticking (complete chatter) for Ω < 0.35; sticking from 0.2 to 0.35 in Fig. 3(b)",
          "< 0.35", f"P(∞,1) from {sticking['from']:.3f} (the sweep's first value) to "
          f"{sticking['to']:.3f}; the sticking orbit's branch ends at 0.30628, where its chatter "
-         "stops ending in sticking ([continuation.md](continuation.md#sticking-branches-"
-         "sticking_branchhpp))", "yes: \"persists until just greater than Ω = 0.3\""),
+         "stops ending in sticking ([continuation.md](continuation.md#sticking-branches))",
+         "yes: \"persists until just greater than Ω = 0.3\""),
         (5, "P(4,1) at Ω = 0.4, out of the sticking region", "0.4",
          f"P(4,1) stable, {run.span('P(4,1)')}", "yes"),
         (6, "losing impacts successively until P(2,1) is reached", "0.47",

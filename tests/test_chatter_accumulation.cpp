@@ -9,7 +9,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "impactkit/continuation/sticking_branch.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
@@ -72,16 +72,16 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   constexpr double kEnd = 0.46181203954564;
   const System system = SingleMass(1.0, 0.1, 1.2, 0.45, 0.3, 0.6);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  StickingBranchOptions options;
+  ContinuationOptions options;
   options.lower = 0.44;
   options.upper = 0.47;
-  const StickingBranch branch = ContinueStickingBranch(system, start, options);
-  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kNoSticking);
   CHECK_THAT(branch.points.back().parameter, WithinAbs(kEnd, 1e-8));
   CHECK(branch.special_points.back().point.parameter == branch.points.back().parameter);
   // A tolerance below the rounding of Ω ends the bisection there.
-  options.locate_tolerance = 1e-300;
-  const StickingBranch finest = ContinueStickingBranch(system, start, options);
+  options.end_tolerance = 1e-300;
+  const Branch finest = ContinueBranch({system, start, {}}, options);
   CHECK_THAT(finest.points.back().parameter, WithinAbs(branch.points.back().parameter, 1e-9));
 }
 

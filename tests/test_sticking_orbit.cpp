@@ -15,7 +15,6 @@
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/continuation/continuation.hpp"
-#include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
@@ -263,14 +262,14 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
           "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  StickingBranchOptions options;
+  ContinuationOptions options;
   options.lower = 0.1;
   options.upper = 0.6;
-  const StickingBranch branch = ContinueStickingBranch(system, start, options);
-  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kNoSticking);
   REQUIRE(!branch.special_points.empty());
-  const StickingSpecialPoint& end = branch.special_points.back();
-  CHECK(end.type == StickingEvent::kNoSticking);
+  const SpecialPoint& end = branch.special_points.back();
+  CHECK(end.type == SpecialPointType::kNoSticking);
   const double omega_end = end.point.parameter;
   CHECK(omega_end > 0.3);
   CHECK(omega_end < 0.31);
@@ -300,28 +299,28 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   CHECK(SeedStickingFromSimulation(PaperSystem(omega_end - 1e-3), 300, 4));
   CHECK(!SeedStickingFromSimulation(PaperSystem(omega_end + 1e-3), 300, 4));
   // The other end of the branch: the lower bound.
-  const StickingBranch down = [&] {
-    StickingBranchOptions o = options;
-    o.increasing = false;
-    return ContinueStickingBranch(system, start, o);
+  const Branch down = [&] {
+    ContinuationOptions o = options;
+    o.direction = ContinuationDirection::kDecreasing;
+    return ContinueBranch({system, start, {}}, o);
   }();
-  CHECK(down.end == StickingBranchEnd::kParameterBound);
+  CHECK(down.end == BranchEnd::kParameterBound);
   CHECK_THAT(down.points.back().parameter, WithinAbs(0.1, 1e-12));
   // Every point of the branches is a sticking orbit of its system.
-  for (const StickingBranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
+  for (const BranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
 }
 
 TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
           "[sticking][continuation]") {
   const System system = PaperSystem(0.2);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  StickingBranchOptions options;
+  ContinuationOptions options;
   options.parameter = "xs";
   options.lower = 0.0;
   options.upper = 0.6;
-  const StickingBranch branch = ContinueStickingBranch(system, start, options);
-  REQUIRE(branch.end == StickingBranchEnd::kEarlyRelease);
-  const StickingBranchPoint& end = branch.special_points.back().point;
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kEarlyRelease);
+  const BranchPoint& end = branch.special_points.back().point;
   // Recomputed at the located xs: an orbit whose stuck phase only just
   // holds (Fs's interior minimum small beside its Fs(t*) ~ 0.09) ...
   System at_end = system;
@@ -345,15 +344,15 @@ TEST_CASE(
     "[sticking][continuation]") {
   const System system = PaperSystem(0.27);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  StickingBranchOptions options;
+  ContinuationOptions options;
   options.parameter = "c";
   options.lower = 0.01;
   options.upper = 0.1;
-  options.increasing = false;
-  const StickingBranch branch = ContinueStickingBranch(system, start, options);
+  options.direction = ContinuationDirection::kDecreasing;
+  const Branch branch = ContinueBranch({system, start, {}}, options);
   const auto pd = std::find_if(
       branch.special_points.begin(), branch.special_points.end(),
-      [](const StickingSpecialPoint& s) { return s.type == StickingEvent::kPeriodDoubling; });
+      [](const SpecialPoint& s) { return s.type == SpecialPointType::kPeriodDoubling; });
   REQUIRE(pd != branch.special_points.end());
   const double c = pd->point.parameter;
   CHECK(c > 0.03);
@@ -393,13 +392,14 @@ TEST_CASE(
   System system = PaperSystem(0.25);
   SetParameter(system, "A1", 0.5);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  StickingBranchOptions options;
+  ContinuationOptions options;
   options.parameter = "A1";
   options.lower = 0.5;
   options.upper = 3.0;
-  const StickingBranch branch = ContinueStickingBranch(system, start, options);
-  REQUIRE(branch.end == StickingBranchEnd::kNewImpact);
-  const StickingBranchPoint& end = branch.special_points.back().point;
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kGrazing);  // a new impact
+  REQUIRE(branch.special_points.back().vanishing_impact < 0);
+  const BranchPoint& end = branch.special_points.back().point;
   CHECK(end.orbit.contacts.contact_margin > 0.3);  // the chatter still ends firmly in sticking
   System at_end = system;
   SetParameter(at_end, "A1", end.parameter);
@@ -427,11 +427,12 @@ TEST_CASE(
   // same A1: the family beyond ends where this one did. Its corrector stops
   // with the impact at a speed of ~2e-6 (the release map's Jacobian grows
   // like 1/v), which falls linearly with A1: ~2e-6 short of the graze.
-  StickingBranchOptions back = options;
-  back.increasing = false;
-  const StickingBranch other = ContinueStickingBranch(beyond, past, back);
-  REQUIRE(other.end == StickingBranchEnd::kVanishingImpact);
-  const StickingBranchPoint& other_end = other.special_points.back().point;
+  ContinuationOptions back = options;
+  back.direction = ContinuationDirection::kDecreasing;
+  const Branch other = ContinueBranch({beyond, past, {}}, back);
+  REQUIRE(other.end == BranchEnd::kGrazing);  // a vanishing impact: the first after the release
+  REQUIRE(other.special_points.back().vanishing_impact == 0);
+  const BranchPoint& other_end = other.special_points.back().point;
   CHECK_THAT(other_end.parameter, WithinAbs(end.parameter, 1e-5));
   System at_other = system;
   SetParameter(at_other, "A1", other_end.parameter);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "impactkit/analysis/sticking_seed.hpp"
-#include "impactkit/continuation/sticking_branch.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/system.hpp"
@@ -113,12 +113,12 @@ TEST_CASE("a sticking family at the second stop ends where simulation stops stic
   // periodically 1e-3 below and not at all 1e-3 above.
   const System system = PaperWithMass1Stop();
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  StickingBranchOptions options;
+  ContinuationOptions options;
   options.lower = 0.1;
   options.upper = 0.6;
-  const StickingBranch branch = ContinueStickingBranch(system, start, options);
-  REQUIRE(branch.end == StickingBranchEnd::kNoSticking);
-  for (const StickingBranchPoint& point : branch.points) {
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kNoSticking);
+  for (const BranchPoint& point : branch.points) {
     CHECK(point.orbit.stop == 1);
     CHECK(point.orbit.residual < 1e-9);
   }

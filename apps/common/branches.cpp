@@ -21,6 +21,21 @@ std::string SpecialName(const Branch& branch, const BranchPoint& point) {
   return "";
 }
 
+/// A sticking orbit's stuck phases: stick_phases, release_phases (t mod
+/// T), stuck_durations, contact_margin (the least Fs(t*)).
+nlohmann::json StuckJson(const PeriodicOrbit& orbit) {
+  std::vector<double> stick, release, duration;
+  for (const StuckPhase& stuck : orbit.stuck) {
+    stick.push_back(stuck.stick_phase);
+    release.push_back(stuck.release_phase);
+    duration.push_back(stuck.Duration());
+  }
+  return {{"stick_phases", stick},
+          {"release_phases", release},
+          {"stuck_durations", duration},
+          {"contact_margin", orbit.contacts.contact_margin}};
+}
+
 nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) {
   nlohmann::json j = {
       {"type", ToString(s.type)},
@@ -34,13 +49,14 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
   if (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking) {
     j["vanishing_impact"] =
         s.vanishing_impact < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.vanishing_impact + 1);
-  } else {
+  } else if (s.type != SpecialPointType::kNoSticking && s.type != SpecialPointType::kEarlyRelease) {
     j["multiplier"] = {s.multiplier.real(), s.multiplier.imag()};
   }
   j["impacts"] = nlohmann::json::array();
-  for (const OrbitImpact& i : s.point.orbit.impacts) {
+  for (const OrbitImpact& i : LeadingImpacts(s.point.orbit)) {
     j["impacts"].push_back({{"phase", i.phase}, {"v", i.velocity}});
   }
+  if (s.point.orbit.Sticks()) j.update(StuckJson(s.point.orbit));
   return j;
 }
 
@@ -112,17 +128,27 @@ std::string DescribeStability(const Branch& branch) {
                                     ParameterPath(branch, from, i - 1)));
     from = i;
   }
-  return fmt::format("P({},{}) {}", branch.p, branch.q, fmt::join(stretches, ", "));
+  return fmt::format("{} {}", FamilyName(branch), fmt::join(stretches, ", "));
 }
 
 std::vector<std::string> BranchColumns(const Branch& branch) {
   std::vector<std::string> columns = {branch.parameter, "arclength"};
-  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("phase{}", i));
-  for (int i = 1; i <= branch.p; ++i) columns.push_back(fmt::format("v{}", i));
+  if (branch.section == OrbitSection::kRelease) {
+    for (const char* name : {"stick_phase", "release_phase", "stuck"}) {
+      for (int i = 1; i <= branch.releases; ++i) columns.push_back(fmt::format("{}{}", name, i));
+    }
+  }
+  // A sticking orbit's first impact after each release.
+  const int impacts = branch.section == OrbitSection::kRelease ? branch.releases : branch.p;
+  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("phase{}", i));
+  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("v{}", i));
   columns.push_back("range_xN");
   const Eigen::Index multipliers = branch.points.front().orbit.multipliers.size();
   for (Eigen::Index i = 1; i <= multipliers; ++i) columns.push_back(fmt::format("mod{}", i));
-  for (const char* name : {"stable", "clearance", "depth", "special"}) columns.push_back(name);
+  const bool sticks = branch.section == OrbitSection::kRelease;
+  for (const char* name : {"stable", "clearance", sticks ? "contact_margin" : "depth", "special"}) {
+    columns.push_back(name);
+  }
   return columns;
 }
 
@@ -130,15 +156,20 @@ void WriteBranchRows(CsvWriter& csv, const Branch& branch) {
   for (const BranchPoint& point : branch.points) {
     const PeriodicOrbit& orbit = point.orbit;
     std::vector<double> row = {point.parameter, point.arclength};
-    for (const OrbitImpact& i : orbit.impacts) row.push_back(i.phase);
-    for (const OrbitImpact& i : orbit.impacts) row.push_back(i.velocity);
+    for (const StuckPhase& stuck : orbit.stuck) row.push_back(stuck.stick_phase);
+    for (const StuckPhase& stuck : orbit.stuck) row.push_back(stuck.release_phase);
+    for (const StuckPhase& stuck : orbit.stuck) row.push_back(stuck.Duration());
+    const std::vector<OrbitImpact> impacts = LeadingImpacts(orbit);
+    for (const OrbitImpact& i : impacts) row.push_back(i.phase);
+    for (const OrbitImpact& i : impacts) row.push_back(i.velocity);
     row.push_back(orbit.contacts.Range());
     for (const std::complex<double>& m : orbit.multipliers) row.push_back(std::abs(m));
     row.push_back(orbit.stable ? 1.0 : 0.0);
     // No interior maximum: the clearance is the whole way down to the
     // lowest point, reported as the range (never NaN in a table).
     row.push_back(orbit.contacts.clearance.value_or(orbit.contacts.Range()));
-    row.push_back(std::min(orbit.contacts.slowest_depth, 1e300));
+    row.push_back(orbit.Sticks() ? orbit.contacts.contact_margin
+                                 : std::min(orbit.contacts.slowest_depth, 1e300));
     csv.WriteRow(row, std::vector<std::string>{SpecialName(branch, point)});
   }
 }
@@ -155,8 +186,11 @@ nlohmann::json BranchJson(const TracedBranch& traced) {
   const Branch& b = traced.branch;
   nlohmann::json j = {{"label", traced.label},
                       {"origin", traced.origin},
+                      {"section", ToString(b.section)},
                       {"p", b.p},
                       {"q", b.q},
+                      {"releases", b.releases},
+                      {"stop", b.stop + 1},
                       {"points", b.points.size()},
                       {"end_reason", ToString(b.end)},
                       {"end_message", b.end_message},
@@ -176,7 +210,7 @@ Curve SpecialPointMarks(SpecialPointType type) {
   // Black, so that no branch colour hides them; open, so that they hide no
   // branch through them; the shape tells the type. gnuplot pointtypes: 4
   // square, 6 circle, 8 triangle, 10 down triangle, 12 diamond, 3 star, 14
-  // pentagon.
+  // pentagon, 2 cross, 1 plus.
   static const std::map<SpecialPointType, std::pair<const char*, int>> kStyles = {
       {SpecialPointType::kFold, {"fold", 4}},
       {SpecialPointType::kPeriodDoubling, {"period doubling", 6}},
@@ -184,7 +218,9 @@ Curve SpecialPointMarks(SpecialPointType type) {
       {SpecialPointType::kGrazing, {"grazing", 8}},
       {SpecialPointType::kSticking, {"sticking onset", 10}},
       {SpecialPointType::kBranchPoint, {"branch point", 3}},
-      {SpecialPointType::kPitchfork, {"pitchfork", 14}}};
+      {SpecialPointType::kPitchfork, {"pitchfork", 14}},
+      {SpecialPointType::kNoSticking, {"no sticking", 2}},
+      {SpecialPointType::kEarlyRelease, {"early release", 1}}};
   const auto& [title, point_type] = kStyles.at(type);
   Curve marks;
   marks.title = title;
@@ -209,7 +245,8 @@ namespace {
 /// The curves of one branch in `color`, without titles: one per impact
 /// and stretch of equal stability, so that the pieces join.
 void AddBranchLines(const Branch& b, const std::string& color, LineChart& chart) {
-  for (int i = 0; i < b.p; ++i) {
+  const int impacts = b.section == OrbitSection::kRelease ? b.releases : b.p;
+  for (int i = 0; i < impacts; ++i) {
     std::size_t from = 0;
     while (from + 1 < b.points.size()) {
       std::size_t to = from + 1;
@@ -220,7 +257,7 @@ void AddBranchLines(const Branch& b, const std::string& color, LineChart& chart)
       curve.dashed = !b.points[from].orbit.stable;
       for (std::size_t n = from; n <= to; ++n) {
         curve.x.push_back(b.points[n].parameter);
-        curve.y.push_back(b.points[n].orbit.impacts[i].velocity);
+        curve.y.push_back(LeadingImpacts(b.points[n].orbit)[i].velocity);
       }
       chart.curves.push_back(std::move(curve));
       from = to;
@@ -250,7 +287,7 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
       continue;
     }
     Curve entry;
-    entry.title = fmt::format("P({},{}) {}", b.p, b.q, branches[k].label);
+    entry.title = fmt::format("{} {}", FamilyName(b), branches[k].label);
     entry.color = DistinctColor(drawn.size());
     entry_of[k] = chart.curves.size();
     chart.curves.push_back(std::move(entry));
@@ -265,7 +302,7 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
   for (const TracedBranch& traced : branches) {
     for (const SpecialPoint& s : traced.branch.special_points) {
       auto [it, added] = marks.try_emplace(s.type, SpecialPointMarks(s.type));
-      for (const OrbitImpact& i : s.point.orbit.impacts) {
+      for (const OrbitImpact& i : LeadingImpacts(s.point.orbit)) {
         it->second.x.push_back(s.parameter);
         it->second.y.push_back(i.velocity);
       }
@@ -277,9 +314,9 @@ LineChart BranchChart(const std::vector<TracedBranch>& branches) {
 
 void PrintBranch(const TracedBranch& traced) {
   const Branch& b = traced.branch;
-  fmt::print("branch {}:  P({},{}) {}, {} points, {} from {:.10g} to {:.10g} ({:.3g} s)\n",
-             traced.label, b.p, b.q, traced.origin, b.points.size(), b.parameter,
-             b.points.front().parameter, b.points.back().parameter, b.seconds);
+  fmt::print("branch {}:  {} {}, {} points, {} from {:.10g} to {:.10g} ({:.3g} s)\n", traced.label,
+             FamilyName(b), traced.origin, b.points.size(), b.parameter, b.points.front().parameter,
+             b.points.back().parameter, b.seconds);
   if (b.begin) fmt::print("  begins: {} ({})\n", ToString(*b.begin), b.begin_message);
   for (const SpecialPoint& s : b.special_points) fmt::print("  {}\n", s.Describe(b.parameter));
   fmt::print("  ends:   {} ({})\n", ToString(b.end), b.end_message);

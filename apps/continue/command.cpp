@@ -24,7 +24,6 @@
 #include "common/provenance.hpp"
 #include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
-#include "continue/sticking.hpp"
 #include "impactkit/continuation/diagram.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
@@ -140,35 +139,6 @@ void ReportGrazingFollowed(const std::vector<TracedBranch>& branches) {
   }
 }
 
-/// A sticking start: its family through the library's sticking branch
-/// (continue/sticking.hpp); the options the impact branches alone have are
-/// refused.
-void RunSticking(const ContinueRequest& request, const System& system, const PeriodicOrbit& start,
-                 OutputSet& outputs, AtomicOutputFile* out, AtomicOutputFile* json) {
-  if (request.start || request.switch_period_doubling || request.follow_grazing ||
-      !request.plot.empty()) {
-    throw InvalidInput(
-        "--start, --switch-pd, --follow-grazing and --plot are for impacting branches, not "
-        "sticking ones");
-  }
-  RequireArclengthFlags(request.step, request.min_step, request.max_step, request.max_points);
-  StickingBranchOptions options;
-  options.parameter = request.parameter;
-  options.lower = std::min(*request.from, *request.to);
-  options.upper = std::max(*request.from, *request.to);
-  options.increasing = *request.to > *request.from;
-  options.initial_step = request.step;
-  options.min_step = request.min_step;
-  options.max_step = request.max_step;
-  options.max_points = request.max_points;
-  fmt::print("system:     {}\n", DescribeSystem(system));
-  RunStickingContinue(system, start, options, outputs, out, json, ProvenanceOf(request, system));
-  outputs.Commit();
-  for (const std::string& path : {request.out, request.json}) {
-    if (!path.empty()) fmt::print("wrote:      {}\n", path);
-  }
-}
-
 void RunContinue(const ContinueRequest& request) {
   const System system = StartSystem(request);
   if (!request.plot.empty()) RequireGnuplot();
@@ -178,15 +148,18 @@ void RunContinue(const ContinueRequest& request) {
   AtomicOutputFile* out = AddIfAsked(outputs, request.out);
   AtomicOutputFile* json = AddIfAsked(outputs, request.json);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
-  if (const auto seed = ChooseStickingSeed(system, request.seed, request.sticking)) {
-    return RunSticking(request, system, RefineStickingOrbit(system, *seed), outputs, out, json);
-  }
+  // A motion that sticks starts its sticking family; any other, the
+  // impact map's.
   OrbitOptions orbit_options;
-  const PeriodicOrbit start = FindStartOrbit(system, request.seed, &orbit_options);
+  const std::optional<StickingSeed> sticking =
+      ChooseStickingSeed(system, request.seed, request.sticking);
+  const PeriodicOrbit start = sticking ? RefineStickingOrbit(system, *sticking)
+                                       : FindStartOrbit(system, request.seed, &orbit_options);
   const ContinuationOptions options = MakeOptions(request, orbit_options);
   fmt::print("system:     {}\n", DescribeSystem(system));
-  fmt::print("start:      P({},{}) at {} = {}, {}\n", start.p, start.q, request.parameter,
-             GetParameter(system, request.parameter), start.stable ? "stable" : "unstable");
+  fmt::print("start:      {}{} at {} = {}, {}\n", start.Sticks() ? "sticking " : "",
+             OrbitName(start), request.parameter, GetParameter(system, request.parameter),
+             start.stable ? "stable" : "unstable");
   // The library's network, one switch deep: the branch through the start
   // and those born at its special points as the flags ask.
   DiagramOptions network;
@@ -207,8 +180,8 @@ void RunContinue(const ContinueRequest& request) {
   const Branch& traced = branches.front().branch;
   if (traced.points.size() < 2) {
     throw std::runtime_error(
-        fmt::format("the P({},{}) branch could not be continued beyond its start: {} ({})",
-                    traced.p, traced.q, ToString(traced.end), traced.end_message));
+        fmt::format("the {} branch could not be continued beyond its start: {} ({})",
+                    FamilyName(traced), ToString(traced.end), traced.end_message));
   }
   const std::string provenance = ProvenanceOf(request, system).Text();
   std::vector<std::string> written;

@@ -162,7 +162,7 @@ CurveStart StartFromJson(const CurveRequest& request, System* system, CurveOptio
   nlohmann::json j;
   try {
     in >> j;
-    Require(j.value("kind", std::string()) != "sticking",
+    Require(j.value("section", std::string("impact")) != "release",
             fmt::format("--start-json {}: a sticking family P(inf,q) (`continue --sticking`); "
                         "curve follows fold, period_doubling, neimark_sacker and grazing points "
                         "of orbits P(p,q)",

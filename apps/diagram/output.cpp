@@ -56,21 +56,27 @@ nlohmann::json EdgeJson(const Diagram& diagram, const DiagramEdge& edge) {
   for (std::size_t i = edge.first; i <= edge.last; ++i) {
     const PeriodicOrbit& orbit = branch.points[i].orbit;
     std::vector<double> v;
-    for (const OrbitImpact& impact : orbit.impacts) v.push_back(impact.velocity);
+    for (const OrbitImpact& impact : LeadingImpacts(orbit)) v.push_back(impact.velocity);
     points.push_back({{"param", branch.points[i].parameter},
                       {"stable", orbit.stable},
                       {"v", v},
                       {"range_xN", orbit.contacts.Range()}});
   }
-  return {{"from", edge.from}, {"to", edge.to}, {"branch", edge.branch},
-          {"p", branch.p},     {"q", branch.q}, {"points", points}};
+  return {{"from", edge.from},
+          {"to", edge.to},
+          {"branch", edge.branch},
+          {"section", ToString(branch.section)},
+          {"p", branch.p},
+          {"q", branch.q},
+          {"releases", branch.releases},
+          {"points", points}};
 }
 
 /// The chart's y values of one orbit.
 std::vector<double> AxisValues(const PeriodicOrbit& orbit, DiagramAxis axis) {
   if (axis == DiagramAxis::kRange) return {orbit.contacts.Range()};
   std::vector<double> v;
-  for (const OrbitImpact& impact : orbit.impacts) v.push_back(impact.velocity);
+  for (const OrbitImpact& impact : LeadingImpacts(orbit)) v.push_back(impact.velocity);
   return v;
 }
 
@@ -102,7 +108,8 @@ Curve BruteForcePoints(const SweptDiagram& swept, DiagramAxis axis) {
 /// one grey entry, so that the key stays one column beside the plot.
 constexpr std::size_t kKeyFamilies = 24;
 
-/// The colour of each family, the branches of one period P(p,q), by (q, p):
+/// The colour of each family, the branches of one period P(p,q), by (q, p)
+/// (p = 0: the sticking P(inf,q), a sticking branch's p):
 /// the colour of that class in every figure (ClassColor: a P(2,1) branch is
 /// the colour of the P(2,1) cells of a map) for the kKeyFamilies shortest
 /// periods, the ones a reader follows; the maps' "other periods" grey for
@@ -112,8 +119,8 @@ std::map<std::pair<int, int>, std::string> FamilyColors(const Diagram& diagram) 
   for (const DiagramBranch& b : diagram.branches) colors[{b.branch.q, b.branch.p}];
   std::size_t k = 0;
   for (auto& [family, color] : colors) {
-    color = k++ < kKeyFamilies ? ClassColor(MotionKind::kPeriodic, family.second, family.first)
-                               : kOtherClassesColor;
+    const MotionKind kind = family.second == 0 ? MotionKind::kSticking : MotionKind::kPeriodic;
+    color = k++ < kKeyFamilies ? ClassColor(kind, family.second, family.first) : kOtherClassesColor;
   }
   return colors;
 }
@@ -129,7 +136,8 @@ std::vector<Curve> FamilyKeys(const std::map<std::pair<int, int>, std::string>& 
       continue;
     }
     Curve key;
-    key.title = fmt::format("P({},{})", family.second, family.first);
+    key.title = family.second == 0 ? fmt::format("P(inf,{})", family.first)
+                                   : fmt::format("P({},{})", family.second, family.first);
     key.color = color;
     keys.push_back(std::move(key));
   }
@@ -258,22 +266,23 @@ void PrintDiagram(const Diagram& diagram) {
     const auto [lo, hi] = std::minmax_element(
         b.points.begin(), b.points.end(),
         [](const BranchPoint& x, const BranchPoint& y) { return x.parameter < y.parameter; });
-    fmt::print("  {:<8} {} from {:.8g} to {:.8g}: {} ({})\n", labelled[k].label,
-               fmt::format("P({},{})", b.p, b.q), lo->parameter, hi->parameter,
-               DescribeStability(b), labelled[k].origin);
+    fmt::print("  {:<8} {} from {:.8g} to {:.8g}: {} ({})\n", labelled[k].label, FamilyName(b),
+               lo->parameter, hi->parameter, DescribeStability(b), labelled[k].origin);
   }
   fmt::print("special points (in {} order):\n", diagram.parameter);
   const auto at = [](const DiagramNode& n) { return n.parameter; };
   for (std::size_t k : ByParameter(diagram.nodes, at)) {
     const DiagramNode& n = diagram.nodes[k];
     if (n.kind != DiagramNodeKind::kSpecialPoint) continue;
-    std::string what = fmt::format("{} at {} = {:.10g} on P({},{})", n.Name(), diagram.parameter,
-                                   n.parameter, n.p, n.q);
+    std::string what =
+        fmt::format("{} at {} = {:.10g} on {}", n.Name(), diagram.parameter, n.parameter,
+                    n.p == 0 ? fmt::format("P(inf,{})", n.q) : fmt::format("P({},{})", n.p, n.q));
     if (n.special == SpecialPointType::kFold || n.special == SpecialPointType::kPeriodDoubling ||
         n.special == SpecialPointType::kNeimarkSacker ||
         n.special == SpecialPointType::kPitchfork) {
       what += fmt::format(" (multiplier {:.6f}{:+.6f}i)", n.multiplier.real(), n.multiplier.imag());
-    } else if (n.special != SpecialPointType::kBranchPoint) {
+    } else if (n.special == SpecialPointType::kGrazing ||
+               n.special == SpecialPointType::kSticking) {
       what += n.vanishing_impact < 0 ? " (a new contact)"
                                      : fmt::format(" (impact {} vanishes)", n.vanishing_impact + 1);
     }

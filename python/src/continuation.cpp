@@ -42,8 +42,10 @@ Branch ContinueFromStart(const BranchStart& start, const std::string& parameter,
                          bool locate_bifurcations) {
   ContinuationOptions options = MakeOptions(parameter, lower, upper, direction, initial_step,
                                             min_step, max_step, max_points, locate_bifurcations);
-  options.orbit.p = start.orbit.p;
-  options.orbit.q = start.orbit.q;
+  if (!start.orbit.Sticks()) {  // a sticking family is its start's
+    options.orbit.p = start.orbit.p;
+    options.orbit.q = start.orbit.q;
+  }
   return WithoutGil(
       [&] { return ContinueBranch(start, options, [](const BranchPoint&) { CheckInterrupt(); }); });
 }
@@ -62,8 +64,10 @@ Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,
 ContinuationOptions SwitchingOptions(const Branch& branch) {
   ContinuationOptions options;
   options.parameter = branch.parameter;
-  options.orbit.p = branch.p;
-  options.orbit.q = branch.q;
+  if (branch.section == OrbitSection::kImpact) {
+    options.orbit.p = branch.p;
+    options.orbit.q = branch.q;
+  }
   return options;
 }
 
@@ -88,11 +92,12 @@ std::vector<GrazingSeed> GrazingSeeds(const System& system, const Branch& branch
 void BindContinuation(py::module_& module) {
   py::class_<SpecialPoint>(module, "SpecialPoint",
                            "A located fold, period doubling, Neimark-Sacker, grazing, sticking "
-                           "or branch point of a branch.")
+                           "or branch point of a branch, or the end of a sticking family.")
       .def_property_readonly(
           "type", [](const SpecialPoint& s) { return ToString(s.type); },
-          "'fold', 'period_doubling', 'neimark_sacker', 'grazing', 'sticking' or "
-          "'branch_point'.")
+          "'fold', 'period_doubling', 'neimark_sacker', 'grazing', 'sticking', "
+          "'branch_point', 'pitchfork', or of a sticking family 'no_sticking' or "
+          "'early_release'.")
       .def_readonly("parameter", &SpecialPoint::parameter, "The parameter value there.")
       .def_readonly("multiplier", &SpecialPoint::multiplier,
                     "The critical multiplier (fold, period doubling, Neimark-Sacker).")
@@ -117,13 +122,18 @@ void BindContinuation(py::module_& module) {
       });
 
   py::class_<Branch>(module, "Branch",
-                     "A branch of P(p, q) orbits: its points in order, as arrays, and its "
-                     "special points.")
+                     "A branch of P(p, q) orbits, or of sticking orbits P(inf, q): its points "
+                     "in order, as arrays, and its special points.")
       .def_readonly("parameter", &Branch::parameter, "The continued parameter's name.")
+      .def_property_readonly(
+          "section", [](const Branch& b) { return ToString(b.section); },
+          "'impact' (P(p, q) orbits) or 'release' (sticking orbits).")
       .def_readonly("p", &Branch::p,
                     "Impacts per orbit (of the orbit followed: a start that is a shorter orbit "
-                    "traversed several times is followed as that orbit).")
+                    "traversed several times is followed as that orbit); 0 for sticking orbits.")
       .def_readonly("q", &Branch::q, "Forcing periods per orbit.")
+      .def_readonly("releases", &Branch::releases,
+                    "Sticking phases per orbit (0 for impacting orbits).")
       .def_property_readonly(
           "values",
           [](const Branch& b) {
@@ -146,7 +156,7 @@ void BindContinuation(py::module_& module) {
               eta.insert(eta.end(), p.orbit.eta.begin(), p.orbit.eta.end());
             return MoveToArray<double, 2>(std::move(eta), {n, size});
           },
-          "The fixed point at each point, shape (n, 2N).")
+          "The fixed point at each point, shape (n, 2N) (sticking orbits: (n, 2N - 1)).")
       .def_property_readonly(
           "multipliers",
           [](const Branch& b) {
@@ -181,7 +191,8 @@ void BindContinuation(py::module_& module) {
       .def_property_readonly(
           "end", [](const Branch& b) { return ToString(b.end); },
           "Why the last point is the last: 'parameter_bound', 'grazing', 'sticking', "
-          "'branch_point', 'max_points' or 'corrector_failed'.")
+          "'branch_point', 'max_points', 'corrector_failed', or for sticking orbits "
+          "'no_sticking' or 'early_release'.")
       .def_readonly("end_message", &Branch::end_message, "The end in words.")
       .def_property_readonly(
           "begin",
@@ -195,8 +206,8 @@ void BindContinuation(py::module_& module) {
       .def_readonly("seconds", &Branch::seconds, "Wall time.")
       .def("__len__", [](const Branch& b) { return b.points.size(); })
       .def("__repr__", [](const Branch& b) {
-        return "impactkit.Branch(P(" + std::to_string(b.p) + "," + std::to_string(b.q) + ") in " +
-               b.parameter + ", " + std::to_string(b.points.size()) + " points, " +
+        return "impactkit.Branch(" + FamilyName(b) + " in " + b.parameter + ", " +
+               std::to_string(b.points.size()) + " points, " +
                std::to_string(b.special_points.size()) + " special points, end " + ToString(b.end) +
                ")";
       });

@@ -1,5 +1,6 @@
-// impactkit.find_orbit and impactkit.Orbit: orbits/orbit.hpp, seeded by
-// analysis/orbit_seed.hpp when no seed is given.
+// impactkit.find_orbit, find_sticking_orbit and impactkit.Orbit:
+// orbits/orbit.hpp and orbits/sticking_orbit.hpp, seeded by
+// analysis/orbit_seed.hpp and analysis/sticking_seed.hpp when no seed is given.
 #include "impactkit/orbits/orbit.hpp"
 
 #include <pybind11/complex.h>
@@ -14,6 +15,8 @@
 
 #include "bindings.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -22,6 +25,13 @@ JacobianMethod JacobianFromName(const std::string& name) {
   if (name == "analytic") return JacobianMethod::kAnalytic;
   if (name == "finite_difference") return JacobianMethod::kFiniteDifference;
   throw InvalidInput("jacobian must be 'analytic' or 'finite_difference', got '" + name + "'");
+}
+
+/// A seed's stop is one of the system's (0-based).
+void RequireStop(const System& system, int stop) {
+  Require(stop >= 0 && stop < system.StopCount(), "stop must be in [0, " +
+                                                      std::to_string(system.StopCount() - 1) +
+                                                      "] (0-based), got " + std::to_string(stop));
 }
 
 PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optional<int> q,
@@ -38,9 +48,7 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
     Eigen::VectorXd guess;
     if (seed) {
       guess = *seed;
-      Require(stop >= 0 && stop < system.StopCount(),
-              "stop must be in [0, " + std::to_string(system.StopCount() - 1) +
-                  "] (0-based), got " + std::to_string(stop));
+      RequireStop(system, stop);
       options.map.stop = stop;
       options.p = p.value_or(1);
       options.q = q.value_or(1);
@@ -67,6 +75,44 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
   return orbit;
 }
 
+PeriodicOrbit FindStickingOrbitPy(const System& system, std::optional<Eigen::VectorXd> seed,
+                                  int releases, int q, int stop, double residual_tolerance,
+                                  int max_iterations, int transient) {
+  StickingOrbitOptions options;
+  options.newton.residual_tolerance = residual_tolerance;
+  options.newton.max_iterations = max_iterations;
+  PeriodicOrbit orbit;
+  const OrbitSummary summary = WithoutGil([&] {
+    Eigen::VectorXd guess;
+    if (seed) {
+      guess = *seed;
+      RequireStop(system, stop);
+      options.map.stop = stop;
+      options.releases = releases;
+      options.q = q;
+    } else {
+      Require(transient >= 0, "transient must be >= 0, got " + std::to_string(transient));
+      const std::optional<StickingSeed> found = SeedStickingFromSimulation(system, transient);
+      Require(found.has_value(), "no seed: the simulation from rest does not stick periodically");
+      guess = found->state;
+      options = OrbitOptionsFor(*found);
+      options.newton.residual_tolerance = residual_tolerance;
+      options.newton.max_iterations = max_iterations;
+    }
+    return FindStickingOrbit(system, guess, options, &orbit);
+  });
+  if (summary.termination != Termination::kConverged) ThrowNumericalError(summary.BriefReport());
+  return orbit;
+}
+
+/// One field of a sticking orbit's stuck phases, as a numpy array of shape (k,).
+template <typename Get>
+py::array_t<double> StuckField(const PeriodicOrbit& orbit, Get get) {
+  std::vector<double> values;
+  for (const StuckPhase& stuck : orbit.stuck) values.push_back(get(stuck));
+  return MoveToArray(std::move(values));
+}
+
 /// One field of the orbit's impacts, as a numpy array of shape (p,).
 template <auto Field>
 auto ImpactField(const PeriodicOrbit& orbit) {
@@ -80,19 +126,57 @@ auto ImpactField(const PeriodicOrbit& orbit) {
 
 void BindOrbit(py::module_& module) {
   py::class_<PeriodicOrbit>(module, "Orbit",
-                            "A periodic orbit P(p, q): p impacts in q forcing periods, a fixed "
-                            "point of the impact map with its multipliers.")
-      .def_readonly("p", &PeriodicOrbit::p, "Impacts per orbit.")
+                            "A periodic orbit: P(p, q), p impacts in q forcing periods, a fixed "
+                            "point of the impact map, or a sticking orbit P(inf, q), a fixed "
+                            "point of the release map; with its multipliers.")
+      .def_property_readonly(
+          "section", [](const PeriodicOrbit& o) { return ToString(o.section); },
+          "'impact' (P(p, q) on the impact map) or 'release' (a sticking orbit on the release "
+          "map).")
+      .def_readonly("p", &PeriodicOrbit::p,
+                    "Impacts per orbit (of a sticking orbit: those simulated before its "
+                    "accumulations).")
       .def_readonly("q", &PeriodicOrbit::q, "Forcing periods per orbit.")
+      .def_readonly("releases", &PeriodicOrbit::releases,
+                    "Sticking phases per orbit (0 for an impacting orbit).")
+      .def_property_readonly(
+          "stick_phases",
+          [](const PeriodicOrbit& o) {
+            return StuckField(o, [](const StuckPhase& s) { return s.stick_phase; });
+          },
+          "Each sticking phase's start t* (the chatter's accumulation point) mod T, shape (k,).")
+      .def_property_readonly(
+          "release_phases",
+          [](const PeriodicOrbit& o) {
+            return StuckField(o, [](const StuckPhase& s) { return s.release_phase; });
+          },
+          "Each sticking phase's release mod T, shape (k,).")
+      .def_property_readonly(
+          "stuck_durations",
+          [](const PeriodicOrbit& o) {
+            return StuckField(o, [](const StuckPhase& s) { return s.Duration(); });
+          },
+          "Each sticking phase's duration, release - t*, shape (k,).")
+      .def_property_readonly(
+          "contact_margin",
+          [](const PeriodicOrbit& o) -> std::optional<double> {
+            if (!o.Sticks()) return std::nullopt;
+            return o.contacts.contact_margin;
+          },
+          "Sticking orbits: the least stop force Fs(t*) at an accumulation point (None for an "
+          "impacting orbit).")
       .def_readonly("omega", &PeriodicOrbit::omega, "The forcing frequency.")
       .def_property_readonly(
           "eta", [](const PeriodicOrbit& o) { return o.eta; },
-          "The fixed point eta = (x without x_c, tau, v) just before an impact, tau in [0, T).")
+          "The fixed point: eta = (x without x_c, tau, v) just before an impact, tau in [0, T); "
+          "of a sticking orbit s = (x without x_c, v without v_c, t) at a release.")
       .def_property_readonly(
-          "jacobian", [](const PeriodicOrbit& o) { return o.jacobian; }, "D P_I^p at eta.")
+          "jacobian", [](const PeriodicOrbit& o) { return o.jacobian; },
+          "D P^k at eta: the section map's k iterations.")
       .def_property_readonly(
           "multipliers", [](const PeriodicOrbit& o) { return o.multipliers; },
-          "Eigenvalues of the Jacobian (complex), by decreasing modulus.")
+          "Eigenvalues of the Jacobian (complex), by decreasing modulus; of a sticking orbit "
+          "those on the release surface (2N - 2).")
       .def_readonly("stable", &PeriodicOrbit::stable, "Every |multiplier| < 1.")
       .def_readonly("residual", &PeriodicOrbit::residual, "max |U(eta)|.")
       .def_property_readonly("impact_times", ImpactField<&OrbitImpact::t>,
@@ -109,10 +193,25 @@ void BindOrbit(py::module_& module) {
           "xs minus the largest interior maximum of x_c in a flight (None if no flight has "
           "one): the grazing monitor of a new contact.")
       .def("__repr__", [](const PeriodicOrbit& o) {
-        return "impactkit.Orbit(P(" + std::to_string(o.p) + "," + std::to_string(o.q) +
-               "), omega=" + py::repr(py::float_(o.omega)).cast<std::string>() +
+        return "impactkit.Orbit(" + OrbitName(o) +
+               ", omega=" + py::repr(py::float_(o.omega)).cast<std::string>() +
                (o.stable ? ", stable)" : ", unstable)");
       });
+
+  module.def("find_sticking_orbit", &FindStickingOrbitPy, py::arg("system"), py::kw_only(),
+             py::arg("seed") = py::none(), py::arg("releases") = 1, py::arg("q") = 1,
+             py::arg("stop") = 0, py::arg("residual_tolerance") = 1e-11,
+             py::arg("max_iterations") = 50, py::arg("transient") = 500,
+             R"(The sticking orbit P(inf, q) of `system` -- chatter ending in sticking,
+`releases` sticking phases in q forcing periods -- by Newton (KINSOL) on the
+release map.
+
+seed: a release state s (size 2N - 1: x and v of the other masses, then t)
+from stop `stop` (0-based). Without a seed, the last release of a
+simulation from rest (transient forcing periods, then a window) is the
+seed, with the releases and q after which it repeats.
+Raises ValueError for bad input (a seed the stop still pushes on),
+NumericalError when Newton does not converge. Releases the GIL.)");
 
   module.def("find_orbit", &FindOrbitPy, py::arg("system"), py::kw_only(),
              py::arg("p") = py::none(), py::arg("q") = py::none(), py::arg("seed") = py::none(),

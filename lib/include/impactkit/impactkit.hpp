@@ -18,7 +18,6 @@
 #include "impactkit/continuation/curve.hpp"
 #include "impactkit/continuation/diagram.hpp"
 #include "impactkit/continuation/diagram_graph.hpp"
-#include "impactkit/continuation/sticking_branch.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/dynamics/events.hpp"
 #include "impactkit/dynamics/flow.hpp"

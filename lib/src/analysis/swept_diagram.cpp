@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+
+#include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"
@@ -9,11 +12,29 @@
 namespace impactkit {
 namespace {
 
-bool SamePeriodicMotion(const SweepPoint& a, const SweepPoint& b) {
-  return b.classification.kind == MotionKind::kPeriodic &&
-         a.classification.kind == MotionKind::kPeriodic &&
-         a.classification.period.p == b.classification.period.p &&
-         a.classification.period.q == b.classification.period.q;
+/// One window's motion on both: the same P(p, q), or sticking with the
+/// same q (the impacts before its chatter ends may change across it).
+bool SameMotion(const SweepPoint& a, const SweepPoint& b) {
+  const MotionKind kind = a.classification.kind;
+  if (kind != b.classification.kind || a.classification.period.q != b.classification.period.q) {
+    return false;
+  }
+  return kind == MotionKind::kSticking ||
+         (kind == MotionKind::kPeriodic && a.classification.period.p == b.classification.period.p);
+}
+
+/// The sticking orbit of a sticking window at one of its values: seeded by
+/// its own simulation (the sweep keeps no release), refined on the release
+/// map; none if either fails.
+std::optional<PeriodicOrbit> StickingOrbitAt(const System& at, int transient) {
+  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(at, transient);
+  if (!seed) return std::nullopt;
+  PeriodicOrbit found;
+  if (FindStickingOrbit(at, seed->state, OrbitOptionsFor(*seed), &found).termination !=
+      Termination::kConverged) {
+    return std::nullopt;
+  }
+  return found;
 }
 
 }  // namespace
@@ -37,12 +58,24 @@ std::vector<DiagramSeed> SeedsFromSweep(const System& system, const SweepOptions
   std::size_t from = 0;
   while (from < points.size()) {
     std::size_t to = from + 1;
-    while (to < points.size() && SamePeriodicMotion(points[from], points[to])) ++to;
+    while (to < points.size() && SameMotion(points[from], points[to])) ++to;
     const SweepPoint& middle = points[(from + to - 1) / 2];
     const MotionPeriod& period = points[from].classification.period;
-    const bool window = points[from].classification.kind == MotionKind::kPeriodic &&
-                        static_cast<int>(to - from) >= options.min_values && period.p >= 1 &&
+    const MotionKind kind = points[from].classification.kind;
+    const bool wide = static_cast<int>(to - from) >= options.min_values;
+    const bool window = kind == MotionKind::kPeriodic && wide && period.p >= 1 &&
                         period.p <= options.max_p && middle.last_impact;
+    if (kind == MotionKind::kSticking && wide) {
+      System at = system;
+      SetParameter(at, sweep_options.parameter, middle.value);
+      if (std::optional<PeriodicOrbit> found =
+              StickingOrbitAt(at, sweep_options.transient_periods)) {
+        seeds.push_back(
+            {at, *found,
+             fmt::format("sweep window P(inf,{}) {} {:.6g}..{:.6g}", period.q,
+                         sweep_options.parameter, points[from].value, points[to - 1].value)});
+      }
+    }
     if (window) {
       System at = system;
       SetParameter(at, sweep_options.parameter, middle.value);

@@ -1,7 +1,8 @@
 #pragma once
 /// \file branch_problem.hpp (private)
-/// The curve U(η, μ) = P_I^p(η; μ) - η - q T(μ) e_τ = 0 of one P(p, q)
-/// family, as a function of X = (η, μ): the impact map's SectionCurve
+/// The curve U(η, μ) = P^k(η; μ) - η - q T(μ) e_t = 0 of one family of
+/// periodic orbits, impacting P(p, q) on the impact map or sticking on the
+/// release map, as a function of X = (η, μ): the map's SectionCurve
 /// (section_curve.hpp), for pseudo-arclength continuation (continuation.hpp).
 
 #include <Eigen/Dense>
@@ -13,31 +14,45 @@
 
 #include "continuation/section_curve.hpp"
 #include "impactkit/continuation/branch_point.hpp"
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 #include "impactkit/solvers/nonlinear_solve.hpp"
 
 namespace impactkit::detail {
 
-/// The impact map's SectionCurve with what an impacting family adds: its
-/// points' orbits and test functions, and whether it could be a shorter
-/// orbit traversed several times.
+/// A family's SectionCurve (the impact map's or the release map's) with
+/// what a family of orbits adds: its points' orbits and test functions, and
+/// whether it could be a shorter orbit traversed several times.
 class BranchProblem {
  public:
-  /// Throws InvalidInput for a parameter the system lacks.
+  /// Impacting orbits P(p, q). Throws InvalidInput for a parameter the
+  /// system lacks.
   BranchProblem(const System& base, std::string parameter, int p, int q,
                 const ImpactMapOptions& map_options);
+  /// Sticking orbits with `releases` sticking phases in q periods.
+  BranchProblem(const System& base, std::string parameter, int releases, int q,
+                const StickingMapOptions& map_options);
 
-  int Size() const { return curve_.Size(); }  ///< 2N + 1
-  int p() const { return curve_.Events(); }
+  OrbitSection Section() const { return section_; }
+  int Size() const { return curve_.Size(); }  ///< the section's size + 1
+  /// The section map's iterations per orbit: p impacts, or the releases.
+  int Events() const { return curve_.Events(); }
   int q() const { return curve_.q(); }
   const std::string& Parameter() const { return curve_.Parameter(); }
 
   System SystemAt(double mu) const { return curve_.SystemAt(mu); }
-  /// The impact map at μ, or null if μ is not valid for the system
+  /// The section map at μ, or null if μ is not valid for the system
   /// (SectionCurve::MapAt).
-  const ImpactMap* MapAt(double mu) const {
-    return static_cast<const ImpactMap*>(curve_.MapAt(mu));
+  const SectionMap* MapAt(double mu) const { return curve_.MapAt(mu); }
+  /// The impact map at μ: null also for a family of sticking orbits.
+  const ImpactMap* ImpactMapAt(double mu) const {
+    return section_ == OrbitSection::kImpact ? static_cast<const ImpactMap*>(MapAt(mu)) : nullptr;
   }
+  /// The orbit through the fixed point `state` of the map at μ (its
+  /// section's DescribeOrbit). Throws InvalidInput where the map fails.
+  PeriodicOrbit OrbitAt(const Eigen::VectorXd& state, double mu) const;
 
   static Eigen::VectorXd Join(const Eigen::VectorXd& eta, double mu) {
     return SectionCurve::Join(eta, mu);
@@ -69,13 +84,25 @@ class BranchProblem {
   std::optional<BranchPoint> Describe(const Eigen::VectorXd& x,
                                       const Eigen::VectorXd& previous) const;
 
-  /// The smallest prime dividing both p and q (the orbit could be a shorter
+  /// Whether a map failed since the last call because the release map's
+  /// chatter stopped ending in sticking (SectionCurve::TakeStoppedSticking).
+  bool TakeStoppedSticking() const { return curve_.TakeStoppedSticking(); }
+
+  /// The smallest prime dividing both k and q (the orbit could be a shorter
   /// one traversed that many times), or 1 when they are coprime.
   int RepeatDivisor() const { return repeat_divisor_; }
 
  private:
+  BranchProblem(OrbitSection section, SectionCurve curve);
+
+  OrbitSection section_;
   SectionCurve curve_;
   int repeat_divisor_ = 1;
 };
+
+/// The problem of a family of orbits on `section` at stop `stop` with k
+/// events of its map in q periods, the map's options from `options`.
+BranchProblem FamilyProblem(const System& system, const ContinuationOptions& options,
+                            OrbitSection section, int stop, int k, int q);
 
 }  // namespace impactkit::detail

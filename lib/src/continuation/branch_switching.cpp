@@ -14,11 +14,13 @@ using detail::BranchProblem;
 
 namespace {
 
-/// The map options of `branch`: its points' η are at its stop.
-ImpactMapOptions SectionOf(const Branch& branch, const ContinuationOptions& options) {
-  ImpactMapOptions map = options.orbit.map;
-  map.stop = branch.stop;
-  return map;
+/// The problem of `branch`'s family, or of the same orbits traversed
+/// `times` times.
+BranchProblem ProblemOf(const System& system, const Branch& branch,
+                        const ContinuationOptions& options, int times = 1) {
+  const int k = branch.section == OrbitSection::kRelease ? branch.releases : branch.p;
+  return detail::FamilyProblem(system, options, branch.section, branch.stop, times * k,
+                               times * branch.q);
 }
 
 /// The new branch leaves the special point `at` along the eigenvector w with
@@ -42,8 +44,7 @@ std::optional<BranchStart> StartAt(const BranchProblem& problem, const Eigen::Ve
   if (!tangent) return std::nullopt;
   BranchStart start;
   start.system = problem.SystemAt(BranchProblem::Mu(x));
-  start.orbit = DescribeOrbit(*problem.MapAt(BranchProblem::Mu(x)), BranchProblem::Eta(x),
-                              problem.p(), problem.q());
+  start.orbit = problem.OrbitAt(BranchProblem::Eta(x), BranchProblem::Mu(x));
   start.direction = *tangent;
   return start;
 }
@@ -71,16 +72,15 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
   if (pd.type != SpecialPointType::kPeriodDoubling || pd.eigenvector.size() == 0) {
     throw InvalidInput("DoubledBranchStart needs a located period doubling point");
   }
-  const int p = branch.p, q = branch.q;
   // At the flip the doubled orbits leave the single one along the flip
-  // eigenvector (a pitchfork of P_I^{2p}).
-  const BranchProblem doubled(system, branch.parameter, 2 * p, 2 * q, SectionOf(branch, options));
+  // eigenvector (a pitchfork of P^{2k}).
+  const BranchProblem doubled = ProblemOf(system, branch, options, 2);
   Eigen::VectorXd w;
   const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, offset, &w);
   if (!x) return std::nullopt;
   // Genuinely doubled: not a fixed point of P_I^p (the single orbit also
   // solves the doubled equations).
-  const BranchProblem single(system, branch.parameter, p, q, SectionOf(branch, options));
+  const BranchProblem single = ProblemOf(system, branch, options);
   Eigen::VectorXd u;
   if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * offset) return std::nullopt;
   return StartAt(doubled, *x, w);
@@ -93,8 +93,7 @@ std::optional<BranchStart> PitchforkBranchStart(const System& system, const Bran
     throw InvalidInput("PitchforkBranchStart needs a located pitchfork");
   }
   // The crossing branch leaves along the eigenvector of the multiplier +1.
-  const BranchProblem problem(system, branch.parameter, branch.p, branch.q,
-                              SectionOf(branch, options));
+  const BranchProblem problem = ProblemOf(system, branch, options);
   Eigen::VectorXd w;
   const std::optional<Eigen::VectorXd> x = CorrectAlong(problem, pitchfork, options, offset, &w);
   if (!x) return std::nullopt;
@@ -116,10 +115,12 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
   if (graze.type != SpecialPointType::kGrazing && graze.type != SpecialPointType::kSticking) {
     throw InvalidInput("SeedsAtGrazing needs a located grazing or sticking point");
   }
+  if (branch.section != OrbitSection::kImpact) {
+    throw InvalidInput("SeedsAtGrazing needs a branch of impacting orbits");
+  }
   const BranchPoint& point = graze.point;
-  const BranchProblem problem(system, branch.parameter, branch.p, branch.q,
-                              SectionOf(branch, options));
-  const ImpactMap* map = problem.MapAt(point.parameter);
+  const BranchProblem problem = ProblemOf(system, branch, options);
+  const ImpactMap* map = problem.ImpactMapAt(point.parameter);
   const MapResult image = map->Apply(point.orbit.eta, branch.p, false);
   auto impact_state = [&](int k) { return k == 0 ? point.orbit.eta : image.path[k - 1]; };
   auto impact_stop = [&](int k) { return k == 0 ? map->SectionStop() : image.stops[k - 1]; };

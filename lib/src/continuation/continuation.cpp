@@ -10,13 +10,16 @@
 #include "continuation/arclength.hpp"
 #include "continuation/branch_problem.hpp"
 #include "continuation/critical_point.hpp"
+#include "continuation/sticking_end.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/sticking_orbit.hpp"
 
 namespace impactkit {
 namespace {
 
 using detail::BranchProblem;
+using detail::StickingEnd;
 
 /// Illinois and secant iterations of the locators.
 constexpr int kMaxLocateIterations = 80;
@@ -87,12 +90,16 @@ class BranchTracer {
  public:
   BranchTracer(const BranchProblem& problem, const ContinuationOptions& options,
                const ContinuationProgress& progress)
-      : problem_(problem), options_(options), progress_(progress) {
+      : problem_(problem),
+        options_(options),
+        progress_(progress),
+        sticks_(problem.Section() == OrbitSection::kRelease) {
     newton_ = options.orbit.newton;
     newton_.max_iterations = options.corrector_iterations;
   }
 
   HalfBranch Trace(const BranchPoint& start) {
+    refused_ = {};
     HalfBranch half;
     half.points.push_back(start);
     double step = options_.initial_step;
@@ -121,7 +128,7 @@ class BranchTracer {
           step = std::max(step / 2.0, options_.min_step);
           continue;
         }
-        if (EndAtGrazing(half, /*last_resort=*/true)) return half;
+        if (sticks_ ? EndOfSticking(half) : EndAtGrazing(half, /*last_resort=*/true)) return half;
         half.end = BranchEnd::kCorrectorFailed;
         half.end_message = fmt::format(
             "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}",
@@ -158,7 +165,9 @@ class BranchTracer {
       }
       if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
       Accept(*next, &half);
-      if (GrazingAhead(half, step) && EndAtGrazing(half, /*last_resort=*/false)) return half;
+      if (!sticks_ && GrazingAhead(half, step) && EndAtGrazing(half, /*last_resort=*/false)) {
+        return half;
+      }
       if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
       if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
     }
@@ -177,10 +186,54 @@ class BranchTracer {
     newton.residual_tolerance *= tolerance_scale;
     const std::optional<Eigen::VectorXd> x =
         problem_.Correct(guess, t, t.dot(x0) + s, newton, iterations);
+    if (sticks_ && problem_.TakeStoppedSticking()) {
+      refused_ = {StickingEnd::kNoSticking, BranchProblem::Mu(guess)};
+    }
     if (!x || (*x - guess).norm() > options_.max_correction * std::abs(s)) return std::nullopt;
     std::optional<BranchPoint> point = problem_.Describe(*x, t);
     if (point) point->arclength = from.arclength + s;
+    if (point && sticks_) return OnStickingFamily(from, *std::move(point));
     return point;
+  }
+
+  /// `point` if it is on the sticking family of `from`; else nothing, the
+  /// end it is beyond remembered.
+  std::optional<BranchPoint> OnStickingFamily(const BranchPoint& from, BranchPoint point) const {
+    std::optional<StickingEnd> beyond = detail::Violation(point.orbit);
+    if (!beyond) beyond = detail::ImpactChange(from.orbit, point.orbit);
+    if (!beyond) return point;
+    refused_ = {*beyond, point.parameter};
+    return std::nullopt;
+  }
+
+  /// Ends a sticking family at its last point, if an end lies just beyond
+  /// it: named by the monitor extrapolated to 0 nearest ahead (within
+  /// kExtrapolationReach: a refused trial's report can come from beyond the
+  /// event, as past a graze a map may stop accumulating), else by what a
+  /// refused trial showed, and moved to it by bisection in μ where a
+  /// refused trial brackets it (sticking_end.hpp). The
+  /// march's own last point lies up to min_step short of the end, where
+  /// the stuck duration still varies as a fractional power of the distance
+  /// to it (theory.md §5a).
+  bool EndOfSticking(HalfBranch& half) const {
+    std::optional<StickingEnd> end = refused_.end;
+    const std::size_t n = half.points.size();
+    if (n >= 2) {
+      if (std::optional<StickingEnd> nearest =
+              detail::NearestEnd(half.points[n - 2], half.points[n - 1], kExtrapolationReach)) {
+        end = nearest;
+      }
+    }
+    if (!end) return false;
+    if (std::optional<BranchPoint> located = detail::LocateStickingEnd(
+            problem_, half.points.back(), refused_.beyond, options_.end_tolerance, newton_)) {
+      Accept(*located, &half);
+    }
+    const SpecialPoint special = detail::EndPoint(half.points.back(), *end);
+    half.special_points.push_back(special);
+    half.end = detail::BranchEndOf(*end);
+    half.end_message = special.Describe(problem_.Parameter());
+    return true;
   }
 
   /// The point of the branch on the parameter bound crossed between `from`
@@ -210,6 +263,7 @@ class BranchTracer {
   }
 
   void Accept(const BranchPoint& point, HalfBranch* half) const {
+    refused_ = {};
     half->points.push_back(point);
     if (progress_) progress_(point);
   }
@@ -337,8 +391,13 @@ class BranchTracer {
   std::optional<BranchPoint> PrimitiveBifurcation(const BranchPoint& from,
                                                   const BranchPoint& next) const {
     OrbitOptions primitive = options_.orbit;
-    primitive.p = problem_.p() / problem_.RepeatDivisor();
+    primitive.p = problem_.Events() / problem_.RepeatDivisor();
     primitive.q = problem_.q() / problem_.RepeatDivisor();
+    StickingOrbitOptions sticking;
+    sticking.releases = primitive.p;
+    sticking.q = primitive.q;
+    sticking.newton = options_.orbit.newton;
+    sticking.map = options_.release_map;
     // d = 2: det(DP + I); d >= 3: a complex pair on the unit circle.
     const std::size_t test = problem_.RepeatDivisor() == 2 ? 1 : 2;
     Eigen::VectorXd seed = from.orbit.eta;
@@ -350,9 +409,9 @@ class BranchTracer {
       } catch (const InvalidInput&) {
         return std::nullopt;
       }
-      if (FindOrbit(system, seed, primitive, &orbit).termination != Termination::kConverged) {
-        return std::nullopt;
-      }
+      const OrbitSummary found = sticks_ ? FindStickingOrbit(system, seed, sticking, &orbit)
+                                         : FindOrbit(system, seed, primitive, &orbit);
+      if (found.termination != Termination::kConverged) return std::nullopt;
       seed = orbit.eta;
       return EvaluateBifurcationTests(orbit.jacobian, orbit.multipliers)[test];
     };
@@ -396,7 +455,7 @@ class BranchTracer {
     half->end_message =
         special.Describe(problem_.Parameter()) +
         fmt::format(": the orbit is P({},{}) traversed {} times",
-                    problem_.p() / problem_.RepeatDivisor(),
+                    problem_.Events() / problem_.RepeatDivisor(),
                     problem_.q() / problem_.RepeatDivisor(), problem_.RepeatDivisor());
   }
 
@@ -561,20 +620,54 @@ class BranchTracer {
     return special;
   }
 
+  /// How far (arclength) an extrapolated monitor zero may lie from a
+  /// sticking family's last point for its end to be called that event.
+  static constexpr double kExtrapolationReach = 1e-3;
+
   const BranchProblem& problem_;
   const ContinuationOptions& options_;
   const ContinuationProgress& progress_;
+  const bool sticks_;  ///< a family of sticking orbits
   NewtonOptions newton_;
+  /// A sticking family's end that a trial since the last accepted point
+  /// was beyond, and its μ.
+  struct Refused {
+    std::optional<StickingEnd> end;
+    double beyond = std::numeric_limits<double>::quiet_NaN();
+  };
+  mutable Refused refused_;
 };
 
 /// The start as an oriented branch point.
+/// A special point of a sticking family in brackets: its first stick and
+/// release phases and what the type watches.
+std::string DescribeSticking(const SpecialPoint& special) {
+  const StuckPhase& stuck = special.point.orbit.stuck.front();
+  const std::string phases = fmt::format("stick phase {:.9g}, release phase {:.9g}",
+                                         stuck.stick_phase, stuck.release_phase);
+  switch (special.type) {
+    case SpecialPointType::kNoSticking:
+      return fmt::format("{}, Fs(t*) {:.3g}", phases, special.monitor);
+    case SpecialPointType::kEarlyRelease:
+      return fmt::format("{}, hold margin {:.1e}", phases, special.monitor);
+    case SpecialPointType::kGrazing:
+      return special.vanishing_impact < 0
+                 ? fmt::format("{}, a new impact; clearance {:.1e}", phases, special.monitor)
+                 : fmt::format("{}, impact {} vanishes; speed {:.1e}", phases,
+                               special.vanishing_impact + 1, special.monitor);
+    default:
+      return fmt::format("{}, multiplier {:.9f}{:+.9f}i", phases, special.multiplier.real(),
+                         special.multiplier.imag());
+  }
+}
+
 BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
                        const ContinuationOptions& options, double sense) {
   const Eigen::VectorXd x =
       BranchProblem::Join(start.orbit.eta, GetParameter(start.system, options.parameter));
   Eigen::VectorXd previous = start.direction;
   std::optional<BranchPoint> point = problem.Describe(x, previous);
-  Require(point.has_value(), "the start orbit's impact map fails: not an orbit to continue");
+  Require(point.has_value(), "the start orbit's section map fails: not an orbit to continue");
   if (previous.size() == 0 && point->tangent(problem.Size() - 1) * sense < 0) {
     point->tangent = -point->tangent;
   }
@@ -598,8 +691,18 @@ std::string ToString(BranchEnd end) {
       return "max_points";
     case BranchEnd::kCorrectorFailed:
       return "corrector_failed";
+    case BranchEnd::kNoSticking:
+      return "no_sticking";
+    case BranchEnd::kEarlyRelease:
+      return "early_release";
   }
   return "unknown";
+}
+
+std::string FamilyName(const Branch& branch) {
+  if (branch.section == OrbitSection::kImpact) return fmt::format("P({},{})", branch.p, branch.q);
+  return branch.releases == 1 ? fmt::format("P(inf,{})", branch.q)
+                              : fmt::format("P(inf,{}) k={}", branch.q, branch.releases);
 }
 
 std::string SpecialPoint::Describe(const std::string& parameter_name) const {
@@ -609,6 +712,7 @@ std::string SpecialPoint::Describe(const std::string& parameter_name) const {
   if (type == SpecialPointType::kBranchPoint) {
     return fmt::format("{} (repeat gap {:.1e})", where, monitor);
   }
+  if (point.orbit.Sticks()) return fmt::format("{} ({})", where, DescribeSticking(*this));
   if (type == SpecialPointType::kGrazing || type == SpecialPointType::kSticking) {
     return vanishing_impact < 0
                ? fmt::format("{} (a new contact; clearance {:.1e})", where, monitor)
@@ -634,7 +738,9 @@ bool ContinuationOptions::IsValid(std::string* error) const {
                                               corrector_iterations, max_correction)) {
     return fail(*problem);
   }
-  return orbit.IsValid(error);
+  if (!(end_tolerance > 0))
+    return fail(fmt::format("end_tolerance must be > 0, got {}", end_tolerance));
+  return orbit.IsValid(error) && release_map.IsValid(error);
 }
 
 Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
@@ -642,14 +748,15 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
   const auto clock_start = std::chrono::steady_clock::now();
   std::string error;
   Require(options.IsValid(&error), error);
-  // The branch's section is the start orbit's: its η is at that stop.
-  if (start.orbit.stop != options.orbit.map.stop) {
-    ContinuationOptions at_start = options;
-    at_start.orbit.map.stop = start.orbit.stop;
-    return ContinueBranch(start, at_start, progress);
-  }
-  const BranchProblem problem(start.system, options.parameter, options.orbit.p, options.orbit.q,
-                              options.orbit.map);
+  // The family is the start orbit's: its section, at its stop (and for a
+  // sticking orbit its releases and q).
+  const PeriodicOrbit& orbit = start.orbit;
+  ContinuationOptions family = options;
+  family.orbit.map.stop = family.release_map.stop = orbit.stop;
+  const int k = orbit.Sticks() ? orbit.releases : options.orbit.p;
+  const int q = orbit.Sticks() ? orbit.q : options.orbit.q;
+  const BranchProblem problem =
+      detail::FamilyProblem(start.system, family, orbit.section, orbit.stop, k, q);
   const double mu = GetParameter(start.system, options.parameter);
   Require(mu >= options.lower && mu <= options.upper,
           fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter, mu,
@@ -662,35 +769,41 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
           fmt::format("the bound {} = {} is not valid: {}", options.parameter, bound, e.what()));
     }
   }
-  const ImpactMap* map = problem.MapAt(mu);
-  const PeriodicOrbit described =
-      DescribeOrbit(*map, start.orbit.eta, options.orbit.p, options.orbit.q);
+  const std::string name =
+      orbit.Sticks() ? fmt::format("sticking P(inf,{})", q) : fmt::format("P({},{})", k, q);
+  Require(orbit.eta.size() == problem.Size() - 1,
+          fmt::format("the start is not a {} orbit of the system (its state has size {}, not {})",
+                      name, orbit.eta.size(), problem.Size() - 1));
+  const PeriodicOrbit described = problem.OrbitAt(orbit.eta, mu);
   const double residual = described.residual;
   // Near grazing FindOrbit accepts an orbit up to U's rounding floor: so here.
   Require(residual <= std::max(1e3 * options.orbit.newton.residual_tolerance,
                                ResidualFloor(described.jacobian, described.eta)),
-          fmt::format("the start is not a P({},{}) orbit: residual {:.2e}", options.orbit.p,
-                      options.orbit.q, residual));
+          fmt::format("the start is not a {} orbit: residual {:.2e}", name, residual));
   // A P(2,2) that is P(1,1) traversed twice is followed as P(1,1): as P(2,2)
   // its multipliers are squared (P(1,1)'s period doubling would read as a
   // fold) and the branch would be walked once per relabelling.
-  const OrbitPeriod primitive =
-      PrimitivePeriod(*map, start.orbit.eta, options.orbit.p, options.orbit.q);
-  if (primitive.p != options.orbit.p) {
-    ContinuationOptions reduced = options;
-    reduced.orbit.p = primitive.p;
-    reduced.orbit.q = primitive.q;
-    BranchStart shorter = start;
-    shorter.orbit = DescribeOrbit(*map, start.orbit.eta, primitive.p, primitive.q);
-    return ContinueBranch(shorter, reduced, progress);
+  if (!orbit.Sticks()) {
+    const auto* map = problem.ImpactMapAt(mu);
+    const OrbitPeriod primitive = PrimitivePeriod(*map, orbit.eta, k, q);
+    if (primitive.p != k) {
+      ContinuationOptions reduced = family;
+      reduced.orbit.p = primitive.p;
+      reduced.orbit.q = primitive.q;
+      BranchStart shorter = start;
+      shorter.orbit = DescribeOrbit(*map, orbit.eta, primitive.p, primitive.q);
+      return ContinueBranch(shorter, reduced, progress);
+    }
   }
 
-  BranchTracer tracer(problem, options, progress);
+  BranchTracer tracer(problem, family, progress);
   Branch branch;
   branch.parameter = options.parameter;
-  branch.stop = options.orbit.map.stop;
-  branch.p = options.orbit.p;
-  branch.q = options.orbit.q;
+  branch.section = orbit.section;
+  branch.stop = orbit.stop;
+  branch.p = orbit.Sticks() ? 0 : k;
+  branch.q = q;
+  branch.releases = orbit.Sticks() ? k : 0;
   const bool both = options.direction == ContinuationDirection::kBoth;
   const double sense = options.direction == ContinuationDirection::kDecreasing ? -1.0 : 1.0;
   HalfBranch forward = tracer.Trace(StartPoint(problem, start, options, sense));

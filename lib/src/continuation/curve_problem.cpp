@@ -85,7 +85,7 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,
     }
     return std::isfinite((*g)(0));
   }
-  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
   if (!map) return false;
   const Eigen::VectorXd eta = Eta(x);
   if (!(map->Speed(eta, map->SectionStop()) > 0)) return false;
@@ -130,7 +130,7 @@ std::optional<CurveProblem::FlightStart> CurveProblem::GrazingFlightStart(
 }
 
 bool CurveProblem::TouchInsideFlight(const Eigen::VectorXd& x) const {
-  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
   if (!map) return false;
   const std::optional<FlightStart> start = GrazingFlightStart(*map, Eta(x));
   if (!start) return false;
@@ -239,7 +239,7 @@ std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
   point.x = x;
   point.tangent = *tangent;
   if (response_) return point;  // no orbit: the response has no impacts
-  const ImpactMap* map = Along1(Mu2(x)).MapAt(Mu1(x));
+  const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
   const Eigen::VectorXd eta = Eta(x);
   if (!map || map->Apply(eta, options_.orbit.p, false).status != MapStatus::kOk) {
     return std::nullopt;

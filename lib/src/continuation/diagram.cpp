@@ -34,30 +34,50 @@ struct PendingStart {
   int crosses = -1;
 };
 
-/// The orbit's impact speeds, sorted: what identifies it on a branch
-/// whichever impact its η starts from.
-std::vector<double> SortedSpeeds(const std::vector<OrbitImpact>& impacts, int p) {
-  std::vector<double> speeds;
-  for (int i = 0; i < p; ++i) speeds.push_back(impacts[i].velocity);
-  std::sort(speeds.begin(), speeds.end());
-  return speeds;
+/// What a branch's orbits are: their section, and their map's events
+/// (impacts or releases) in q forcing periods.
+struct Family {
+  OrbitSection section = OrbitSection::kImpact;
+  int k = 1;
+  int q = 1;
+  bool operator==(const Family&) const = default;
+};
+
+Family FamilyOf(const Branch& branch) {
+  return {branch.section, branch.section == OrbitSection::kRelease ? branch.releases : branch.p,
+          branch.q};
 }
 
-/// The start reduced to its primitive period (a P(2,2) that is P(1,1)
-/// twice is P(1,1)), as ContinueBranch will follow it.
-OrbitPeriod StartPeriod(const PendingStart& pending) {
+/// What identifies an orbit on its branch whichever event its η starts
+/// from: its first k impact speeds, or its k stuck durations, sorted.
+std::vector<double> Signature(const PeriodicOrbit& orbit, int k) {
+  std::vector<double> values;
+  for (int i = 0; i < k; ++i) {
+    values.push_back(orbit.Sticks() ? orbit.stuck[i].Duration() : orbit.impacts[i].velocity);
+  }
+  std::sort(values.begin(), values.end());
+  return values;
+}
+
+/// The start's family, an impacting start reduced to its primitive period
+/// (a P(2,2) that is P(1,1) twice is P(1,1)), as ContinueBranch will
+/// follow it.
+Family StartFamily(const PendingStart& pending) {
+  const PeriodicOrbit& orbit = pending.start.orbit;
+  if (orbit.Sticks()) return {OrbitSection::kRelease, orbit.releases, orbit.q};
   const ImpactMap map(pending.start.system, pending.orbit.map);
-  return PrimitivePeriod(map, pending.start.orbit.eta, pending.orbit.p, pending.orbit.q);
+  const OrbitPeriod period = PrimitivePeriod(map, orbit.eta, pending.orbit.p, pending.orbit.q);
+  return {OrbitSection::kImpact, period.p, period.q};
 }
 
-/// Whether the orbit (primitive period `period`, speeds `speeds`, at μ) lies
-/// on `branch`: the same primitive period, and speeds within `tolerance` of
+/// Whether the orbit (of family `family`, signature `signature`, at μ)
+/// lies on `branch`: the same family, and a signature within `tolerance` of
 /// the branch's, linearly interpolated between two consecutive points that
 /// bracket μ (through a fold, either sheet).
-bool OnBranch(const Branch& branch, OrbitPeriod period, double mu,
-              const std::vector<double>& speeds, double tolerance) {
-  if (branch.p != period.p || branch.q != period.q) return false;
-  const double scale = tolerance * (1.0 + speeds.back());
+bool OnBranch(const Branch& branch, Family family, double mu, const std::vector<double>& signature,
+              double tolerance) {
+  if (FamilyOf(branch) != family) return false;
+  const double scale = tolerance * (1.0 + signature.back());
   for (std::size_t k = 0; k < branch.points.size(); ++k) {
     const BranchPoint& a = branch.points[k];
     const BranchPoint& b = branch.points[std::min(k + 1, branch.points.size() - 1)];
@@ -65,11 +85,11 @@ bool OnBranch(const Branch& branch, OrbitPeriod period, double mu,
     if (mu < lo - scale || mu > hi + scale) continue;
     const double w =
         hi > lo ? std::clamp((mu - a.parameter) / (b.parameter - a.parameter), 0.0, 1.0) : 0.0;
-    const std::vector<double> sa = SortedSpeeds(a.orbit.impacts, branch.p);
-    const std::vector<double> sb = SortedSpeeds(b.orbit.impacts, branch.p);
+    const std::vector<double> sa = Signature(a.orbit, family.k);
+    const std::vector<double> sb = Signature(b.orbit, family.k);
     bool close = true;
-    for (int i = 0; i < branch.p && close; ++i) {
-      close = std::abs((1 - w) * sa[i] + w * sb[i] - speeds[i]) <= scale;
+    for (int i = 0; i < family.k && close; ++i) {
+      close = std::abs((1 - w) * sa[i] + w * sb[i] - signature[i]) <= scale;
     }
     if (close) return true;
   }
@@ -79,11 +99,10 @@ bool OnBranch(const Branch& branch, OrbitPeriod period, double mu,
 }  // namespace
 
 bool CoveredBy(const Branch& branch, const Branch& other, double tolerance) {
-  if (branch.points.empty() || branch.p != other.p || branch.q != other.q) return false;
-  const OrbitPeriod period{branch.p, branch.q};
+  const Family family = FamilyOf(branch);
+  if (branch.points.empty() || FamilyOf(other) != family) return false;
   return std::all_of(branch.points.begin(), branch.points.end(), [&](const BranchPoint& point) {
-    return OnBranch(other, period, point.parameter, SortedSpeeds(point.orbit.impacts, branch.p),
-                    tolerance);
+    return OnBranch(other, family, point.parameter, Signature(point.orbit, family.k), tolerance);
   });
 }
 
@@ -103,9 +122,11 @@ class NetworkTracer {
     std::vector<PendingStart> generation;
     for (std::size_t k = 0; k < seeds.size(); ++k) {
       OrbitOptions orbit = options_.continuation.orbit;
-      orbit.p = seeds[k].orbit.p;
-      orbit.q = seeds[k].orbit.q;
-      orbit.map.stop = seeds[k].orbit.stop;
+      if (!seeds[k].orbit.Sticks()) {  // a sticking family is its start's
+        orbit.p = seeds[k].orbit.p;
+        orbit.q = seeds[k].orbit.q;
+        orbit.map.stop = seeds[k].orbit.stop;
+      }
       generation.push_back(
           {{seeds[k].system, seeds[k].orbit, {}},
            seeds[k].direction,
@@ -128,12 +149,12 @@ class NetworkTracer {
  private:
   /// Whether the start's orbit lies on a branch in diagram_.
   bool Traced(const PendingStart& pending) const {
-    const OrbitPeriod period = StartPeriod(pending);
+    const Family family = StartFamily(pending);
     const double mu = GetParameter(pending.start.system, diagram_.parameter);
-    const std::vector<double> speeds = SortedSpeeds(pending.start.orbit.impacts, period.p);
+    const std::vector<double> signature = Signature(pending.start.orbit, family.k);
     for (std::size_t k = 0; k < diagram_.branches.size(); ++k) {
       if (static_cast<int>(k) == pending.crosses) continue;
-      if (OnBranch(diagram_.branches[k].branch, period, mu, speeds,
+      if (OnBranch(diagram_.branches[k].branch, family, mu, signature,
                    options_.same_branch_tolerance)) {
         return true;
       }
@@ -254,9 +275,11 @@ class NetworkTracer {
         const double mu = GetParameter(start.system, diagram_.parameter);
         if (mu < options_.continuation.lower || mu > options_.continuation.upper) return;
         OrbitOptions orbit = options_.continuation.orbit;
-        orbit.p = p;
-        orbit.q = q;
-        orbit.map.stop = start.orbit.stop;
+        if (!start.orbit.Sticks()) {  // a sticking family is its start's
+          orbit.p = p;
+          orbit.q = q;
+          orbit.map.stop = start.orbit.stop;
+        }
         born.push_back(
             {std::move(start), direction, orbit, how + where, traced.depth + 1, nodes[k]});
       };
@@ -288,8 +311,10 @@ class NetworkTracer {
           }
         }
       }
+      // Seeds past a grazing are impacting orbits with an impact more or fewer.
       const bool graze =
-          s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking;
+          branch.section == OrbitSection::kImpact &&
+          (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking);
       if (graze && options_.switch_grazing) {
         ContinuationOptions options = options_.continuation;
         options.orbit.p = branch.p;

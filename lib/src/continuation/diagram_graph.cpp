@@ -66,7 +66,8 @@ std::size_t PointIndex(const Branch& branch, double arclength) {
 
 bool EndsAtSpecialPoint(BranchEnd end) {
   return end == BranchEnd::kGrazing || end == BranchEnd::kSticking ||
-         end == BranchEnd::kBranchPoint;
+         end == BranchEnd::kBranchPoint || end == BranchEnd::kNoSticking ||
+         end == BranchEnd::kEarlyRelease;
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
      1e-4},
 }};
 
-constexpr std::array<std::pair<SpecialPointType, std::string_view>, 7> kNames = {{
+constexpr std::array<std::pair<SpecialPointType, std::string_view>, 9> kNames = {{
     {SpecialPointType::kFold, "fold"},
     {SpecialPointType::kPeriodDoubling, "period_doubling"},
     {SpecialPointType::kNeimarkSacker, "neimark_sacker"},
@@ -54,6 +54,8 @@ constexpr std::array<std::pair<SpecialPointType, std::string_view>, 7> kNames = 
     {SpecialPointType::kSticking, "sticking"},
     {SpecialPointType::kBranchPoint, "branch_point"},
     {SpecialPointType::kPitchfork, "pitchfork"},
+    {SpecialPointType::kNoSticking, "no_sticking"},
+    {SpecialPointType::kEarlyRelease, "early_release"},
 }};
 
 }  // namespace

@@ -89,13 +89,13 @@ std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& p
                                                           const OrbitOptions& orbit_options) {
   if (b.parameter == a.parameter) return std::nullopt;
   const double direction = b.parameter > a.parameter ? 1.0 : -1.0;
-  const ImpactMap* map = problem.MapAt(b.parameter);
+  const ImpactMap* map = problem.ImpactMapAt(b.parameter);
   if (!map) return std::nullopt;
-  const MapResult path = map->Apply(b.orbit.eta, problem.p(), false);
+  const MapResult path = map->Apply(b.orbit.eta, problem.Events(), false);
   if (path.status != MapStatus::kOk) return std::nullopt;
 
   OrbitOptions reduced = orbit_options;
-  reduced.p = problem.p() - 1;
+  reduced.p = problem.Events() - 1;
   reduced.q = problem.q();
   reduced.map.stop = path.stops[static_cast<std::size_t>(impact)];
   // The impact after the vanishing one starts the reduced orbit: its state

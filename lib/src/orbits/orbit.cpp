@@ -203,6 +203,22 @@ std::string ToString(OrbitSection section) {
   return section == OrbitSection::kImpact ? "impact" : "release";
 }
 
+std::string OrbitName(const PeriodicOrbit& orbit) {
+  return orbit.Sticks() ? fmt::format("P(inf,{})", orbit.q)
+                        : fmt::format("P({},{})", orbit.p, orbit.q);
+}
+
+std::vector<OrbitImpact> LeadingImpacts(const PeriodicOrbit& orbit) {
+  if (!orbit.Sticks()) return orbit.impacts;
+  std::vector<OrbitImpact> leading;
+  std::size_t first = 0;  // the cycle's first impact
+  for (const StuckPhase& stuck : orbit.stuck) {
+    if (stuck.impacts > 0) leading.push_back(orbit.impacts[first]);
+    first += stuck.impacts;
+  }
+  return leading;
+}
+
 std::string ToString(JacobianMethod method) {
   return method == JacobianMethod::kAnalytic ? "analytic" : "finite-difference";
 }

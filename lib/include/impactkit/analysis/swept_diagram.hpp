@@ -21,7 +21,8 @@ namespace impactkit {
 
 struct SweepSeedOptions {
   /// A window is this many consecutive sweep values or more showing one
-  /// P(p, q) (non-sticking); shorter runs are transitions, not windows.
+  /// P(p, q), or sticking with one q; shorter runs are transitions, not
+  /// windows.
   int min_values = 2;
   /// Seeds of windows with more impacts per orbit are skipped.
   int max_p = 16;
@@ -32,7 +33,9 @@ struct SweepSeedOptions {
 
 /// One seed per periodic window of `sweep` (in sweep order): the orbit
 /// through the last impact of the window's middle value, refined by
-/// FindOrbit; windows whose refinement does not converge give none.
+/// FindOrbit; of a sticking window P(∞, q), the sticking orbit of the
+/// middle value's own simulation (the sweep's transient), refined by
+/// FindStickingOrbit. Windows whose refinement does not converge give none.
 /// `sweep` must come from RunSweep on `system` (any value of the parameter).
 std::vector<DiagramSeed> SeedsFromSweep(const System& system, const SweepOptions& sweep_options,
                                         const SweepResult& sweep, const SweepSeedOptions& options);

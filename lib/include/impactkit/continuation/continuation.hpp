@@ -28,6 +28,15 @@
 /// the orbit would pass through the stop, so they are approached from the
 /// branch side — the monitor is extrapolated linearly in s and its zero
 /// located by safeguarded secant steps — and the branch stops there.
+///
+/// A family of sticking orbits (a start on the release section,
+/// sticking_orbit.hpp) is the same curve on the release map, followed by
+/// the same march with the same test functions (on D P_R^k: its exact
+/// zero multiplier changes only their sign). Its ends differ: past them
+/// the release map still converges, onto another motion, so points beyond
+/// are recognised and refused and the end is located by bisection in μ to
+/// end_tolerance (the chatter stops ending in sticking, a new or vanishing
+/// impact, an early release: continuation/sticking_end.hpp).
 
 #include <Eigen/Dense>
 #include <complex>
@@ -40,6 +49,7 @@
 #include "impactkit/continuation/test_functions.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 
 namespace impactkit {
 
@@ -67,7 +77,13 @@ struct ContinuationOptions {
   bool locate_bifurcations = true;
   /// p, q, tolerances and the map's options. The analytic Jacobian is used
   /// whatever orbit.jacobian says (the finite-difference one costs 4N maps).
+  /// A sticking family's releases and q are its start orbit's.
   OrbitOptions orbit;
+  /// The release map's options, for a family of sticking orbits (its stop
+  /// is the start orbit's).
+  StickingMapOptions release_map;
+  /// A sticking family's end is located by bisection in μ to this.
+  double end_tolerance = 1e-9;
   bool IsValid(std::string* error) const;
 };
 
@@ -100,18 +116,25 @@ enum class BranchEnd {
   kBranchPoint,      ///< met the branch of a shorter orbit traversed several times
   kMaxPoints,        ///< max_points reached
   kCorrectorFailed,  ///< no convergence even with the smallest step
+  kNoSticking,       ///< a sticking family: its chatter stops ending in sticking
+  kEarlyRelease,     ///< a sticking family: Fs touches 0 inside a stuck phase
 };
 
 /// "parameter_bound", "grazing", "sticking", "branch_point", "max_points",
-/// "corrector_failed".
+/// "corrector_failed", "no_sticking", "early_release".
 std::string ToString(BranchEnd end);
 
 struct Branch {
   std::string parameter;
+  /// The section of its orbits: impacting P(p, q), or sticking with
+  /// `releases` sticking phases in q periods (then p is 0: the impacts of
+  /// its orbits vary along it, PeriodicOrbit::p).
+  OrbitSection section = OrbitSection::kImpact;
   int p = 0;
   int q = 0;
-  /// The stop whose impacts the points' η describe (ImpactMapOptions::stop):
-  /// the start orbit's first impact's.
+  int releases = 0;
+  /// The stop of the section, whose impacts (or releases) the points' η
+  /// describe: the start orbit's.
   int stop = 0;
   /// In order along the branch; with kBoth, from the decreasing end to the
   /// increasing end.
@@ -125,12 +148,17 @@ struct Branch {
   double seconds = 0.0;
 };
 
+/// "P(p,q)", or for a sticking family "P(inf,q)" (with k > 1 sticking
+/// phases, "P(inf,q) k=2").
+std::string FamilyName(const Branch& branch);
+
 /// Called after each accepted point (progress display).
 using ContinuationProgress = std::function<void(const BranchPoint&)>;
 
 /// Where a branch starts: a converged orbit of `system` (whose parameter
-/// value is the start), and optionally the initial direction in (η, μ)
-/// (size 2N + 1; otherwise from options.direction).
+/// value is the start), impacting or sticking, and optionally the initial
+/// direction in (η, μ) (the section's size + 1; otherwise from
+/// options.direction).
 struct BranchStart {
   System system;
   PeriodicOrbit orbit;

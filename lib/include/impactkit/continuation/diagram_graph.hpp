@@ -40,9 +40,9 @@ struct DiagramNode {
   /// The test function or grazing monitor at the located point (0 at ends).
   double monitor = 0.0;
   int vanishing_impact = -1;  ///< grazing/sticking: the impact that vanishes (-1: a new contact)
-  int p = 0, q = 0;           ///< of the branch the node was first located on
-  int branch = 0;             ///< that branch (index into Diagram::branches)
-  BranchPoint point;          ///< the located point on that branch
+  int p = 0, q = 0;   ///< of the branch the node was first located on (p = 0: sticking, P(inf,q))
+  int branch = 0;     ///< that branch (index into Diagram::branches)
+  BranchPoint point;  ///< the located point on that branch
   /// "period_doubling", "grazing", ... or "parameter_bound", "max_points",
   /// "corrector_failed", or "start": the name outputs use.
   std::string Name() const;

@@ -35,11 +35,17 @@ enum class SpecialPointType {
   /// system with a symmetry (a symmetric clearance), the pitchfork where
   /// the symmetric orbit gives birth to a pair of asymmetric ones.
   kPitchfork,
+  /// On a family of sticking orbits: the chatter stops ending in sticking
+  /// (the stop's force Fs(t*) at its accumulation point falls to 0).
+  kNoSticking,
+  /// On a family of sticking orbits: Fs touches 0 inside a stuck phase,
+  /// beyond which the mass leaves the stop there (one more sticking phase).
+  kEarlyRelease,
 };
 
 /// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking",
-/// "branch_point", "pitchfork": the name that outputs (CSV, JSON) use for
-/// the type.
+/// "branch_point", "pitchfork", "no_sticking", "early_release": the name
+/// that outputs (CSV, JSON) use for the type.
 std::string ToString(SpecialPointType type);
 /// The type of a name of ToString; empty for any other name.
 std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name);

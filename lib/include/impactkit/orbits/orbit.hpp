@@ -123,6 +123,14 @@ struct PeriodicOrbit {
   int SectionEvents() const { return Sticks() ? releases : p; }
 };
 
+/// "P(p,q)", or "P(inf,q)" for a sticking orbit.
+std::string OrbitName(const PeriodicOrbit& orbit);
+
+/// The impacts that stand for the orbit in a table or a figure: its p
+/// impacts, or of a sticking orbit the first after each release (its
+/// chatter's impacts are too many and too slow to show), in time order.
+std::vector<OrbitImpact> LeadingImpacts(const PeriodicOrbit& orbit);
+
 /// The orbit P(p, q) through the fixed point `eta` of P_I^p: impacts,
 /// Jacobian (by `method`), multipliers, stability, residual and contacts.
 /// Throws InvalidInput if the map cannot follow p impacts from eta, or

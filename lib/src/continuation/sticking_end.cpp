@@ -1,0 +1,155 @@
+#include "continuation/sticking_end.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace impactkit::detail {
+namespace {
+
+/// The relative jump of the first impact's delay after a release that
+/// marks an impact appearing or vanishing before it (ImpactChange).
+constexpr double kDelayJump = 0.25;
+
+/// The ending monitors of an orbit, in StickingEnd order: each positive on
+/// the family and 0 at its end (infinity where it watches nothing).
+std::array<double, 4> Monitors(const PeriodicOrbit& orbit) {
+  const OrbitContacts& c = orbit.contacts;
+  return {c.contact_margin, c.clearance.value_or(std::numeric_limits<double>::infinity()),
+          c.hold_margin, c.first_impact_speed};
+}
+
+/// The delay from each release to the first impact after it (NaN for a
+/// cycle without impacts), in the order of the orbit's stuck phases.
+std::vector<double> FirstImpactDelays(const PeriodicOrbit& orbit) {
+  std::vector<double> delays;
+  std::size_t first = 0;  // the cycle's first impact
+  for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
+    // The cycle starts at the release of the section state, or the last.
+    const double release = k == 0 ? orbit.eta(orbit.eta.size() - 1) : orbit.stuck[k - 1].release;
+    const int impacts = orbit.stuck[k].impacts;
+    delays.push_back(impacts > 0 ? orbit.impacts[first].t - release
+                                 : std::numeric_limits<double>::quiet_NaN());
+    first += impacts;
+  }
+  return delays;
+}
+
+Eigen::VectorXd PointX(const BranchPoint& point) {
+  return BranchProblem::Join(point.orbit.eta, point.parameter);
+}
+
+}  // namespace
+
+std::optional<StickingEnd> Violation(const PeriodicOrbit& orbit) {
+  const std::array<double, 4> monitors = Monitors(orbit);
+  for (std::size_t i = 0; i < 3; ++i) {  // a first impact's speed is > 0 by definition
+    if (!(monitors[i] > 0)) return static_cast<StickingEnd>(i);
+  }
+  return std::nullopt;
+}
+
+std::optional<StickingEnd> ImpactChange(const PeriodicOrbit& a, const PeriodicOrbit& b) {
+  if (a.stuck.size() != b.stuck.size()) return std::nullopt;
+  const std::vector<double> from = FirstImpactDelays(a), to = FirstImpactDelays(b);
+  for (std::size_t k = 0; k < from.size(); ++k) {
+    if (to[k] < (1.0 - kDelayJump) * from[k]) return StickingEnd::kNewImpact;
+    if (to[k] > (1.0 + kDelayJump) * from[k]) return StickingEnd::kVanishingImpact;
+  }
+  return std::nullopt;
+}
+
+std::optional<StickingEnd> NearestEnd(const BranchPoint& a, const BranchPoint& b, double reach) {
+  const double step = (PointX(b) - PointX(a)).norm();
+  const std::array<double, 4> before = Monitors(a.orbit), after = Monitors(b.orbit);
+  std::optional<StickingEnd> nearest;
+  double best = reach;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const double fall = (before[i] - after[i]) / step;  // per unit arclength
+    if (!std::isfinite(after[i]) || !(fall > 0)) continue;
+    if (const double distance = after[i] / fall; distance < best) {
+      best = distance;
+      nearest = static_cast<StickingEnd>(i);
+    }
+  }
+  return nearest;
+}
+
+std::optional<BranchPoint> LocateStickingEnd(const BranchProblem& problem, const BranchPoint& last,
+                                             double beyond, double tolerance,
+                                             const NewtonOptions& newton) {
+  const Eigen::VectorXd e_mu = Eigen::VectorXd::Unit(problem.Size(), problem.Size() - 1);
+  // The family's point at μ, from the last point inside, or none if μ is
+  // past its end.
+  auto point_at = [&](const BranchPoint& inside, double mu) -> std::optional<BranchPoint> {
+    int iterations = 0;
+    const std::optional<Eigen::VectorXd> x =
+        problem.Correct(BranchProblem::Join(inside.orbit.eta, mu), e_mu, mu, newton, &iterations);
+    problem.TakeStoppedSticking();
+    if (!x) return std::nullopt;
+    std::optional<BranchPoint> point = problem.Describe(*x, inside.tangent);
+    if (!point || Violation(point->orbit) || ImpactChange(inside.orbit, point->orbit)) {
+      return std::nullopt;
+    }
+    point->arclength = inside.arclength + inside.tangent.dot(*x - PointX(inside));
+    return point;
+  };
+  if (!std::isfinite(beyond) || point_at(last, beyond)) return std::nullopt;
+  double inside = last.parameter, outside = beyond;
+  std::optional<BranchPoint> located;
+  while (std::abs(outside - inside) > tolerance) {
+    const double mid = 0.5 * (inside + outside);
+    if (mid == inside || mid == outside) break;  // a tolerance below μ's rounding
+    if (std::optional<BranchPoint> point = point_at(located ? *located : last, mid)) {
+      inside = mid;
+      located = std::move(point);
+    } else {
+      outside = mid;
+    }
+  }
+  return located;
+}
+
+SpecialPoint EndPoint(const BranchPoint& point, StickingEnd end) {
+  SpecialPoint special;
+  special.point = point;
+  special.parameter = point.parameter;
+  special.monitor = Monitors(point.orbit)[static_cast<std::size_t>(end)];
+  switch (end) {
+    case StickingEnd::kNoSticking:
+      special.type = SpecialPointType::kNoSticking;
+      break;
+    case StickingEnd::kEarlyRelease:
+      special.type = SpecialPointType::kEarlyRelease;
+      break;
+    case StickingEnd::kNewImpact:
+      special.type = SpecialPointType::kGrazing;
+      break;
+    case StickingEnd::kVanishingImpact: {
+      special.type = SpecialPointType::kGrazing;
+      const std::vector<OrbitImpact>& impacts = point.orbit.impacts;
+      for (std::size_t i = 0; i < impacts.size(); ++i) {
+        if (impacts[i].velocity == point.orbit.contacts.first_impact_speed) {
+          special.vanishing_impact = static_cast<int>(i);
+          break;
+        }
+      }
+      break;
+    }
+  }
+  return special;
+}
+
+BranchEnd BranchEndOf(StickingEnd end) {
+  switch (end) {
+    case StickingEnd::kNoSticking:
+      return BranchEnd::kNoSticking;
+    case StickingEnd::kEarlyRelease:
+      return BranchEnd::kEarlyRelease;
+    default:
+      return BranchEnd::kGrazing;
+  }
+}
+
+}  // namespace impactkit::detail
