@@ -67,3 +67,24 @@ def test_pitchfork_of_a_symmetric_clearance_starts_the_asymmetric_branch():
     assert born, [b.origin for b in diagram.branches]
     speeds = born[0].branch.orbits[-1].impact_velocities
     assert abs(speeds[0] - speeds[1]) > 1e-4
+
+
+def test_sticking_family_beside_the_chatter_orbits_that_accumulate_on_it():
+    # Seeds: the paper's sticking orbit at Omega = 0.2 and the chatter orbit
+    # P(10,1) at 0.309, switched at its grazings to P(9,1), P(11,1), ...
+    # The sticking branch ends at no_sticking where continue_branch ends it,
+    # and every chatter branch lies above that end.
+    sticking_system = impactkit.System.paper(0.2)
+    sticking = impactkit.find_sticking_orbit(sticking_system)
+    chatter_system = impactkit.System.paper(0.309)
+    chatter = impactkit.find_orbit(chatter_system, p=10, q=1)
+    diagram = impactkit.trace_diagram([(sticking_system, sticking), (chatter_system, chatter)],
+                                      lower=0.2, upper=0.5, max_depth=2)
+    family = impactkit.continue_branch(sticking_system, sticking, lower=0.2, upper=0.5)
+    released = [b.branch for b in diagram.branches if b.branch.section == "release"]
+    assert len(released) == 1 and released[0].end == "no_sticking"
+    end = max(released[0].values)
+    assert end == pytest.approx(family.values[-1], abs=1e-8)
+    impacting = [b.branch for b in diagram.branches if b.branch.section == "impact"]
+    assert {b.p for b in impacting} >= {9, 10}
+    assert all(min(b.values) > end for b in impacting)
