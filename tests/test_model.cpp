@@ -4,6 +4,7 @@
 #include <numbers>
 #include <random>
 
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/model/modal.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/model/system.hpp"

@@ -17,6 +17,7 @@
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/hybrid/stop.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"

@@ -12,6 +12,7 @@
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/recorders.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/sticking_map.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"

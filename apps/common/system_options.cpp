@@ -6,6 +6,7 @@
 #include <charconv>
 #include <string_view>
 
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/system_file.hpp"
 
 namespace impactkit::cli {

@@ -25,6 +25,7 @@
 #include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/continuation/diagram.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 

@@ -23,6 +23,7 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "curve/output.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
 

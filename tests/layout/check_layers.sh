@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Fails when a library area includes an area above it. The layers, bottom
-# up (docs/architecture.md): core; solvers and dynamics (both on core only);
-# model; hybrid; orbits; continuation; analysis; io. An area may include
-# itself and any lower layer; solvers and dynamics may not include each other.
+# up (docs/architecture.md): core; solvers, dynamics and model (each on core
+# only: a system is data); hybrid; orbits; continuation; analysis; io. An
+# area may include itself and any lower layer; solvers, dynamics and model
+# may not include one another.
 set -euo pipefail
 root=${1:-$(dirname "$0")/../..}
 cd "$root/lib"
 
-declare -A rank=([core]=0 [solvers]=1 [dynamics]=1 [model]=2 [hybrid]=3 [orbits]=4
+declare -A rank=([core]=0 [solvers]=1 [dynamics]=1 [model]=1 [hybrid]=3 [orbits]=4
                  [continuation]=5 [analysis]=6 [io]=7)
 failures=0
 checked=0

@@ -24,6 +24,7 @@
 #include "impactkit/dynamics/segment.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/model/modal.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/grazing_limit.hpp"

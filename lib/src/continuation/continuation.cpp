@@ -12,6 +12,7 @@
 #include "continuation/critical_point.hpp"
 #include "continuation/sticking_end.hpp"
 #include "continuation/vanishing_impact.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 

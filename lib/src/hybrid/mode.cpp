@@ -5,6 +5,7 @@
 #include <complex>
 
 #include "impactkit/dynamics/mode_clock.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "model/stuck_subsystem.hpp"
 
 namespace impactkit {
@@ -17,7 +18,7 @@ LinearFlow FlowOf(const System& s, StopSet held) {
     return LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()),
                       s.omega);
   }
-  return detail::HeldFlow(s, held);
+  return HeldFlow(s, held);
 }
 
 }  // namespace

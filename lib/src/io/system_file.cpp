@@ -11,6 +11,7 @@
 #include <span>
 #include <sstream>
 
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "io/toml_json.hpp"
 

@@ -5,7 +5,7 @@
 namespace impactkit {
 
 ModalData ComputeModalData(const System& s) {
-  Validate(s);
+  ValidateParameters(s);  // the modes exist at a resonance too
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(s.stiffness, s.mass);
   const Eigen::MatrixXd& phi = modes.eigenvectors();  // mass-normalised
   const Eigen::MatrixXd modal_damping = phi.transpose() * s.damping * phi;

@@ -7,12 +7,11 @@
 ///     M' x'' + C' x' + K' x = A' cos(Ω t) − K_{·H} xs_H.
 ///
 /// Validation and the hybrid system build their held flows from this one
-/// place.
+/// place (dynamics/held_flow.hpp).
 
 #include <Eigen/Dense>
 #include <vector>
 
-#include "impactkit/dynamics/flow.hpp"
 #include "impactkit/model/system.hpp"
 
 namespace impactkit::detail {
@@ -27,9 +26,5 @@ struct StuckSubsystem {
 std::vector<int> MovingDofs(const System& system, StopSet held);
 
 StuckSubsystem StuckSubsystemOf(const System& system, StopSet held);
-
-/// The exact flow of that subsystem. Throws InvalidInput "stuck subsystem
-/// (mass 2 held at the stop): <why>" when it has no bounded steady response.
-LinearFlow HeldFlow(const System& system, StopSet held);
 
 }  // namespace impactkit::detail

@@ -1,14 +1,12 @@
 #include "impactkit/model/system.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <bit>
 #include <cmath>
 #include <complex>
 #include <numbers>
 
-#include "impactkit/dynamics/flow.hpp"
 #include "model/stuck_subsystem.hpp"
 
 namespace impactkit {
@@ -202,10 +200,6 @@ void ValidateScalars(const System& s) {
 /// The subsystem that moves while one stop holds its mass must have a
 /// bounded steady response too (sets of several held stops are checked
 /// when a motion first reaches them: there can be 2^K of them).
-void ValidateStuckSubsystems(const System& s) {
-  for (int k = 0; k < s.StopCount(); ++k) detail::HeldFlow(s, StopBit(k));
-}
-
 }  // namespace
 
 double System::ForcingPeriod() const { return 2.0 * std::numbers::pi / omega; }
@@ -284,14 +278,6 @@ void ValidateParameters(const System& s) {
   ValidateDerivedScales(s);
 }
 
-void Validate(const System& s) {
-  ValidateParameters(s);
-  // Constructing the flows rejects an undamped resonance (no bounded
-  // steady response): the same test the simulator relies on.
-  LinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(s.Dof()), s.omega);
-  if (s.Dof() > 1) ValidateStuckSubsystems(s);
-}
-
 HybridState RestState(const System& s) {
   HybridState state;
   state.x = Eigen::VectorXd::Zero(s.Dof());
@@ -358,22 +344,6 @@ StuckSubsystem StuckSubsystemOf(const System& s, StopSet held) {
   }
   return {s.mass(moving, moving), s.damping(moving, moving), s.stiffness(moving, moving),
           s.forcing(moving), -(s.stiffness(moving, Eigen::all) * held_positions)};
-}
-
-LinearFlow HeldFlow(const System& s, StopSet held) {
-  const StuckSubsystem stuck = StuckSubsystemOf(s, held);
-  try {
-    return LinearFlow(stuck.mass, stuck.damping, stuck.stiffness, stuck.forcing,
-                      stuck.constant_force, s.omega);
-  } catch (const InvalidInput& e) {
-    std::vector<std::string> masses;
-    for (int k = 0; k < s.StopCount(); ++k) {
-      if ((held & StopBit(k)) != 0) masses.push_back(std::to_string(s.stops[k].dof + 1));
-    }
-    throw InvalidInput(fmt::format("stuck subsystem (mass {} held at {}): {}",
-                                   fmt::join(masses, ", "),
-                                   s.StopCount() == 1 ? "the stop" : "its stop", e.what()));
-  }
 }
 
 }  // namespace detail

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/model/system.hpp"

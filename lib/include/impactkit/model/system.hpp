@@ -119,13 +119,9 @@ System GeneralSystem(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& damping
 /// entries within 1e-150 … 1e150, natural frequencies within a ratio of
 /// 1e5, a forcing period at most 1e6 periods of the fastest mode, a forced
 /// response below 1e150); throws InvalidInput naming the first bad one and
-/// the allowed range. Also rejects an undamped system forced at one of its
-/// natural frequencies (no bounded steady response exists).
-void Validate(const System& system);
-
-/// Every check of Validate() except the resonances, which need the flows
-/// decomposed: for callers that decompose them next anyway (HybridSystem,
-/// whose flows reject a resonance themselves).
+/// the allowed range. A system is data: the one check that needs its flows
+/// decomposed, an undamped resonance, is Validate's
+/// (hybrid/system_flows.hpp), which callers that build no flows use.
 void ValidateParameters(const System& system);
 
 /// The hybrid state: time, positions, velocities, and the stops that hold
