@@ -50,12 +50,15 @@ std::optional<BranchPoint> BranchProblem::Describe(const Eigen::VectorXd& x,
   const SectionMap* map = MapAt(Mu(x));
   if (!map) return std::nullopt;
   const Eigen::VectorXd eta = Eta(x);
-  if (!map->Iterate(eta, Events(), false).Ok()) return std::nullopt;
-  const std::optional<Eigen::VectorXd> tangent = Tangent(x, previous);
-  if (!tangent) return std::nullopt;
   BranchPoint point;
   point.parameter = Mu(x);
-  point.orbit = OrbitAt(eta, Mu(x));
+  try {
+    point.orbit = OrbitAt(eta, Mu(x));
+  } catch (const InvalidInput&) {
+    return std::nullopt;  // the map fails at X
+  }
+  const std::optional<Eigen::VectorXd> tangent = Tangent(x, previous);
+  if (!tangent) return std::nullopt;
   point.tangent = *tangent;
   point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
   if (repeat_divisor_ > 1) {
