@@ -1,5 +1,6 @@
 /// `impactkit diagram`: the connected bifurcation diagram over a parameter
-/// range — a brute-force sweep whose periodic windows seed branches, and
+/// range — a brute-force sweep whose periodic and sticking windows seed
+/// branches, and
 /// the network of branches traced from them through their period
 /// doublings, grazings and branch points (impactkit/analysis/
 /// swept_diagram.hpp does the work).
@@ -175,9 +176,9 @@ void AddDiagramCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "diagram",
       "The connected bifurcation diagram over a parameter range: a brute-force sweep whose "
-      "periodic windows seed branches, each followed both ways, and at every period doubling, "
-      "grazing and branch point the branch that starts there, each branch once. Prints every "
-      "branch and special point in parameter order.");
+      "periodic and sticking windows seed branches, each followed both ways, and at every "
+      "period doubling, grazing and branch point the branch that starts there, each branch "
+      "once. Prints every branch and special point in parameter order.");
   AddSystemOptions(*command, request->system);
   const std::string group = "Diagram";
   command->add_option("--param", request->parameter, "Parameter: omega, xs, r, A1.., m, k, c")

@@ -453,11 +453,17 @@ class BranchTracer {
     special.monitor = located.repeat_gap.cwiseAbs().maxCoeff();
     half->special_points.push_back(special);
     half->end = BranchEnd::kBranchPoint;
-    half->end_message =
-        special.Describe(problem_.Parameter()) +
-        fmt::format(": the orbit is P({},{}) traversed {} times",
-                    problem_.Events() / problem_.RepeatDivisor(),
-                    problem_.q() / problem_.RepeatDivisor(), problem_.RepeatDivisor());
+    half->end_message = special.Describe(problem_.Parameter()) +
+                        fmt::format(": the orbit is {} traversed {} times", ShorterName(),
+                                    problem_.RepeatDivisor());
+  }
+
+  /// The shorter orbit this family's orbit may be several times of, named
+  /// as FamilyName names its family.
+  std::string ShorterName() const {
+    const int d = problem_.RepeatDivisor(), k = problem_.Events() / d, q = problem_.q() / d;
+    if (!sticks_) return fmt::format("P({},{})", k, q);
+    return k == 1 ? fmt::format("P(inf,{})", q) : fmt::format("P(inf,{}) k={}", q, k);
   }
 
   /// The special point of a located zero of test function `test`, with its
@@ -639,7 +645,6 @@ class BranchTracer {
   mutable Refused refused_;
 };
 
-/// The start as an oriented branch point.
 /// A special point of a sticking family in brackets: its first stick and
 /// release phases and what the type watches.
 std::string DescribeSticking(const SpecialPoint& special) {
@@ -662,6 +667,7 @@ std::string DescribeSticking(const SpecialPoint& special) {
   }
 }
 
+/// The start as an oriented branch point.
 BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
                        const ContinuationOptions& options, double sense) {
   const Eigen::VectorXd x =
