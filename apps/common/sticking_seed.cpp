@@ -46,6 +46,14 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
   return found;
 }
 
+PeriodicOrbit FindAnyStartOrbit(const System& system, const OrbitSeedOptions& seed,
+                                const StickingSeedOptions& sticking, OrbitOptions* orbit_options) {
+  if (const std::optional<StickingSeed> found = ChooseStickingSeed(system, seed, sticking)) {
+    return RefineStickingOrbit(system, *found);
+  }
+  return FindStartOrbit(system, seed, orbit_options);
+}
+
 PeriodicOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
                                   OrbitSummary* summary) {
   const StickingOrbitOptions options = OrbitOptionsFor(seed);

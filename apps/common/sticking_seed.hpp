@@ -32,6 +32,12 @@ void AddStickingSeedOptions(CLI::App& command, StickingSeedOptions& options,
 std::optional<StickingSeed> ChooseStickingSeed(const System& system, const OrbitSeedOptions& seed,
                                                const StickingSeedOptions& request);
 
+/// The start orbit of `continue` and `diagram`: the sticking orbit where the
+/// simulated motion sticks (or --sticking asks for one), else the impacting
+/// one of FindStartOrbit, its options in *orbit_options.
+PeriodicOrbit FindAnyStartOrbit(const System& system, const OrbitSeedOptions& seed,
+                                const StickingSeedOptions& sticking, OrbitOptions* orbit_options);
+
 /// FindStickingOrbit from the seed; throws std::runtime_error if it fails.
 PeriodicOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
                                   OrbitSummary* summary = nullptr);

@@ -152,10 +152,8 @@ void RunContinue(const ContinueRequest& request) {
   // A motion that sticks starts its sticking family; any other, the
   // impact map's.
   OrbitOptions orbit_options;
-  const std::optional<StickingSeed> sticking =
-      ChooseStickingSeed(system, request.seed, request.sticking);
-  const PeriodicOrbit start = sticking ? RefineStickingOrbit(system, *sticking)
-                                       : FindStartOrbit(system, request.seed, &orbit_options);
+  const PeriodicOrbit start =
+      FindAnyStartOrbit(system, request.seed, request.sticking, &orbit_options);
   const ContinuationOptions options = MakeOptions(request, orbit_options);
   fmt::print("system:     {}\n", DescribeSystem(system));
   fmt::print("start:      {}{} at {} = {}, {}\n", start.Sticks() ? "sticking " : "",

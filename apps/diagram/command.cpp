@@ -22,6 +22,7 @@
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/provenance.hpp"
+#include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
@@ -34,6 +35,7 @@ namespace {
 struct DiagramRequest {
   SystemOptions system;
   OrbitSeedOptions seed;
+  StickingSeedOptions sticking;
   std::string parameter = "omega";
   double from = 0.1, to = 2.5;
   std::optional<double> start;
@@ -119,7 +121,8 @@ void RunDiagram(const DiagramRequest& request) {
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   std::vector<DiagramSeed> seeds;
   if (request.start) {
-    const PeriodicOrbit start = FindStartOrbit(system, request.seed, &options.seeds.orbit);
+    const PeriodicOrbit start =
+        FindAnyStartOrbit(system, request.seed, request.sticking, &options.seeds.orbit);
     seeds.push_back(
         {system, start, fmt::format("start at {} = {}", request.parameter, *request.start)});
   }
@@ -233,6 +236,7 @@ void AddDiagramCommand(CLI::App& app) {
       ->capture_default_str()
       ->group(group);
   AddOrbitSeedOptions(*command, request->seed, "Start orbit (--start)");
+  AddStickingSeedOptions(*command, request->sticking, "Start orbit (--start)");
   command
       ->add_option("--json", request->json,
                    "JSON: nodes [{type, param, multipliers, ...}], edges [{from, to, points}], "

@@ -4,7 +4,8 @@
 # windows. The sticking branch ends at no_sticking where `impactkit
 # continue` ends it from another start (to 1e-8), and the chatter orbits
 # P(n,1) accumulate on that end from above: each family's lowest Omega lies
-# above it, nearer the more impacts it has, the longest within 3e-3.
+# above it, nearer the more impacts it has, the longest within 3e-3. A
+# --start where the motion sticks seeds the sticking family as continue's.
 #
 #     check_diagram_sticking.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
@@ -37,4 +38,8 @@ assert all(g > 0 for g in gaps), gaps
 assert all(a > b for a, b in zip(gaps, gaps[1:])), gaps
 assert gaps[-1] < 3e-3, gaps
 PY
+"$impactkit" diagram --from 0.15 --to 0.35 --start 0.2 --sweep-values 0 >"$work/start" ||
+  fail "diagram --start at a sticking motion: $(cat "$work/start")"
+grep -q "^  main *P(inf,1) from 0.15 to 0.306282" "$work/start" ||
+  fail "diagram --start at a sticking motion: $(cat "$work/start")"
 echo ok
