@@ -25,11 +25,9 @@ std::vector<double> ToVector(const Eigen::VectorXd& v) {
 /// accumulation) faster than the bound: the chatter's tail of ever slower
 /// impacts left out.
 std::vector<OrbitImpact> FastImpacts(const PeriodicOrbit& orbit, std::size_t k, double min_speed) {
-  std::size_t first = 0;
-  for (std::size_t i = 0; i < k; ++i) first += orbit.stuck[i].impacts;
   std::vector<OrbitImpact> fast;
-  for (std::size_t i = first; i < first + orbit.stuck[k].impacts; ++i) {
-    if (orbit.impacts[i].velocity > min_speed) fast.push_back(orbit.impacts[i]);
+  for (const OrbitImpact& impact : CycleImpacts(orbit, k)) {
+    if (impact.velocity > min_speed) fast.push_back(impact);
   }
   return fast;
 }

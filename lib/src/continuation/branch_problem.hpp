@@ -58,6 +58,10 @@ class BranchProblem {
     return SectionCurve::Join(eta, mu);
   }
   static double Mu(const Eigen::VectorXd& x) { return SectionCurve::Mu(x); }
+  /// X = (η, μ) of a point of a branch.
+  static Eigen::VectorXd PointX(const BranchPoint& point) {
+    return Join(point.orbit.eta, point.parameter);
+  }
   static Eigen::VectorXd Eta(const Eigen::VectorXd& x) { return SectionCurve::State(x); }
 
   bool Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u) const {

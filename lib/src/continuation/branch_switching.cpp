@@ -59,9 +59,7 @@ Eigen::VectorXd BranchChord(const Branch& branch, double s) {
     if (point.arclength > s && (!after || point.arclength < after->arclength)) after = &point;
   }
   if (!before || !after) return {};
-  return (BranchProblem::Join(after->orbit.eta, after->parameter) -
-          BranchProblem::Join(before->orbit.eta, before->parameter))
-      .normalized();
+  return (BranchProblem::PointX(*after) - BranchProblem::PointX(*before)).normalized();
 }
 
 }  // namespace

@@ -37,10 +37,6 @@ constexpr double kReducibleDepth = 1e-6;
 /// reported only within the test function's max_distance).
 constexpr double kCriticalSolved = 1e-9;
 
-Eigen::VectorXd PointX(const BranchPoint& point) {
-  return BranchProblem::Join(point.orbit.eta, point.parameter);
-}
-
 /// One traced direction of a branch.
 struct HalfBranch {
   std::vector<BranchPoint> points;
@@ -117,7 +113,7 @@ class BranchTracer {
         // The corrector cannot work beyond a bound where the parameter
         // leaves its range (r > 1): the point on the bound, from the
         // prediction, ends the branch.
-        const Eigen::VectorXd predicted = PointX(from) + step * from.tangent;
+        const Eigen::VectorXd predicted = BranchProblem::PointX(from) + step * from.tangent;
         const double mu = BranchProblem::Mu(predicted);
         if (mu > options_.upper || mu < options_.lower) {
           if (std::optional<BranchPoint> on = OnBound(from, predicted)) {
@@ -139,7 +135,7 @@ class BranchTracer {
       const bool beyond = next->parameter < options_.lower || next->parameter > options_.upper;
       if (beyond) {
         const double bound = next->parameter > options_.upper ? options_.upper : options_.lower;
-        next = OnBound(from, PointX(*next));
+        next = OnBound(from, BranchProblem::PointX(*next));
         if (!next && step > options_.min_step) {
           step = std::max(step / 2.0, options_.min_step);
           continue;
@@ -180,7 +176,7 @@ class BranchTracer {
   /// jumps farther than max_correction * s from the prediction.
   std::optional<BranchPoint> Advance(const BranchPoint& from, double s, int* iterations,
                                      double tolerance_scale = 1.0) const {
-    const Eigen::VectorXd x0 = PointX(from);
+    const Eigen::VectorXd x0 = BranchProblem::PointX(from);
     const Eigen::VectorXd& t = from.tangent;
     const Eigen::VectorXd guess = x0 + s * t;
     NewtonOptions newton = newton_;
@@ -243,7 +239,7 @@ class BranchTracer {
     const double mu = BranchProblem::Mu(beyond);
     const double bound = mu > options_.upper ? options_.upper : options_.lower;
     const double w = (bound - from.parameter) / (mu - from.parameter);
-    const Eigen::VectorXd x0 = PointX(from);
+    const Eigen::VectorXd x0 = BranchProblem::PointX(from);
     const Eigen::VectorXd guess = x0 + w * (beyond - x0);
     int iterations = 0;
     const Eigen::VectorXd e_mu = Eigen::VectorXd::Unit(problem_.Size(), problem_.Size() - 1);
@@ -321,16 +317,17 @@ class BranchTracer {
   std::optional<BranchPoint> SolvedCriticalPoint(const BranchPoint& a, const BranchPoint& b,
                                                  const BranchPoint& located, double lambda) const {
     if (CriticalDistance(located, lambda) <= kCriticalSolved) return located;
-    const std::optional<Eigen::VectorXd> x =
-        detail::SolveCriticalPoint(problem_, PointX(located), lambda, options_.orbit.newton);
+    const std::optional<Eigen::VectorXd> x = detail::SolveCriticalPoint(
+        problem_, BranchProblem::PointX(located), lambda, options_.orbit.newton);
     if (!x) return std::nullopt;
-    const double stretch = (PointX(b) - PointX(a)).norm();
-    if ((*x - PointX(a)).norm() > 2.0 * stretch || (*x - PointX(b)).norm() > 2.0 * stretch) {
+    const double stretch = (BranchProblem::PointX(b) - BranchProblem::PointX(a)).norm();
+    if ((*x - BranchProblem::PointX(a)).norm() > 2.0 * stretch ||
+        (*x - BranchProblem::PointX(b)).norm() > 2.0 * stretch) {
       return std::nullopt;
     }
     std::optional<BranchPoint> point = problem_.Describe(*x, a.tangent);
     if (!point) return std::nullopt;
-    point->arclength = a.arclength + a.tangent.dot(*x - PointX(a));
+    point->arclength = a.arclength + a.tangent.dot(*x - BranchProblem::PointX(a));
     return point;
   }
 
@@ -428,7 +425,7 @@ class BranchTracer {
         // The shorter orbit at μ*, traversed d times, is this branch's end.
         const Eigen::VectorXd x = BranchProblem::Join(seed, mu1);
         std::optional<BranchPoint> point = problem_.Describe(x, from.tangent);
-        if (point) point->arclength = from.arclength + (x - PointX(from)).norm();
+        if (point) point->arclength = from.arclength + (x - BranchProblem::PointX(from)).norm();
         return point;
       }
     }

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace impactkit::detail {
@@ -24,20 +25,14 @@ std::array<double, 4> Monitors(const PeriodicOrbit& orbit) {
 /// cycle without impacts), in the order of the orbit's stuck phases.
 std::vector<double> FirstImpactDelays(const PeriodicOrbit& orbit) {
   std::vector<double> delays;
-  std::size_t first = 0;  // the cycle's first impact
   for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
     // The cycle starts at the release of the section state, or the last.
     const double release = k == 0 ? orbit.eta(orbit.eta.size() - 1) : orbit.stuck[k - 1].release;
-    const int impacts = orbit.stuck[k].impacts;
-    delays.push_back(impacts > 0 ? orbit.impacts[first].t - release
-                                 : std::numeric_limits<double>::quiet_NaN());
-    first += impacts;
+    const std::span<const OrbitImpact> cycle = CycleImpacts(orbit, k);
+    delays.push_back(cycle.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                   : cycle.front().t - release);
   }
   return delays;
-}
-
-Eigen::VectorXd PointX(const BranchPoint& point) {
-  return BranchProblem::Join(point.orbit.eta, point.parameter);
 }
 
 }  // namespace
@@ -61,7 +56,7 @@ std::optional<StickingEnd> ImpactChange(const PeriodicOrbit& a, const PeriodicOr
 }
 
 std::optional<StickingEnd> NearestEnd(const BranchPoint& a, const BranchPoint& b, double reach) {
-  const double step = (PointX(b) - PointX(a)).norm();
+  const double step = (BranchProblem::PointX(b) - BranchProblem::PointX(a)).norm();
   const std::array<double, 4> before = Monitors(a.orbit), after = Monitors(b.orbit);
   std::optional<StickingEnd> nearest;
   double best = reach;
@@ -92,7 +87,7 @@ std::optional<BranchPoint> LocateStickingEnd(const BranchProblem& problem, const
     if (!point || Violation(point->orbit) || ImpactChange(inside.orbit, point->orbit)) {
       return std::nullopt;
     }
-    point->arclength = inside.arclength + inside.tangent.dot(*x - PointX(inside));
+    point->arclength = inside.arclength + inside.tangent.dot(*x - BranchProblem::PointX(inside));
     return point;
   };
   if (!std::isfinite(beyond) || point_at(last, beyond)) return std::nullopt;

@@ -208,13 +208,18 @@ std::string OrbitName(const PeriodicOrbit& orbit) {
                         : fmt::format("P({},{})", orbit.p, orbit.q);
 }
 
+std::span<const OrbitImpact> CycleImpacts(const PeriodicOrbit& orbit, std::size_t k) {
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < k; ++i) first += orbit.stuck[i].impacts;
+  return std::span<const OrbitImpact>(orbit.impacts).subspan(first, orbit.stuck[k].impacts);
+}
+
 std::vector<OrbitImpact> LeadingImpacts(const PeriodicOrbit& orbit) {
   if (!orbit.Sticks()) return orbit.impacts;
   std::vector<OrbitImpact> leading;
-  std::size_t first = 0;  // the cycle's first impact
-  for (const StuckPhase& stuck : orbit.stuck) {
-    if (stuck.impacts > 0) leading.push_back(orbit.impacts[first]);
-    first += stuck.impacts;
+  for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
+    const std::span<const OrbitImpact> cycle = CycleImpacts(orbit, k);
+    if (!cycle.empty()) leading.push_back(cycle.front());
   }
   return leading;
 }

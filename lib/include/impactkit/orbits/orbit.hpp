@@ -20,6 +20,7 @@
 #include <Eigen/Dense>
 #include <complex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,10 @@ struct PeriodicOrbit {
 
 /// "P(p,q)", or "P(inf,q)" for a sticking orbit.
 std::string OrbitName(const PeriodicOrbit& orbit);
+
+/// The impacts of a sticking orbit's k-th cycle, from the release before
+/// its k-th stuck phase to that phase's accumulation point, in time order.
+std::span<const OrbitImpact> CycleImpacts(const PeriodicOrbit& orbit, std::size_t k);
 
 /// The impacts that stand for the orbit in a table or a figure: its p
 /// impacts, or of a sticking orbit the first after each release (its
