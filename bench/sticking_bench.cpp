@@ -1,11 +1,11 @@
 /// Sticking orbits and their branch, each beside the peer a user would
 /// write, in the same run:
-///  - the paper's sticking orbit at Ω = 0.2 by FindStickingOrbit from the
+///  - the paper's sticking orbit at Ω = 0.2 by FindOrbit (releases = 1) from the
 ///    last release of a steady simulation, against simulating on from that
 ///    release until the release phase repeats to 1e-9 (the simulator's own
 ///    convergence to the attractor);
 ///  - the sticking branch from Ω = 0.1 up to its end, against
-///    FindStickingOrbit at the same Ω values by natural-parameter stepping
+///    FindOrbit at the same Ω values by natural-parameter stepping
 ///    (nothing located).
 ///
 ///   ./build/bench/sticking_bench
@@ -65,16 +65,19 @@ int main() {
   const System system = PaperSystem(0.2);
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 20, 2);
   if (!seed) return 1;
-  StickingOrbitOptions options;
+  OrbitOptions options;
+  options.releases = 1;
   PeriodicOrbit orbit;
-  const double solve = PerCall([&] { FindStickingOrbit(system, seed->state, options, &orbit); });
+  const double solve = PerCall([&] { FindOrbit(system, seed->state, options, &orbit); });
   const Simulator simulator(system);
   const StickingMap map(system);
   int periods = 0;
   const double simulate = PerCall([&] { periods = SimulateToRepeat(simulator, map, seed->state); });
   fmt::print("| job | CPU milliseconds |\n|---|---|\n");
-  fmt::print("| FindStickingOrbit at Ω = 0.2 from a 20-period seed (residual {:.1e}) | {:.3f} |\n",
-             orbit.residual, 1e3 * solve);
+  fmt::print(
+      "| FindOrbit (release section) at Ω = 0.2 from a 20-period seed (residual {:.1e}) | {:.3f} "
+      "|\n",
+      orbit.residual, 1e3 * solve);
   fmt::print("| simulating on until the release repeats to 1e-9 ({} periods) | {:.3f} |\n\n",
              periods, 1e3 * simulate);
 
@@ -82,7 +85,7 @@ int main() {
   const std::optional<StickingSeed> low_seed = SeedStickingFromSimulation(low, 200, 2);
   if (!low_seed) return 1;
   PeriodicOrbit start;
-  FindStickingOrbit(low, low_seed->state, options, &start);
+  FindOrbit(low, low_seed->state, options, &start);
   ContinuationOptions branch_options;
   branch_options.lower = 0.1;
   branch_options.upper = 0.6;
@@ -96,7 +99,7 @@ int main() {
   for (const BranchPoint& p : branch.points) {
     PeriodicOrbit natural;
     try {
-      const OrbitSummary s = FindStickingOrbit(PaperSystem(p.parameter), guess, options, &natural);
+      const OrbitSummary s = FindOrbit(PaperSystem(p.parameter), guess, options, &natural);
       if (s.termination == Termination::kConverged) {
         guess = natural.eta;
       } else {
@@ -111,8 +114,7 @@ int main() {
   fmt::print(
       "| ContinueBranch of the sticking family, Ω 0.1 to its end | {} | {} at {:.8f} | {:.3f} |\n",
       branch.points.size(), ToString(branch.end), branch.points.back().parameter, continuation);
-  fmt::print(
-      "| FindStickingOrbit at the same Ω values, no location | {} ({} failed) | - | {:.3f} |\n",
-      branch.points.size(), failed, peer);
+  fmt::print("| FindOrbit at the same Ω values, no location | {} ({} failed) | - | {:.3f} |\n",
+             branch.points.size(), failed, peer);
   return 0;
 }

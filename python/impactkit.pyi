@@ -174,24 +174,13 @@ def find_orbit(
     *,
     p: Optional[int] = None,
     q: Optional[int] = None,
+    releases: Optional[int] = None,
     seed: Optional[npt.ArrayLike] = None,
     stop: int = 0,
     jacobian: Literal["analytic", "finite_difference"] = "analytic",
     residual_tolerance: float = 1e-11,
     max_iterations: int = 50,
     least_squares_fallback: bool = True,
-    transient: int = 500,
-) -> Orbit: ...
-
-def find_sticking_orbit(
-    system: System,
-    *,
-    seed: Optional[npt.ArrayLike] = None,
-    releases: int = 1,
-    q: int = 1,
-    stop: int = 0,
-    residual_tolerance: float = 1e-11,
-    max_iterations: int = 50,
     transient: int = 500,
 ) -> Orbit: ...
 

@@ -27,12 +27,20 @@ inline PeriodicOrbit SeededOrbit(const System& system, int p, int q) {
   return orbit;
 }
 
+/// FindOrbit's options for a sticking orbit with one release per q = 1
+/// period at the first stop, everything else at its default.
+inline OrbitOptions OneRelease() {
+  OrbitOptions options;
+  options.releases = 1;
+  return options;
+}
+
 /// The sticking orbit seeded by 200 periods from rest (periods up to 4).
 inline PeriodicOrbit SeededStickingOrbit(const System& system) {
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
   PeriodicOrbit orbit;
-  REQUIRE(FindStickingOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit).termination ==
+  REQUIRE(FindOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit).termination ==
           Termination::kConverged);
   return orbit;
 }

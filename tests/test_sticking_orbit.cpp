@@ -206,26 +206,25 @@ TEST_CASE("N = 1: the sticking orbit's release has the closed form cos(Omega t) 
 TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
   const System system = PaperSystem(0.2);
   const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
-  StickingOrbitOptions options;
+  OrbitOptions options = testing::OneRelease();
   PeriodicOrbit out;
-  SECTION("q = 0 or no releases") {
+  SECTION("q = 0 or negative releases") {
     options.q = 0;
-    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.eta, options, &out), InvalidInput);
+    CHECK_THROWS_AS(FindOrbit(system, orbit.eta, options, &out), InvalidInput);
     options.q = 1;
-    options.releases = 0;
-    CHECK_THROWS_AS(FindStickingOrbit(system, orbit.eta, options, &out), InvalidInput);
+    options.releases = -1;
+    CHECK_THROWS_AS(FindOrbit(system, orbit.eta, options, &out), InvalidInput);
   }
   SECTION("a guess of the wrong size or with a NaN") {
-    CHECK_THROWS_AS(FindStickingOrbit(system, Eigen::VectorXd::Zero(2), options, &out),
-                    InvalidInput);
+    CHECK_THROWS_AS(FindOrbit(system, Eigen::VectorXd::Zero(2), options, &out), InvalidInput);
     Eigen::VectorXd nan = orbit.eta;
     nan(0) = std::nan("");
-    CHECK_THROWS_AS(FindStickingOrbit(system, nan, options, &out), InvalidInput);
+    CHECK_THROWS_AS(FindOrbit(system, nan, options, &out), InvalidInput);
   }
   SECTION("a guess where the stop still pushes (no release)") {
     Eigen::VectorXd held = orbit.eta;
     held(2) = 0.0;  // Fs = 0.5 + x1 - 0.1 > 0 at t = 0
-    CHECK_THROWS_WITH(FindStickingOrbit(system, held, options, &out),
+    CHECK_THROWS_WITH(FindOrbit(system, held, options, &out),
                       Catch::Matchers::Contains("not a release"));
   }
 }
@@ -234,11 +233,10 @@ TEST_CASE("sticking orbits: a release state the map cannot follow is a failure, 
           "[sticking]") {
   // Ω = 0.5: the motion impacts without a chatter sequence accumulating.
   // The guess is a release state; no sticking orbit goes through it, which
-  // FindStickingOrbit reports as FindOrbit does a guess whose impact is lost.
+  // FindOrbit reports as it does a guess whose impact is lost.
   const PeriodicOrbit orbit = testing::SeededStickingOrbit(PaperSystem(0.2));
   PeriodicOrbit out;
-  const OrbitSummary summary =
-      FindStickingOrbit(PaperSystem(0.5), orbit.eta, StickingOrbitOptions{}, &out);
+  const OrbitSummary summary = FindOrbit(PaperSystem(0.5), orbit.eta, testing::OneRelease(), &out);
   CHECK(summary.termination == Termination::kFailure);
   CHECK_THAT(summary.message,
              Catch::Matchers::Contains("the map failed at the seed: after 0 of 1 releases, "
@@ -276,10 +274,11 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
 
   // Recomputed from the located point: an orbit there, whose chatter only
   // just ends in sticking (Fs(t*) small beside its ~0.2 mid-branch) ...
-  StickingOrbitOptions orbit_options;
+  const OrbitOptions orbit_options = testing::OneRelease();
   PeriodicOrbit again;
-  REQUIRE(FindStickingOrbit(PaperSystem(omega_end), end.point.orbit.eta, orbit_options, &again)
-              .termination == Termination::kConverged);
+  REQUIRE(
+      FindOrbit(PaperSystem(omega_end), end.point.orbit.eta, orbit_options, &again).termination ==
+      Termination::kConverged);
   CHECK((again.eta - end.point.orbit.eta).cwiseAbs().maxCoeff() < 1e-8);
   CHECK(again.contacts.contact_margin > 0);
   CHECK(again.contacts.contact_margin < 5e-3);
@@ -288,7 +287,7 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   PeriodicOrbit beyond;
   bool sticks = true;
   try {
-    sticks = FindStickingOrbit(PaperSystem(omega_end + 1e-4), beyond_guess, orbit_options, &beyond)
+    sticks = FindOrbit(PaperSystem(omega_end + 1e-4), beyond_guess, orbit_options, &beyond)
                  .termination == Termination::kConverged;
   } catch (const InvalidInput&) {
     sticks = false;
@@ -326,7 +325,7 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   System at_end = system;
   at_end.stops[0].position = end.parameter;
   PeriodicOrbit again;
-  REQUIRE(FindStickingOrbit(at_end, end.orbit.eta, StickingOrbitOptions{}, &again).termination ==
+  REQUIRE(FindOrbit(at_end, end.orbit.eta, testing::OneRelease(), &again).termination ==
           Termination::kConverged);
   CHECK(again.contacts.hold_margin > 0);
   CHECK(again.contacts.hold_margin < 1e-3);
@@ -362,7 +361,7 @@ TEST_CASE(
   System at = system;
   SetParameter(at, "c", c);
   PeriodicOrbit again;
-  REQUIRE(FindStickingOrbit(at, pd->point.orbit.eta, StickingOrbitOptions{}, &again).termination ==
+  REQUIRE(FindOrbit(at, pd->point.orbit.eta, testing::OneRelease(), &again).termination ==
           Termination::kConverged);
   double nearest = 1e300;
   for (const std::complex<double>& m : again.multipliers)
@@ -404,7 +403,7 @@ TEST_CASE(
   System at_end = system;
   SetParameter(at_end, "A1", end.parameter);
   PeriodicOrbit again;
-  REQUIRE(FindStickingOrbit(at_end, end.orbit.eta, StickingOrbitOptions{}, &again).termination ==
+  REQUIRE(FindOrbit(at_end, end.orbit.eta, testing::OneRelease(), &again).termination ==
           Termination::kConverged);
   CHECK((again.eta - end.orbit.eta).cwiseAbs().maxCoeff() < 1e-8);
   // Independently: CVODE from the release over the flight to the first
@@ -419,7 +418,7 @@ TEST_CASE(
   System beyond = system;
   SetParameter(beyond, "A1", end.parameter + 1e-4);
   PeriodicOrbit past;
-  REQUIRE(FindStickingOrbit(beyond, end.orbit.eta, StickingOrbitOptions{}, &past).termination ==
+  REQUIRE(FindOrbit(beyond, end.orbit.eta, testing::OneRelease(), &past).termination ==
           Termination::kConverged);
   const double delay = again.impacts.front().t - released.t;
   CHECK(past.impacts.front().t - past.eta(past.eta.size() - 1) < 0.2 * delay);
@@ -437,8 +436,8 @@ TEST_CASE(
   System at_other = system;
   SetParameter(at_other, "A1", other_end.parameter);
   PeriodicOrbit resolved;
-  REQUIRE(FindStickingOrbit(at_other, other_end.orbit.eta, StickingOrbitOptions{}, &resolved)
-              .termination == Termination::kConverged);
+  REQUIRE(FindOrbit(at_other, other_end.orbit.eta, testing::OneRelease(), &resolved).termination ==
+          Termination::kConverged);
   CHECK(resolved.impacts.front().velocity < 1e-5);
 }
 

@@ -146,8 +146,7 @@ TEST_CASE("a motion that sticks at both stops of a clearance is refused by the r
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
   REQUIRE(seed);
   PeriodicOrbit orbit;
-  const OrbitSummary summary =
-      FindStickingOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit);
+  const OrbitSummary summary = FindOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit);
   CHECK(summary.termination == Termination::kFailure);
   CHECK_THAT(summary.message, Contains("another stop holds a mass"));
 }

@@ -49,6 +49,7 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
 PeriodicOrbit FindAnyStartOrbit(const System& system, const OrbitSeedOptions& seed,
                                 const StickingSeedOptions& sticking, OrbitOptions* orbit_options) {
   if (const std::optional<StickingSeed> found = ChooseStickingSeed(system, seed, sticking)) {
+    *orbit_options = OrbitOptionsFor(*found);
     return RefineStickingOrbit(system, *found);
   }
   return FindStartOrbit(system, seed, orbit_options);
@@ -56,9 +57,9 @@ PeriodicOrbit FindAnyStartOrbit(const System& system, const OrbitSeedOptions& se
 
 PeriodicOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
                                   OrbitSummary* summary) {
-  const StickingOrbitOptions options = OrbitOptionsFor(seed);
+  const OrbitOptions options = OrbitOptionsFor(seed);
   PeriodicOrbit orbit;
-  const OrbitSummary result = FindStickingOrbit(system, seed.state, options, &orbit);
+  const OrbitSummary result = FindOrbit(system, seed.state, options, &orbit);
   if (result.termination != Termination::kConverged) {
     throw std::runtime_error(
         fmt::format("no sticking P(inf,{}) orbit found: {}", options.q, result.BriefReport()));

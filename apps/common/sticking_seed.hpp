@@ -11,7 +11,7 @@
 #include "common/orbit_seed.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
 #include "impactkit/model/system.hpp"
-#include "impactkit/orbits/sticking_orbit.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit::cli {
 
@@ -34,11 +34,11 @@ std::optional<StickingSeed> ChooseStickingSeed(const System& system, const Orbit
 
 /// The start orbit of `continue` and `diagram`: the sticking orbit where the
 /// simulated motion sticks (or --sticking asks for one), else the impacting
-/// one of FindStartOrbit, its options in *orbit_options.
+/// one of FindStartOrbit; its options in *orbit_options.
 PeriodicOrbit FindAnyStartOrbit(const System& system, const OrbitSeedOptions& seed,
                                 const StickingSeedOptions& sticking, OrbitOptions* orbit_options);
 
-/// FindStickingOrbit from the seed; throws std::runtime_error if it fails.
+/// FindOrbit from the seed; throws std::runtime_error if it fails.
 PeriodicOrbit RefineStickingOrbit(const System& system, const StickingSeed& seed,
                                   OrbitSummary* summary = nullptr);
 

@@ -1,5 +1,5 @@
-// impactkit.find_orbit, find_sticking_orbit and impactkit.Orbit:
-// orbits/orbit.hpp and orbits/sticking_orbit.hpp, seeded by
+// impactkit.find_orbit and impactkit.Orbit:
+// orbits/orbit.hpp (either section), seeded by
 // analysis/orbit_seed.hpp and analysis/sticking_seed.hpp when no seed is given.
 #include "impactkit/orbits/orbit.hpp"
 
@@ -16,7 +16,6 @@
 #include "bindings.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/sticking_seed.hpp"
-#include "impactkit/orbits/sticking_orbit.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -34,10 +33,44 @@ void RequireStop(const System& system, int stop) {
                                                       "] (0-based), got " + std::to_string(stop));
 }
 
+/// The seed of find_orbit when none is given, from a steady simulation:
+/// its sticking orbit where it sticks (unless p and q ask for an impacting
+/// one) or `releases` asks for one, else its last impact with the period it
+/// shows.
+Eigen::VectorXd SeedFromMotion(const System& system, std::optional<int> p, std::optional<int> q,
+                               std::optional<int> releases, int transient, OrbitOptions* options) {
+  Require(transient >= 0, "transient must be >= 0, got " + std::to_string(transient));
+  std::optional<OrbitSeed> found;
+  if (!releases) {
+    found = SeedFromSimulation(system, transient);
+    Require(found.has_value(), "no seed: the simulation from rest has no impact");
+  }
+  if (releases || (!p && found->motion.sticking)) {
+    const std::optional<StickingSeed> sticking = SeedStickingFromSimulation(system, transient);
+    Require(sticking.has_value(), "no seed: the simulation from rest does not stick periodically");
+    options->release_map.stop = sticking->stop;
+    options->releases = releases.value_or(sticking->releases);
+    options->q = q.value_or(sticking->q);
+    return sticking->state;
+  }
+  Require((p && q) || found->motion.periodic,
+          "no p and q given, and the simulation from rest shows " + found->motion.ToString() +
+              "; give p and q");
+  options->map.stop = found->stop;
+  options->p = p.value_or(static_cast<int>(found->motion.p));
+  options->q = q.value_or(found->motion.q);
+  return found->eta;
+}
+
 PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optional<int> q,
-                          std::optional<Eigen::VectorXd> seed, int stop,
-                          const std::string& jacobian, double residual_tolerance,
+                          std::optional<int> releases, std::optional<Eigen::VectorXd> seed,
+                          int stop, const std::string& jacobian, double residual_tolerance,
                           int max_iterations, bool least_squares_fallback, int transient) {
+  Require(!(p && releases),
+          "give p (an impacting orbit) or releases (a sticking orbit, whose impacts are "
+          "counted, not asked for), not both");
+  Require(!releases || *releases >= 1,
+          "releases must be >= 1, got " + std::to_string(releases.value_or(0)));
   OrbitOptions options;
   options.jacobian = JacobianFromName(jacobian);
   options.newton.residual_tolerance = residual_tolerance;
@@ -49,20 +82,12 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
     if (seed) {
       guess = *seed;
       RequireStop(system, stop);
-      options.map.stop = stop;
+      options.map.stop = options.release_map.stop = stop;
       options.p = p.value_or(1);
+      options.releases = releases.value_or(0);
       options.q = q.value_or(1);
     } else {
-      Require(transient >= 0, "transient must be >= 0, got " + std::to_string(transient));
-      const std::optional<OrbitSeed> found = SeedFromSimulation(system, transient);
-      Require(found.has_value(), "no seed: the simulation from rest has no impact");
-      Require((p && q) || (found->motion.periodic && !found->motion.sticking),
-              "no p and q given, and the simulation from rest shows " + found->motion.ToString() +
-                  "; give p and q");
-      guess = found->eta;
-      options.map.stop = found->stop;
-      options.p = p.value_or(static_cast<int>(found->motion.p));
-      options.q = q.value_or(found->motion.q);
+      guess = SeedFromMotion(system, p, q, releases, transient, &options);
     }
     return FindOrbit(system, guess, options, &orbit);
   });
@@ -72,36 +97,6 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
       PyErr_WarnEx(PyExc_RuntimeWarning, summary.BriefReport().c_str(), 1) != 0) {
     throw py::error_already_set();
   }
-  return orbit;
-}
-
-PeriodicOrbit FindStickingOrbitPy(const System& system, std::optional<Eigen::VectorXd> seed,
-                                  int releases, int q, int stop, double residual_tolerance,
-                                  int max_iterations, int transient) {
-  StickingOrbitOptions options;
-  options.newton.residual_tolerance = residual_tolerance;
-  options.newton.max_iterations = max_iterations;
-  PeriodicOrbit orbit;
-  const OrbitSummary summary = WithoutGil([&] {
-    Eigen::VectorXd guess;
-    if (seed) {
-      guess = *seed;
-      RequireStop(system, stop);
-      options.map.stop = stop;
-      options.releases = releases;
-      options.q = q;
-    } else {
-      Require(transient >= 0, "transient must be >= 0, got " + std::to_string(transient));
-      const std::optional<StickingSeed> found = SeedStickingFromSimulation(system, transient);
-      Require(found.has_value(), "no seed: the simulation from rest does not stick periodically");
-      guess = found->state;
-      options = OrbitOptionsFor(*found);
-      options.newton.residual_tolerance = residual_tolerance;
-      options.newton.max_iterations = max_iterations;
-    }
-    return FindStickingOrbit(system, guess, options, &orbit);
-  });
-  if (summary.termination != Termination::kConverged) ThrowNumericalError(summary.BriefReport());
   return orbit;
 }
 
@@ -198,35 +193,26 @@ void BindOrbit(py::module_& module) {
                (o.stable ? ", stable)" : ", unstable)");
       });
 
-  module.def("find_sticking_orbit", &FindStickingOrbitPy, py::arg("system"), py::kw_only(),
-             py::arg("seed") = py::none(), py::arg("releases") = 1, py::arg("q") = 1,
-             py::arg("stop") = 0, py::arg("residual_tolerance") = 1e-11,
-             py::arg("max_iterations") = 50, py::arg("transient") = 500,
-             R"(The sticking orbit P(inf, q) of `system` -- chatter ending in sticking,
-`releases` sticking phases in q forcing periods -- by Newton (KINSOL) on the
-release map.
-
-seed: a release state s (size 2N - 1: x and v of the other masses, then t)
-from stop `stop` (0-based). Without a seed, the last release of a
-simulation from rest (transient forcing periods, then a window) is the
-seed, with the releases and q after which it repeats.
-Raises ValueError for bad input (a seed the stop still pushes on),
-NumericalError when Newton does not converge. Releases the GIL.)");
-
   module.def("find_orbit", &FindOrbitPy, py::arg("system"), py::kw_only(),
-             py::arg("p") = py::none(), py::arg("q") = py::none(), py::arg("seed") = py::none(),
-             py::arg("stop") = 0, py::arg("jacobian") = "analytic",
+             py::arg("p") = py::none(), py::arg("q") = py::none(), py::arg("releases") = py::none(),
+             py::arg("seed") = py::none(), py::arg("stop") = 0, py::arg("jacobian") = "analytic",
              py::arg("residual_tolerance") = 1e-11, py::arg("max_iterations") = 50,
              py::arg("least_squares_fallback") = true, py::arg("transient") = 500,
-             R"(The periodic orbit P(p, q) of `system` by Newton (KINSOL), with a
-Levenberg-Marquardt fallback.
+             R"(The periodic orbit of `system` by Newton (KINSOL), with a
+Levenberg-Marquardt fallback: an impacting orbit P(p, q), a fixed point of
+the impact map, or a sticking orbit P(inf, q) with `releases` sticking
+phases in q forcing periods, a fixed point of the release map.
 
 seed: an impact state eta (size 2N, v_c > 0) at stop `stop` (0-based; its
-mass is the one left out of eta); p and q default to 1. Without a seed, the
-last impact of a simulation from rest (transient forcing periods, then a
-window) is the seed, at whichever stop it is, and p and q default to the
-period it shows.
-Raises ValueError for bad input, NumericalError when Newton does not converge.
+mass is the one left out of eta), or with `releases` a release state s
+(size 2N - 1: x and v of the other masses, then t) from that stop; p (or
+releases) and q default to 1. Without a seed, a simulation from rest
+(transient forcing periods, then a window) gives it: where the motion sticks
+periodically (and p is not given), its last release, with the releases and
+q after which it repeats; else its last impact, at whichever stop it is,
+with the period it shows.
+Raises ValueError for bad input (a release seed the stop still pushes on),
+NumericalError when Newton does not converge.
 Warns (RuntimeWarning) when an impact of the orbit is below the arrival
 resolution: near a grazing, a simulation sees a touch there, not an impact.
 Releases the GIL.)");

@@ -85,20 +85,20 @@ def test_grazing_seeds_refine_to_orbits_with_one_impact_more_or_fewer():
 def test_sticking_family_ends_where_the_simulation_stops_sticking():
     # The paper's sticking orbit at Omega = 0.2, continued as any orbit is:
     # its family ends at no_sticking near 0.30628 (docs/continuation.md), and
-    # the simulation from rest (find_sticking_orbit's own seed) sticks 1e-3
+    # the simulation from rest (find_orbit's own seed where the motion sticks) sticks 1e-3
     # below the end and not 1e-3 above it.
     system = impactkit.System.paper(0.2)
-    orbit = impactkit.find_sticking_orbit(system)
+    orbit = impactkit.find_orbit(system)
     assert orbit.section == "release" and (orbit.releases, orbit.q) == (1, 1)
     branch = impactkit.continue_branch(system, orbit, lower=0.2, upper=0.5)
     assert branch.section == "release" and branch.releases == 1 and branch.p == 0
     assert branch.end == "no_sticking" and branch.special_points[-1].type == "no_sticking"
     end = branch.values[-1]
     assert 0.305 < end < 0.308
-    below = impactkit.find_sticking_orbit(impactkit.System.paper(end - 1e-3))
+    below = impactkit.find_orbit(impactkit.System.paper(end - 1e-3), releases=1)
     assert below.contact_margin > 0
     with pytest.raises(ValueError, match="does not stick periodically"):
-        impactkit.find_sticking_orbit(impactkit.System.paper(end + 1e-3))
+        impactkit.find_orbit(impactkit.System.paper(end + 1e-3), releases=1)
 
 
 def test_sticking_family_period_doubles_onto_the_simulations_period_two_sticking():
@@ -106,7 +106,7 @@ def test_sticking_family_period_doubles_onto_the_simulations_period_two_sticking
     # a point of the doubled family, P(inf,2) with two sticking phases, is the
     # sticking orbit seeded by the simulation there.
     system = impactkit.System.paper(0.27)
-    single = impactkit.continue_branch(system, impactkit.find_sticking_orbit(system),
+    single = impactkit.continue_branch(system, impactkit.find_orbit(system),
                                        parameter="c", lower=0.01, upper=0.1,
                                        direction="decreasing")
     pd = next(sp for sp in single.special_points if sp.type == "period_doubling")
@@ -117,7 +117,7 @@ def test_sticking_family_period_doubles_onto_the_simulations_period_two_sticking
     assert doubled.section == "release" and (doubled.releases, doubled.q) == (2, 2)
     i = len(doubled) // 2
     c = doubled.values[i]
-    seeded = impactkit.find_sticking_orbit(system.with_parameter("c", c))
+    seeded = impactkit.find_orbit(system.with_parameter("c", c))
     assert (seeded.releases, seeded.q) == (2, 2)
     np.testing.assert_allclose(np.sort(seeded.stick_phases),
                                np.sort(doubled.orbits[i].stick_phases), rtol=0, atol=1e-8)

@@ -75,7 +75,7 @@ def test_sticking_family_beside_the_chatter_orbits_that_accumulate_on_it():
     # The sticking branch ends at no_sticking where continue_branch ends it,
     # and every chatter branch lies above that end.
     sticking_system = impactkit.System.paper(0.2)
-    sticking = impactkit.find_sticking_orbit(sticking_system)
+    sticking = impactkit.find_orbit(sticking_system)
     chatter_system = impactkit.System.paper(0.309)
     chatter = impactkit.find_orbit(chatter_system, p=10, q=1)
     diagram = impactkit.trace_diagram([(sticking_system, sticking), (chatter_system, chatter)],

@@ -45,15 +45,17 @@ def test_numerical_error_is_a_runtime_error_with_the_summary():
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    ({"seed": [0.0, 0.0, 0.1], "releases": 0}, "releases and q must be >= 1"),
-    ({"seed": [0.0, 0.0]}, "has 3 entries, got 2"),
-    ({"seed": [0.0, 0.0, float("nan")]}, "NaN or infinite entry"),
-    ({"seed": [0.0, 0.0, 1.0], "stop": 3}, "stop must be in [0, 0]"),
-    ({"transient": -1}, "transient must be >= 0"),
+    ({"seed": [0.0, 0.0, 0.1], "releases": 0}, "releases must be >= 1"),
+    ({"seed": [0.0, 0.0, 0.1], "releases": 1, "q": 0}, "releases and q must be >= 1"),
+    ({"releases": 1, "p": 2}, "give p (an impacting orbit) or releases"),
+    ({"seed": [0.0, 0.0], "releases": 1}, "has 3 entries, got 2"),
+    ({"seed": [0.0, 0.0, float("nan")], "releases": 1}, "NaN or infinite entry"),
+    ({"seed": [0.0, 0.0, 1.0], "releases": 1, "stop": 3}, "stop must be in [0, 0]"),
+    ({"releases": 1, "transient": -1}, "transient must be >= 0"),
 ])
-def test_find_sticking_orbit_refuses_bad_input(kwargs, message):
+def test_find_orbit_refuses_bad_sticking_input(kwargs, message):
     with pytest.raises(ValueError) as error:
-        impactkit.find_sticking_orbit(impactkit.System.paper(0.2), **kwargs)
+        impactkit.find_orbit(impactkit.System.paper(0.2), **kwargs)
     assert message in str(error.value)
 
 

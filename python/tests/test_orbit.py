@@ -1,5 +1,6 @@
-"""impactkit.find_orbit against a long simulation that settles on the orbit,
-and the analytic multipliers against the finite-difference ones."""
+"""impactkit.find_orbit (impacting and sticking orbits) against a long
+simulation that settles on the orbit, and the analytic multipliers against
+the finite-difference ones."""
 
 import warnings
 
@@ -59,3 +60,27 @@ def test_an_impact_below_the_arrival_resolution_is_warned_of():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         impactkit.find_orbit(farther, seed=[0.8509130733897027, 7.422846623612595e-07])
+
+
+def test_sticking_orbit_is_the_simulations_steady_sticking():
+    # Omega = 0.2: the motion sticks once per period, so find_orbit without
+    # a seed returns the sticking orbit P(inf,1) on the release section.
+    system = impactkit.System.paper(0.2)
+    period = system.forcing_period
+    orbit = impactkit.find_orbit(system)
+    assert orbit.section == "release" and (orbit.releases, orbit.q) == (1, 1)
+    assert orbit.stable and orbit.eta.shape == (3,)
+    # Independent: the simulation's last whole stuck interval, 300 periods
+    # from rest, begins and ends at the orbit's stick and release phases.
+    r = impactkit.simulate(system, 300 * period, record_from=297 * period)
+    begin, end = r["sticking"][-2]
+    np.testing.assert_allclose(np.mod(begin, period), orbit.stick_phases[0], rtol=0, atol=1e-8)
+    np.testing.assert_allclose(np.mod(end, period), orbit.release_phases[0], rtol=0, atol=1e-8)
+    # The same solve from a later release time, and with the central-
+    # difference Jacobian (the multipliers agree).
+    again = impactkit.find_orbit(system, releases=1, q=1, seed=orbit.eta + [0.0, 0.0, 1e-3])
+    np.testing.assert_allclose(again.eta, orbit.eta, rtol=0, atol=1e-9)
+    fd = impactkit.find_orbit(system, releases=1, q=1, seed=orbit.eta,
+                              jacobian="finite_difference")
+    np.testing.assert_allclose(np.sort_complex(fd.multipliers),
+                               np.sort_complex(orbit.multipliers), rtol=0, atol=1e-6)

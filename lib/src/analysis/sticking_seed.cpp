@@ -82,9 +82,9 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   return std::nullopt;
 }
 
-StickingOrbitOptions OrbitOptionsFor(const StickingSeed& seed) {
-  StickingOrbitOptions options;
-  options.map.stop = seed.stop;
+OrbitOptions OrbitOptionsFor(const StickingSeed& seed) {
+  OrbitOptions options;
+  options.release_map.stop = seed.stop;
   options.releases = seed.releases;
   options.q = seed.q;
   return options;

@@ -30,7 +30,7 @@ std::optional<PeriodicOrbit> StickingOrbitAt(const System& at, int transient) {
   const std::optional<StickingSeed> seed = SeedStickingFromSimulation(at, transient);
   if (!seed) return std::nullopt;
   PeriodicOrbit found;
-  if (FindStickingOrbit(at, seed->state, OrbitOptionsFor(*seed), &found).termination !=
+  if (FindOrbit(at, seed->state, OrbitOptionsFor(*seed), &found).termination !=
       Termination::kConverged) {
     return std::nullopt;
   }

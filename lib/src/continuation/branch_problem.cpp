@@ -74,7 +74,7 @@ std::optional<BranchPoint> BranchProblem::Describe(const Eigen::VectorXd& x,
 BranchProblem FamilyProblem(const System& system, const ContinuationOptions& options,
                             OrbitSection section, int stop, int k, int q) {
   if (section == OrbitSection::kRelease) {
-    StickingMapOptions map = options.release_map;
+    StickingMapOptions map = options.orbit.release_map;
     map.stop = stop;
     return BranchProblem(system, options.parameter, k, q, map);
   }

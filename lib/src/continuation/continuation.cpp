@@ -389,13 +389,13 @@ class BranchTracer {
   std::optional<BranchPoint> PrimitiveBifurcation(const BranchPoint& from,
                                                   const BranchPoint& next) const {
     OrbitOptions primitive = options_.orbit;
-    primitive.p = problem_.Events() / problem_.RepeatDivisor();
+    const int events = problem_.Events() / problem_.RepeatDivisor();
+    if (sticks_) {
+      primitive.releases = events;
+    } else {
+      primitive.p = events;
+    }
     primitive.q = problem_.q() / problem_.RepeatDivisor();
-    StickingOrbitOptions sticking;
-    sticking.releases = primitive.p;
-    sticking.q = primitive.q;
-    sticking.newton = options_.orbit.newton;
-    sticking.map = options_.release_map;
     // d = 2: det(DP + I); d >= 3: a complex pair on the unit circle.
     const std::size_t test = problem_.RepeatDivisor() == 2 ? 1 : 2;
     Eigen::VectorXd seed = from.orbit.eta;
@@ -407,8 +407,7 @@ class BranchTracer {
       } catch (const InvalidInput&) {
         return std::nullopt;
       }
-      const OrbitSummary found = sticks_ ? FindStickingOrbit(system, seed, sticking, &orbit)
-                                         : FindOrbit(system, seed, primitive, &orbit);
+      const OrbitSummary found = FindOrbit(system, seed, primitive, &orbit);
       if (found.termination != Termination::kConverged) return std::nullopt;
       seed = orbit.eta;
       return EvaluateBifurcationTests(orbit.jacobian, orbit.multipliers)[test];
@@ -744,7 +743,7 @@ bool ContinuationOptions::IsValid(std::string* error) const {
   }
   if (!(end_tolerance > 0))
     return fail(fmt::format("end_tolerance must be > 0, got {}", end_tolerance));
-  return orbit.IsValid(error) && release_map.IsValid(error);
+  return orbit.IsValid(error);
 }
 
 Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
@@ -756,7 +755,7 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
   // sticking orbit its releases and q).
   const PeriodicOrbit& orbit = start.orbit;
   ContinuationOptions family = options;
-  family.orbit.map.stop = family.release_map.stop = orbit.stop;
+  family.orbit.map.stop = family.orbit.release_map.stop = orbit.stop;
   const int k = orbit.Sticks() ? orbit.releases : options.orbit.p;
   const int q = orbit.Sticks() ? orbit.q : options.orbit.q;
   const BranchProblem problem =

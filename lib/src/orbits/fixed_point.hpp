@@ -7,12 +7,13 @@
 /// on any section map (section_map.hpp: the impact map or the release
 /// map), with U's Jacobian D P^k − I, analytic or by central differences;
 /// solved by Newton (KINSOL) and, if asked, Levenberg–Marquardt (Ceres)
-/// from the guess. The one solve of FindOrbit and FindStickingOrbit.
+/// from the guess. The one solve of FindOrbit on either section.
 
 #include <Eigen/Dense>
 #include <string>
 
 #include "impactkit/core/termination.hpp"
+#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/section_map.hpp"
 #include "impactkit/solvers/nonlinear_solve.hpp"
 
@@ -58,6 +59,11 @@ struct FixedPointSolve {
 /// the seed: after 0 of 1 impacts, lost impact ...").
 FixedPointSolve SolveFixedPoint(const FixedPointProblem& problem, const Eigen::VectorXd& guess,
                                 const NewtonOptions& newton, bool least_squares_fallback);
+
+/// FindOrbit on the release section (sticking_orbit.cpp), the options
+/// valid: the fixed point of P_R^k from the release state `guess`.
+OrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& guess,
+                               const OrbitOptions& options, PeriodicOrbit* orbit);
 
 /// "<termination>: residual 1.23e-12 after n iterations" for a summary's
 /// first words; without the residual where none was computed (the map

@@ -229,10 +229,21 @@ std::string ToString(JacobianMethod method) {
 }
 
 bool OrbitOptions::IsValid(std::string* error) const {
-  if (p < 1 || q < 1) {
-    if (error) *error = fmt::format("p and q must be >= 1, got p = {}, q = {}", p, q);
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
     return false;
+  };
+  if (releases < 0) {
+    return fail(fmt::format("releases must be >= 0 (0: an impacting orbit), got {}", releases));
   }
+  if (Section() == OrbitSection::kRelease) {
+    if (q < 1) {
+      return fail(
+          fmt::format("releases and q must be >= 1, got releases = {}, q = {}", releases, q));
+    }
+    return newton.IsValid(error) && release_map.IsValid(error);
+  }
+  if (p < 1 || q < 1) return fail(fmt::format("p and q must be >= 1, got p = {}, q = {}", p, q));
   return newton.IsValid(error) && map.IsValid(error);
 }
 
@@ -455,6 +466,12 @@ OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
   const auto start = std::chrono::steady_clock::now();
   std::string error;
   if (!options.IsValid(&error)) throw InvalidInput(error);
+  if (options.Section() == OrbitSection::kRelease) {
+    OrbitSummary summary = FindStickingOrbit(system, guess, options, orbit);
+    summary.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+  }
   const auto hybrid = std::make_shared<const HybridSystem>(system);
   const ImpactMap map(hybrid, options.map);
   map.ValidateEta(guess);

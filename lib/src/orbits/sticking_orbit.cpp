@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -25,16 +24,6 @@ StickingMapResult ApplyOrThrow(const StickingMap& map, const Eigen::VectorXd& s,
 
 }  // namespace
 
-bool StickingOrbitOptions::IsValid(std::string* error) const {
-  if (releases < 1 || q < 1) {
-    if (error) {
-      *error = fmt::format("releases and q must be >= 1, got releases = {}, q = {}", releases, q);
-    }
-    return false;
-  }
-  return newton.IsValid(error) && map.IsValid(error);
-}
-
 Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorXd& s,
                                     const Eigen::MatrixXd& jacobian) {
   // An orthonormal basis of the tangent space ker ∇Fs: the last m − 1
@@ -54,7 +43,7 @@ Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorX
 }
 
 PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorXd& s, int releases,
-                                    int q) {
+                                    int q, JacobianMethod method) {
   const StickingMapResult image = ApplyOrThrow(map, s, releases, true);
   const System& system = map.GetSystem();
   PeriodicOrbit orbit;
@@ -88,7 +77,12 @@ PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
   }
   if (std::isfinite(clearance)) contacts.clearance = clearance;
   orbit.p = static_cast<int>(orbit.impacts.size());
-  orbit.jacobian = image.jacobian;
+  orbit.jacobian = method == JacobianMethod::kAnalytic ? image.jacobian
+                                                       : FiniteDifferenceJacobian(map, s, releases);
+  if (orbit.jacobian.size() == 0) {
+    throw InvalidInput(
+        "the finite-difference Jacobian cannot be formed here: a perturbed map does not stick");
+  }
   Eigen::VectorXd shift = Eigen::VectorXd::Zero(s.size());
   shift(map.TimeIndex()) = q * system.ForcingPeriod();
   orbit.residual = (image.state - s - shift).cwiseAbs().maxCoeff();
@@ -98,11 +92,8 @@ PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
 }
 
 OrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& guess,
-                               const StickingOrbitOptions& options, PeriodicOrbit* orbit) {
-  const auto start = std::chrono::steady_clock::now();
-  std::string error;
-  if (!options.IsValid(&error)) throw InvalidInput(error);
-  const StickingMap map(system, options.map);
+                               const OrbitOptions& options, PeriodicOrbit* orbit) {
+  const StickingMap map(system, options.release_map);
   map.ValidateSection(guess);
   const Eigen::VectorXd seed = map.WithPhase(guess);
   // A state the stop still pushes on is no section state, as an impact
@@ -111,21 +102,31 @@ OrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& gues
   if (first == StickingMapStatus::kNotReleased) {
     throw InvalidInput("the guess is " + ToString(first));
   }
-  const FixedPointProblem problem(map, options.releases, options.q, true);
+  const FixedPointProblem problem(map, options.releases, options.q,
+                                  options.jacobian == JacobianMethod::kAnalytic);
   const FixedPointSolve solved =
-      SolveFixedPoint(problem, seed, options.newton, /*least_squares_fallback=*/false);
+      SolveFixedPoint(problem, seed, options.newton, options.least_squares_fallback);
   OrbitSummary summary;
   summary.iterations = solved.iterations;
+  summary.used_fallback = solved.used_fallback;
   summary.termination = solved.solve.termination;
   summary.message = solved.solve.message;
   summary.residual = solved.solve.residual_norm;
   if (summary.termination == Termination::kConverged) {
-    *orbit = DescribeStickingOrbit(map, solved.x, options.releases, options.q);
+    try {
+      *orbit = DescribeStickingOrbit(map, solved.x, options.releases, options.q, options.jacobian);
+    } catch (const InvalidInput& e) {
+      // The fixed point holds, but a perturbed map does not stick: no
+      // finite-difference Jacobian there.
+      summary.termination = Termination::kFailure;
+      summary.message = e.what();
+    }
   } else {
     orbit->eta = solved.x;
+    orbit->section = OrbitSection::kRelease;
+    orbit->stop = map.SectionStop();
   }
   orbit->residual = summary.residual;
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// \file sticking_seed.hpp
-/// A starting point for FindStickingOrbit (orbits/sticking_orbit.hpp) from a
+/// A starting point for a sticking orbit (FindOrbit on the release section,
+/// orbits/sticking_orbit.hpp) from a
 /// steady simulation: the last release of the recorded window, with the
 /// number of releases and forcing periods after which the releases repeat.
 
@@ -9,7 +10,7 @@
 
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
-#include "impactkit/orbits/sticking_orbit.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit {
 
@@ -30,8 +31,8 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
                                                        int max_q = 32,
                                                        const SimulationOptions& options = {});
 
-/// The options FindStickingOrbit needs from a seed: its stop (the release
-/// map's section), releases and q; everything else at its default.
-StickingOrbitOptions OrbitOptionsFor(const StickingSeed& seed);
+/// The options FindOrbit needs from a seed: the release section at its
+/// stop, its releases and q; everything else at its default.
+OrbitOptions OrbitOptionsFor(const StickingSeed& seed);
 
 }  // namespace impactkit

@@ -35,7 +35,7 @@ struct SweepSeedOptions {
 /// through the last impact of the window's middle value, refined by
 /// FindOrbit; of a sticking window P(∞, q), the sticking orbit of the
 /// middle value's own simulation (the sweep's transient), refined by
-/// FindStickingOrbit. Windows whose refinement does not converge give none.
+/// FindOrbit. Windows whose refinement does not converge give none.
 /// `sweep` must come from RunSweep on `system` (any value of the parameter).
 std::vector<DiagramSeed> SeedsFromSweep(const System& system, const SweepOptions& sweep_options,
                                         const SweepResult& sweep, const SweepSeedOptions& options);

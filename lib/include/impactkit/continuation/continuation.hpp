@@ -75,13 +75,11 @@ struct ContinuationOptions {
   /// Locate fold, period doubling and Neimark–Sacker points (grazing and
   /// sticking are always watched: they end the branch).
   bool locate_bifurcations = true;
-  /// p, q, tolerances and the map's options. The analytic Jacobian is used
+  /// p, q, tolerances and the maps' options. The analytic Jacobian is used
   /// whatever orbit.jacobian says (the finite-difference one costs 4N maps).
-  /// A sticking family's releases and q are its start orbit's.
+  /// A family's section and stop are its start orbit's, and so are a
+  /// sticking family's releases and q.
   OrbitOptions orbit;
-  /// The release map's options, for a family of sticking orbits (its stop
-  /// is the start orbit's).
-  StickingMapOptions release_map;
   /// A sticking family's end is located by bisection in μ to this.
   double end_tolerance = 1e-9;
   bool IsValid(std::string* error) const;

@@ -26,6 +26,7 @@
 
 #include "impactkit/orbits/impact_map.hpp"
 #include "impactkit/orbits/orbit_contacts.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 #include "impactkit/solvers/nonlinear_solve.hpp"
 
 namespace impactkit {
@@ -37,27 +38,40 @@ enum class JacobianMethod {
 
 std::string ToString(JacobianMethod method);
 
+/// The Poincaré section an orbit's fixed point lies on (section_map.hpp).
+enum class OrbitSection {
+  kImpact,   ///< an impact: the impact map P_I (impact_map.hpp), η
+  kRelease,  ///< a release from sticking: the release map P_R (sticking_map.hpp), s
+};
+
+/// What FindOrbit looks for and how: an impacting orbit P(p, q) on the
+/// impact section, or (releases >= 1) a sticking orbit P(∞, q) on the
+/// release section.
 struct OrbitOptions {
-  int p = 1;  ///< impacts per orbit (>= 1)
+  int p = 1;  ///< impacts per orbit (>= 1); on the release section what the orbit finds
   int q = 1;  ///< forcing periods per orbit (>= 1)
+  /// Sticking phases per orbit: 0 for an impacting orbit, a fixed point of
+  /// P_I^p; k >= 1 for a sticking orbit, a fixed point of P_R^k
+  /// (sticking_orbit.hpp), whose impacts are counted, not asked for.
+  int releases = 0;
   JacobianMethod jacobian = JacobianMethod::kAnalytic;
   /// Tolerances of the Newton solve; residual_tolerance is max |U| at the
   /// solution (default 1e-11).
   NewtonOptions newton;
   /// Try Levenberg–Marquardt (Ceres) when Newton does not converge.
   bool least_squares_fallback = true;
-  /// Then try the fixed-time formulation (regular where an impact's speed
-  /// vanishes), with the impacts' stops of the guess (for p > 1 the map
-  /// must follow p impacts from the guess).
+  /// Then (impact section) try the fixed-time formulation (regular where an
+  /// impact's speed vanishes), with the impacts' stops of the guess (for
+  /// p > 1 the map must follow p impacts from the guess).
   bool shooting_fallback = true;
-  ImpactMapOptions map;
+  ImpactMapOptions map;            ///< the impact map's, on the impact section
+  StickingMapOptions release_map;  ///< the release map's, on the release section
+  OrbitSection Section() const {
+    return releases > 0 ? OrbitSection::kRelease : OrbitSection::kImpact;
+  }
+  /// The section's stop: map.stop or release_map.stop.
+  int SectionStop() const { return releases > 0 ? release_map.stop : map.stop; }
   bool IsValid(std::string* error) const;
-};
-
-/// The Poincaré section an orbit's fixed point lies on (section_map.hpp).
-enum class OrbitSection {
-  kImpact,   ///< an impact: the impact map P_I (impact_map.hpp), η
-  kRelease,  ///< a release from sticking: the release map P_R (sticking_map.hpp), s
 };
 
 /// "impact", "release".
@@ -192,10 +206,15 @@ struct OrbitSummary : Summary {
   std::string BriefReport() const;
 };
 
-/// Solves U(η) = 0 from `guess` (an impact state: v_c > 0). Throws
-/// InvalidInput for bad options, system or guess. A solution where the map
-/// fails (an impact slower than options.map.min_speed: a grazing orbit) is
-/// no orbit: kFailure, with the reason in the summary's message.
+/// Solves U = 0 on the options' section from `guess`: an impact state η
+/// (v_c > 0), or with options.releases >= 1 a release state s
+/// (sticking_map.hpp). Throws InvalidInput for bad options, system or
+/// guess (of a release state: the wrong size, a non-finite entry, or a
+/// state the stop still pushes on). A solution where the map fails (an
+/// impact slower than options.map.min_speed: a grazing orbit) is no orbit,
+/// and so is a guess from which the release map cannot follow k releases:
+/// kFailure, with the reason (after how many impacts or releases, and why)
+/// in the summary's message.
 OrbitSummary FindOrbit(const System& system, const Eigen::VectorXd& guess,
                        const OrbitOptions& options, PeriodicOrbit* orbit);
 

@@ -6,7 +6,8 @@
 ///
 ///     U(s) = P_R^k(s) − s − q T e_t = 0,
 ///
-/// solved by Newton–Raphson through KINSOL with the analytic Jacobian.
+/// solved by FindOrbit (orbit.hpp) with OrbitOptions::releases = k: the
+/// one fixed-point solve, Newton through KINSOL with the analytic Jacobian.
 ///
 /// Stability. The image of P_R lies on the release surface Fs(s) = 0, so
 /// D P_R^k maps every direction into its tangent space: the direction off
@@ -20,43 +21,24 @@
 
 #include <Eigen/Dense>
 #include <complex>
-#include <string>
 #include <vector>
 
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/sticking_map.hpp"
-#include "impactkit/solvers/nonlinear_solve.hpp"
 
 namespace impactkit {
-
-struct StickingOrbitOptions {
-  int releases = 1;  ///< sticking phases (releases) per orbit, k >= 1
-  int q = 1;         ///< forcing periods per orbit (>= 1)
-  /// Tolerances of the Newton solve; residual_tolerance is max |U|.
-  NewtonOptions newton;
-  StickingMapOptions map;
-  bool IsValid(std::string* error) const;
-};
 
 /// The sticking orbit (a PeriodicOrbit on the release section, orbit.hpp)
 /// through the fixed point s of P_R^k: its impacts and stuck phases,
 /// Jacobian, section multipliers, stability, residual, extent and the
-/// monitors of its family's ends. Throws InvalidInput if the map cannot
-/// follow k releases from s.
+/// monitors of its family's ends; its Jacobian and multipliers by
+/// `method`. Throws InvalidInput if the map cannot follow k releases from s
+/// (or, for central differences, from a perturbed s).
 PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorXd& s, int releases,
-                                    int q);
+                                    int q, JacobianMethod method = JacobianMethod::kAnalytic);
 
 /// The multipliers of D P_R^k at s on the release section (see above).
 Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorXd& s,
                                     const Eigen::MatrixXd& jacobian);
-
-/// Solves U(s) = 0 from `guess`, a section state, by the fixed-point solve
-/// FindOrbit makes on the impact map. Throws InvalidInput for bad options,
-/// system or guess (the wrong size, a non-finite entry, or a state the stop
-/// still pushes on: no release). A guess from which the map cannot follow
-/// k releases (it does not stick again) is kFailure, the message saying
-/// after how many releases and why, as FindOrbit's for a lost impact.
-OrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& guess,
-                               const StickingOrbitOptions& options, PeriodicOrbit* orbit);
 
 }  // namespace impactkit
