@@ -135,18 +135,108 @@ TEST_CASE("a sticking family at the second stop ends where simulation stops stic
   CHECK(!at(omega_end + 1e-3));
 }
 
-TEST_CASE("a motion that sticks at both stops of a clearance is refused by the release map",
+namespace {
+
+/// Every stuck phase the simulator begins and ends in the two periods
+/// after `periods` - 1 from rest, as its releases report them: stop, start
+/// and release (one under way at the window's start reports that start).
+std::vector<Release> SimulatedReleases(const System& system, int periods) {
+  const double period = system.ForcingPeriod();
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, (periods - 1) * period);
+  struct Releases : Observer {
+    void OnRelease(const Release& release) override { all.push_back(release); }
+    std::vector<Release> all;
+  } releases;
+  const double start = state.t;
+  simulator.Run(state, (periods + 1) * period, releases);
+  std::erase_if(releases.all, [&](const Release& r) { return r.t_begin <= start; });
+  return releases.all;
+}
+
+/// Each of the orbit's stuck phases against the simulator's at the same
+/// stop and phase 300 periods from rest: stick phase to 5e-8 (the chatter's
+/// predicted accumulation point on both sides), release to 1e-9.
+void CheckEveryStuckPhase(const System& system, const PeriodicOrbit& orbit) {
+  const std::vector<Release> simulated = SimulatedReleases(system, 300);
+  for (const StuckPhase& stuck : orbit.stuck) {
+    const auto same = std::find_if(simulated.begin(), simulated.end(), [&](const Release& r) {
+      return r.stop == stuck.stop &&
+             std::abs(system.Phase(r.t_release) - stuck.release_phase) < 1e-6;
+    });
+    REQUIRE(same != simulated.end());
+    CHECK_THAT(system.Phase(same->t_begin), WithinAbs(stuck.stick_phase, 5e-8));
+    CHECK_THAT(system.Phase(same->t_release), WithinAbs(stuck.release_phase, 1e-9));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a mass that sticks at both stops of a clearance: one orbit of two releases",
           "[stops][sticking]") {
-  // Mass 2 in the clearance ±0.1 sticks at both stops every period at
-  // Ω = 0.2 (test_several_stops.cpp): one cycle of the release map follows
-  // one stop's sticking phase, so it says so instead of an orbit.
-  System system = PaperSystem(0.2);
-  system.stops = {{1, StopSide::kUpper, 0.1, 0.7}, {1, StopSide::kLower, -0.1, 0.7}};
-  Validate(system);
-  const std::optional<StickingSeed> seed = SeedStickingFromSimulation(system, 200, 4);
-  REQUIRE(seed);
-  PeriodicOrbit orbit;
-  const OrbitSummary summary = FindOrbit(system, seed->state, OrbitOptionsFor(*seed), &orbit);
-  CHECK(summary.termination == Termination::kFailure);
-  CHECK_THAT(summary.message, Contains("another stop holds a mass"));
+  SECTION("one mass (examples/systems/clearance-1dof.toml): the releases in closed form") {
+    // x'' + c x' + x = cos Ωt between ±0.5: held at +0.5 the stop pushes
+    // with Fs = cos Ωt − 0.5, released where it falls through 0 (Ωt = π/3);
+    // at −0.5 with Fs = −(cos Ωt + 0.5), released at Ωt = 4π/3.
+    const double omega = 0.2, pi = std::acos(-1.0);
+    System system = UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Ones(1), omega, 0.5, 0.8);
+    system.stops.push_back({0, StopSide::kLower, -0.5, 0.8});
+    const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
+    REQUIRE((orbit.releases == 2 && orbit.q == 1));
+    REQUIRE(orbit.stuck.size() == 2);
+    CHECK(orbit.stuck[0].stop != orbit.stuck[1].stop);
+    for (const StuckPhase& stuck : orbit.stuck) {
+      const double release = (stuck.stop == 0 ? 1.0 : 4.0) * pi / (3.0 * omega);
+      CHECK_THAT(stuck.release_phase, WithinAbs(release, 1e-10));
+    }
+    CHECK(orbit.multipliers.size() == 0);  // 2N − 2 = 0: the section is a point per release
+    CheckEveryStuckPhase(system, orbit);
+  }
+  SECTION("the paper's mass 2 in the clearance ±0.1: the simulator's phases, and the Jacobian") {
+    System system = PaperSystem(0.2);
+    system.stops = {{1, StopSide::kUpper, 0.1, 0.7}, {1, StopSide::kLower, -0.1, 0.7}};
+    Validate(system);
+    const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
+    REQUIRE((orbit.releases == 2 && orbit.q == 1));
+    CHECK(orbit.stuck[0].stop != orbit.stuck[1].stop);
+    CHECK(orbit.residual < 1e-11);
+    CheckEveryStuckPhase(system, orbit);
+    // The analytic Jacobian through both stops' stuck flows against central
+    // differences of the map.
+    StickingMapOptions map_options;
+    map_options.stop = orbit.stop;
+    const StickingMap map(system, map_options);
+    const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, orbit.eta, 2);
+    REQUIRE(fd.size() > 0);
+    CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() <
+          1e-6 * orbit.jacobian.cwiseAbs().maxCoeff());
+    // One release on, the mass leaves the other stop: P_R alone is no map
+    // of this stop's section, as an impact map's impact at another stop.
+    CHECK(map.Apply(orbit.eta, 1, false).status == StickingMapStatus::kOtherStop);
+  }
+}
+
+TEST_CASE("a family that sticks at both stops of a clearance ends where the simulator stops sticking",
+          "[stops][sticking][continuation]") {
+  System system = UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Ones(1), 0.2, 0.5, 0.8);
+  system.stops.push_back({0, StopSide::kLower, -0.5, 0.8});
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
+  ContinuationOptions options;
+  options.lower = 0.15;
+  options.upper = 0.6;
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kNoSticking);
+  for (const BranchPoint& point : branch.points) {
+    REQUIRE(point.orbit.stuck.size() == 2);
+    CHECK(point.orbit.stuck[0].stop != point.orbit.stuck[1].stop);
+  }
+  const double omega_end = branch.special_points.back().point.parameter;
+  auto sticks = [&](double omega) {
+    System s = system;
+    s.omega = omega;
+    return SeedStickingFromSimulation(s, 300, 4).has_value();
+  };
+  CHECK(sticks(omega_end - 1e-3));
+  CHECK(!sticks(omega_end + 1e-3));
 }

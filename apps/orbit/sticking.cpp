@@ -1,6 +1,7 @@
 #include "orbit/sticking.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,21 +33,36 @@ std::vector<OrbitImpact> FastImpacts(const PeriodicOrbit& orbit, std::size_t k, 
   return fast;
 }
 
+/// " at stop 2", " at stops 1 and 2": where the orbit sticks, 1-based;
+/// nothing for a system of one stop.
+std::string StuckStops(const System& system, const PeriodicOrbit& orbit) {
+  if (system.StopCount() == 1) return "";
+  std::vector<int> stops;
+  for (const StuckPhase& stuck : orbit.stuck) stops.push_back(stuck.stop + 1);
+  std::sort(stops.begin(), stops.end());
+  stops.erase(std::unique(stops.begin(), stops.end()), stops.end());
+  if (stops.size() == 1) return fmt::format(" at stop {}", stops[0]);
+  const int last = stops.back();
+  stops.pop_back();
+  return fmt::format(" at stops {} and {}", fmt::join(stops, ", "), last);
+}
+
 void Print(const System& system, const PeriodicOrbit& orbit, const OrbitSummary& summary,
            double min_speed) {
   fmt::print("system:      {}\n", DescribeSystem(system));
-  const std::string at_stop =
-      system.StopCount() > 1 ? fmt::format(" at stop {}", orbit.stop + 1) : "";
+  const std::string at_stop = StuckStops(system, orbit);
   fmt::print("orbit:       sticking P(inf,{}) at omega = {}, {} sticking phase{}{}, {}\n", orbit.q,
              orbit.omega, orbit.releases, orbit.releases == 1 ? "" : "s", at_stop,
              orbit.stable ? "stable" : "unstable");
+  const bool several = system.StopCount() > 1;
   fmt::print(
-      "sticking:    stick phase          release phase        stuck duration  "
+      "sticking:    stick phase          release phase        stuck duration  {}"
       "(t mod T, T = {:.6g})\n",
-      system.ForcingPeriod());
+      several ? "stop  " : "", system.ForcingPeriod());
   for (const StuckPhase& stuck : orbit.stuck) {
-    fmt::print("             {:<20.12f} {:<20.12f} {:.12f}\n", stuck.stick_phase,
-               stuck.release_phase, stuck.Duration());
+    fmt::print("             {:<20.12f} {:<20.12f} {:.12f}{}\n", stuck.stick_phase,
+               stuck.release_phase, stuck.Duration(),
+               several ? fmt::format("  {}", stuck.stop + 1) : "");
   }
   for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
     const std::vector<OrbitImpact> fast = FastImpacts(orbit, k, min_speed);
@@ -92,7 +108,8 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
     for (const OrbitImpact& i : FastImpacts(orbit, k, min_speed)) {
       impacts.push_back({{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}, {"stop", i.stop + 1}});
     }
-    j["chatter"].push_back({{"impacts", orbit.stuck[k].impacts},
+    j["chatter"].push_back({{"stop", orbit.stuck[k].stop + 1},
+                            {"impacts", orbit.stuck[k].impacts},
                             {"accumulation", orbit.stuck[k].stick},
                             {"contact_force", orbit.stuck[k].contact_force},
                             {"fast_impacts", impacts}});

@@ -102,8 +102,8 @@ PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optio
 
 /// One field of a sticking orbit's stuck phases, as a numpy array of shape (k,).
 template <typename Get>
-py::array_t<double> StuckField(const PeriodicOrbit& orbit, Get get) {
-  std::vector<double> values;
+auto StuckField(const PeriodicOrbit& orbit, Get get) {
+  std::vector<std::invoke_result_t<Get, const StuckPhase&>> values;
   for (const StuckPhase& stuck : orbit.stuck) values.push_back(get(stuck));
   return MoveToArray(std::move(values));
 }
@@ -152,6 +152,12 @@ void BindOrbit(py::module_& module) {
             return StuckField(o, [](const StuckPhase& s) { return s.Duration(); });
           },
           "Each sticking phase's duration, release - t*, shape (k,).")
+      .def_property_readonly(
+          "stuck_stops",
+          [](const PeriodicOrbit& o) {
+            return StuckField(o, [](const StuckPhase& s) { return s.stop; });
+          },
+          "The stop (0-based, System.stops) each sticking phase holds the mass at, shape (k,).")
       .def_property_readonly(
           "contact_margin",
           [](const PeriodicOrbit& o) -> std::optional<double> {

@@ -84,3 +84,19 @@ def test_sticking_orbit_is_the_simulations_steady_sticking():
                               jacobian="finite_difference")
     np.testing.assert_allclose(np.sort_complex(fd.multipliers),
                                np.sort_complex(orbit.multipliers), rtol=0, atol=1e-6)
+
+
+def test_a_mass_sticking_at_both_stops_of_a_clearance():
+    # One mass between +-0.5 at omega = 0.2 sticks at each stop once per
+    # period: one orbit of two releases. Held at +0.5 the stop pushes with
+    # Fs = cos(omega t) - 0.5, released at omega t = pi/3; at -0.5 with
+    # -(cos(omega t) + 0.5), released at omega t = 4 pi/3.
+    omega = 0.2
+    clearance = impactkit.System.chain(n=1, forcing=[1.0], omega=omega).with_stops([
+        {"dof": 0, "side": "upper", "position": 0.5, "restitution": 0.8},
+        {"dof": 0, "side": "lower", "position": -0.5, "restitution": 0.8}])
+    orbit = impactkit.find_orbit(clearance)
+    assert orbit.section == "release" and (orbit.releases, orbit.q) == (2, 1)
+    assert sorted(orbit.stuck_stops) == [0, 1]
+    expected = np.where(orbit.stuck_stops == 0, np.pi / 3, 4 * np.pi / 3) / omega
+    np.testing.assert_allclose(orbit.release_phases, expected, rtol=0, atol=1e-10)

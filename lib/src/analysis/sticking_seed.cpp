@@ -57,14 +57,13 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   simulator.Run(state, transient * period);
   ReleaseRecorder recorder(system);
   simulator.Run(state, (transient + 2 * max_q + 1) * period, recorder);
-  if (recorder.Releases().empty()) return std::nullopt;
-  // The release map's section is one stop's releases: the last one's.
-  const int stop = recorder.Releases().back().stop;
-  std::vector<Eigen::VectorXd> releases;
-  for (const auto& [from, s] : recorder.Releases()) {
-    if (from == stop) releases.push_back(s);
-  }
-  const Eigen::VectorXd& last = releases.back();
+  const auto& releases = recorder.Releases();
+  if (releases.empty()) return std::nullopt;
+  // The release map goes from a release to the next from any stop; its
+  // section is the last release's stop, and the repetition a release from
+  // that stop k releases earlier.
+  const int stop = releases.back().stop;
+  const Eigen::VectorXd& last = releases.back().state;
   const Eigen::Index t = last.size() - 1;
   // Largest |entry| of the state part (none for N = 1: the section is t).
   auto largest = [t](const Eigen::VectorXd& v) {
@@ -72,7 +71,8 @@ std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int
   };
   const double scale = 1.0 + largest(last);
   for (std::size_t k = 1; k < releases.size(); ++k) {
-    const Eigen::VectorXd& earlier = releases[releases.size() - 1 - k];
+    const auto& [from, earlier] = releases[releases.size() - 1 - k];
+    if (from != stop) continue;
     const double periods = (last(t) - earlier(t)) / period;
     const long q = std::lround(periods);
     if (q < 1 || q > max_q || std::abs(periods - q) > 1e-6) continue;

@@ -30,8 +30,10 @@ std::string ToString(StickingMapStatus status) {
     case StickingMapStatus::kNoRelease:
       return "no release: the mass stays stuck";
     case StickingMapStatus::kOtherStop:
-      return "another stop holds a mass, or is met while this one holds its mass (the release "
-             "map follows one stop's sticking per cycle)";
+      return "the last release is from another stop than the section's";
+    case StickingMapStatus::kMetWhileHeld:
+      return "a mass reaches its stop while another stop holds a mass (the release map follows "
+             "one held stop at a time)";
   }
   return "unknown";
 }
@@ -64,18 +66,17 @@ class StickingMap::Cycle {
         with_jacobian_(with_jacobian),
         with_contacts_(with_contacts),
         n_(hybrid.GetSystem().Dof()),
-        section_(options.stop),
-        c_(hybrid.GetStop(options.stop).Dof()),
+        measured_(hybrid.GetStop(options.stop).Dof()),
         events_{options.simulation.event_time_tolerance, hybrid.TimeScale()},
         phase_events_(hybrid, options.simulation),
         previous_(hybrid.StopCount()) {
-    const Mode& held = hybrid.Holding(StopBit(section_));
-    const LinearOutput release =
-        hybrid.GetStop(section_)
-            .Release(hybrid.GetSystem(), held.Moving(), held.HeldPositions())
-            .output;
-    release_gradient_.resize(2 * (n_ - 1));
-    release_gradient_ << release.wx, release.wv;
+    for (int k = 0; k < hybrid.StopCount(); ++k) {
+      const Mode& held = hybrid.Holding(StopBit(k));
+      const LinearOutput release =
+          hybrid.GetStop(k).Release(hybrid.GetSystem(), held.Moving(), held.HeldPositions()).output;
+      release_gradients_.emplace_back(2 * (n_ - 1));
+      release_gradients_.back() << release.wx, release.wv;
+    }
     for (int j = 0; with_contacts_ && j < hybrid.StopCount(); ++j) {
       contact_velocities_.push_back(hybrid.FreeFlow().Prepare(
           {Eigen::RowVectorXd::Zero(n_), Eigen::RowVectorXd::Unit(n_, hybrid.GetStop(j).Dof()), 0.0,
@@ -83,14 +84,17 @@ class StickingMap::Cycle {
     }
   }
 
-  /// Follows one release to the next; the new section state in *next.
-  StickingMapStatus Run(const Eigen::VectorXd& s, Eigen::VectorXd* next, Eigen::MatrixXd* jacobian,
-                        StickingCycle* cycle);
+  /// Follows a release from stop `from` (s its section state: without that
+  /// stop's DOF) to the next release, from whichever stop the chatter
+  /// sticks at (cycle->stop); that release's section state in *next.
+  StickingMapStatus Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
+                        Eigen::MatrixXd* jacobian, StickingCycle* cycle);
 
  private:
   using Arrival = PhaseEvents::Event;
-  /// The free flight to the first arrival at any stop (PhaseEvents).
-  std::optional<Arrival> NextArrival(bool from_release, StickingCycle* cycle,
+  /// The free flight to the first arrival at any stop (PhaseEvents), the
+  /// first of a cycle from a release at stop `released`.
+  std::optional<Arrival> NextArrival(std::optional<int> released, StickingCycle* cycle,
                                      StickingMapStatus* status);
   /// Takes into `cycle` the interior turns (the zeros of a velocity) on the
   /// flight [begin, end]: the least distance from its stop of each stop's
@@ -98,21 +102,26 @@ class StickingMap::Cycle {
   /// stop's mass's extent.
   void MeasureFlight(double t0, const Eigen::VectorXd& z0, double begin, double end,
                      StickingCycle* cycle) const;
+  /// The section stop's mass's extent while stop `stop`, on another mass,
+  /// holds its: its turns on the held flow over (begin, end).
+  void MeasureHeld(int stop, double t0, const Eigen::VectorXd& z0, double begin, double end,
+                   StickingCycle* cycle) const;
   /// The least interior minimum of Fs on (begin, end), from w = −Fs: its
   /// maxima are the zeros of w' where it falls; infinity if there is none.
   double HoldMargin(const Signal& release, double begin, double end) const;
-  /// True if, while the section's stop holds its mass from te to `end`,
-  /// another stop's mass reaches that stop.
-  bool HeldMeetsOtherStop(const LinearFlow& flow, double te, const Eigen::VectorXd& z0,
+  /// True if, while stop `stop` holds its mass from te to `end`, another
+  /// stop's mass reaches that stop.
+  bool HeldMeetsOtherStop(int stop, const LinearFlow& flow, double te, const Eigen::VectorXd& z0,
                           double end) const;
   bool ArrivalEndsChatter(const Arrival& arrival, StickingCycle* cycle, double* t_star);
-  StickingMapStatus StickAndRelease(double te, double t_star, StickingCycle* cycle);
+  StickingMapStatus StickAndRelease(int stop, double te, double t_star, StickingCycle* cycle);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
   /// at t1 with witness gradient l and slope ẇ(t1): G = Φ (dy0 − f0 dt0),
   /// dt1 = −l G / ẇ, dy1 = G + f1 dt1.
   void ThroughFlight(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0,
                      const Eigen::VectorXd& f1, const Eigen::RowVectorXd& gradient, double slope);
-  Eigen::MatrixXd HeldRows(const Eigen::MatrixXd& full) const;
+  /// The rows of ∂y/∂s without those of the held DOF `dof`.
+  Eigen::MatrixXd HeldRows(const Eigen::MatrixXd& full, int dof) const;
 
   /// How long after a release the search for the first impact begins, as
   /// a fraction of the system's shortest time scale: far below any flight,
@@ -123,11 +132,11 @@ class StickingMap::Cycle {
   const StickingMapOptions& options_;
   const bool with_jacobian_, with_contacts_;
   const int n_;
-  const int section_;                               ///< the stop whose releases are the section
-  const int c_;                                     ///< and its mass
+  const int measured_;  ///< the section stop's mass, whose extent the cycle measures
   std::vector<PreparedOutput> contact_velocities_;  ///< each stop's v_dof on the free flow
   const EventOptions events_;
-  Eigen::RowVectorXd release_gradient_;
+  /// Per stop: ∂(−Fs)/∂(x, v) of the masses that move while it holds its.
+  std::vector<Eigen::RowVectorXd> release_gradients_;
   PhaseEvents phase_events_;  ///< the current flight's
   double t_ = 0.0;
   double deadline_ = 0.0;         ///< the cycle must stick before this time
@@ -138,17 +147,18 @@ class StickingMap::Cycle {
   Eigen::RowVectorXd dt_;  ///< ∂t/∂s of the current time
 };
 
-StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::VectorXd* next,
+StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
                                           Eigen::MatrixXd* jacobian, StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();
   const int held = n_ - 1, m = 2 * n_ - 1;
+  const Stop& released = hybrid_.GetStop(from);
   t_ = s(m - 1);
-  x_ = EmbedAtStop(s.head(held), c_, hybrid_.GetStop(section_).Position());
-  v_ = EmbedAtStop(s.segment(held, held), c_, 0.0);
+  x_ = EmbedAtStop(s.head(held), released.Dof(), released.Position());
+  v_ = EmbedAtStop(s.segment(held, held), released.Dof(), 0.0);
   if (with_jacobian_) {
     dy_ = Eigen::MatrixXd::Zero(2 * n_, m);
     for (int j = 0, k = 0; j < n_; ++j) {
-      if (j == c_) continue;
+      if (j == released.Dof()) continue;
       dy_(j, k) = 1.0;
       dy_(n_ + j, held + k) = 1.0;
       ++k;
@@ -156,15 +166,16 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
     dt_ = Eigen::RowVectorXd::Unit(m, m - 1);
   }
   cycle->release = t_;
-  last_stop_ = section_;
+  last_stop_ = from;
   cycle->impacts.clear();
   cycle->clearance = std::numeric_limits<double>::infinity();
-  cycle->contact_min = cycle->contact_max = hybrid_.GetStop(section_).Position();
+  cycle->contact_min = cycle->contact_max = x_(measured_);
   deadline_ = t_ + options_.max_free_periods * system.ForcingPeriod();
   std::fill(previous_.begin(), previous_.end(), -std::numeric_limits<double>::infinity());
   StickingMapStatus status = StickingMapStatus::kOk;
   for (int i = 0; i < options_.max_impacts; ++i) {
-    const std::optional<Arrival> arrival = NextArrival(i == 0, cycle, &status);
+    const std::optional<Arrival> arrival =
+        NextArrival(i == 0 ? std::optional<int>(from) : std::nullopt, cycle, &status);
     if (!arrival) return status;
     last_stop_ = arrival->stop;
     double t_star;
@@ -172,14 +183,14 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
       previous_[arrival->stop] = arrival->t;
       continue;
     }
-    if (arrival->stop != section_) return StickingMapStatus::kOtherStop;
-    status = StickAndRelease(arrival->t, t_star, cycle);
+    status = StickAndRelease(arrival->stop, arrival->t, t_star, cycle);
     if (status != StickingMapStatus::kOk) return status;
+    const int dof = hybrid_.GetStop(arrival->stop).Dof();
     next->resize(m);
-    *next << WithoutIndex(x_, c_), WithoutIndex(v_, c_), t_;
+    *next << WithoutIndex(x_, dof), WithoutIndex(v_, dof), t_;
     if (with_jacobian_) {
       jacobian->resize(m, m);
-      *jacobian << HeldRows(dy_), dt_;
+      *jacobian << HeldRows(dy_, dof), dt_;
     }
     return StickingMapStatus::kOk;
   }
@@ -187,7 +198,8 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, Eigen::Vecto
 }
 
 std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
-    bool from_release, StickingCycle* cycle, StickingMapStatus* status) {
+    std::optional<int> released, StickingCycle* cycle, StickingMapStatus* status) {
+  const bool from_release = released.has_value();
   const LinearFlow& flow = hybrid_.FreeFlow();
   HybridState from;
   from.t = t_;
@@ -202,8 +214,8 @@ std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
   // is no release.
   PhaseEvents::LateStart late;
   if (from_release) {
-    late = {section_, t_ + kReleaseClearance * hybrid_.TimeScale()};
-    if (phase_events_.Witness(section_).Value(late.begin) >= 0) {
+    late = {*released, t_ + kReleaseClearance * hybrid_.TimeScale()};
+    if (phase_events_.Witness(*released).Value(late.begin) >= 0) {
       *status = StickingMapStatus::kNotReleased;
       return std::nullopt;
     }
@@ -213,8 +225,8 @@ std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
     *status = from_release ? StickingMapStatus::kNoImpact : StickingMapStatus::kNoChatter;
     return std::nullopt;
   }
-  const double end = first->t, released = from_release ? late.begin : t_;
-  if (with_contacts_) MeasureFlight(t_, z0, released, end, cycle);
+  const double end = first->t, measured_from = from_release ? late.begin : t_;
+  if (with_contacts_) MeasureFlight(t_, z0, measured_from, end, cycle);
   const Eigen::VectorXd x0 = x_, v0 = v_;
   const double t0 = t_;
   flow.StateFrom(t0, x0, v0, z0, end, &x_, &v_);
@@ -238,9 +250,9 @@ void StickingMap::Cycle::MeasureFlight(double t0, const Eigen::VectorXd& z0, dou
     const Signal velocity = flow.Output(contact_velocities_[j], t0, z0);
     for (const double t : SignChanges(velocity, begin, end, events_)) {
       flow.State(t0, z0, t, &x, &v);
-      if (stop.Dof() == c_) {
-        cycle->contact_min = std::min(cycle->contact_min, x(c_));
-        cycle->contact_max = std::max(cycle->contact_max, x(c_));
+      if (stop.Dof() == measured_) {
+        cycle->contact_min = std::min(cycle->contact_min, x(measured_));
+        cycle->contact_max = std::max(cycle->contact_max, x(measured_));
       }
       // Only the turns towards the stop count for its clearance: maxima of
       // x below an upper stop, minima above a lower one.
@@ -260,12 +272,31 @@ double StickingMap::Cycle::HoldMargin(const Signal& release, double begin, doubl
   return margin;
 }
 
-bool StickingMap::Cycle::HeldMeetsOtherStop(const LinearFlow& flow, double te,
+void StickingMap::Cycle::MeasureHeld(int stop, double t0, const Eigen::VectorXd& z0, double begin,
+                                     double end, StickingCycle* cycle) const {
+  const Mode& held = hybrid_.Holding(StopBit(stop));
+  const std::vector<int>& moving = held.Moving();
+  const auto index = std::find(moving.begin(), moving.end(), measured_) - moving.begin();
+  const int size = static_cast<int>(moving.size());
+  const LinearFlow& flow = held.Flow();
+  const Signal velocity =
+      flow.Output(flow.Prepare({Eigen::RowVectorXd::Zero(size),
+                                Eigen::RowVectorXd::Unit(size, index), 0.0, 0.0}),
+                  t0, z0);
+  Eigen::VectorXd x, v;
+  for (const double t : SignChanges(velocity, begin, end, events_)) {
+    flow.State(t0, z0, t, &x, &v);
+    cycle->contact_min = std::min(cycle->contact_min, x(index));
+    cycle->contact_max = std::max(cycle->contact_max, x(index));
+  }
+}
+
+bool StickingMap::Cycle::HeldMeetsOtherStop(int stop, const LinearFlow& flow, double te,
                                             const Eigen::VectorXd& z0, double end) const {
-  const Mode& held = hybrid_.Holding(StopBit(section_));
+  const Mode& held = hybrid_.Holding(StopBit(stop));
   for (int j = 0; j < hybrid_.StopCount(); ++j) {
     // Null for the stops of the held mass: it does not move.
-    const PreparedOutput* gap = j == section_ ? nullptr : held.Witness(j);
+    const PreparedOutput* gap = j == stop ? nullptr : held.Witness(j);
     if (gap && FirstUpcrossing(flow.Output(*gap, te, z0), te, end, events_)) return true;
   }
   return false;
@@ -307,34 +338,45 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
 
 /// From the impact at te that ends the chatter, the stuck flow: through
 /// the chatter's tail to its end t*, then stuck to the release.
-StickingMapStatus StickingMap::Cycle::StickAndRelease(double te, double t_star,
+StickingMapStatus StickingMap::Cycle::StickAndRelease(int stop, double te, double t_star,
                                                       StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();
-  const LinearFlow& flow = hybrid_.StuckFlow(section_);
-  const Eigen::VectorXd x0 = WithoutIndex(x_, c_), v0 = WithoutIndex(v_, c_);
+  const LinearFlow& flow = hybrid_.StuckFlow(stop);
+  const Stop& holding = hybrid_.GetStop(stop);
+  const int c = holding.Dof();
+  const Eigen::VectorXd x0 = WithoutIndex(x_, c), v0 = WithoutIndex(v_, c);
   const Eigen::VectorXd z0 = flow.Transient(te, x0, v0);
   Eigen::VectorXd x1, v1;
   flow.StateFrom(te, x0, v0, z0, t_star, &x1, &v1);
+  cycle->stop = stop;
   cycle->accumulation = t_star;
-  cycle->contact_force = hybrid_.ContactForce(section_, t_star, x1, v1);
+  cycle->contact_force = hybrid_.ContactForce(stop, t_star, x1, v1);
   if (!Stop::Holds(cycle->contact_force)) return StickingMapStatus::kNoSticking;
-  const Signal release = flow.Output(hybrid_.Release(section_), te, z0);
+  const Signal release = flow.Output(hybrid_.Release(stop), te, z0);
   const std::optional<double> tr = FirstUpcrossing(
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
   if (!tr) return StickingMapStatus::kNoRelease;
-  if (HeldMeetsOtherStop(flow, te, z0, *tr)) return StickingMapStatus::kOtherStop;
-  if (with_contacts_) cycle->hold_margin = HoldMargin(release, t_star, *tr);
+  if (HeldMeetsOtherStop(stop, flow, te, z0, *tr)) return StickingMapStatus::kMetWhileHeld;
+  if (with_contacts_) {
+    cycle->hold_margin = HoldMargin(release, t_star, *tr);
+    if (c == measured_) {
+      cycle->contact_min = std::min(cycle->contact_min, holding.Position());
+      cycle->contact_max = std::max(cycle->contact_max, holding.Position());
+    } else {
+      MeasureHeld(stop, te, z0, te, *tr, cycle);
+    }
+  }
   flow.StateFrom(te, x0, v0, z0, *tr, &x1, &v1);
   if (with_jacobian_) {
     double value, slope;
     release.ValueAndSlope(*tr, &value, &slope);
-    dy_ = HeldRows(dy_);
-    const Mode& stuck = hybrid_.Holding(StopBit(section_));
+    dy_ = HeldRows(dy_, c);
+    const Mode& stuck = hybrid_.Holding(StopBit(stop));
     ThroughFlight(flow.Transition(*tr - te), stuck.VectorField(te, x0, v0),
-                  stuck.VectorField(*tr, x1, v1), release_gradient_, slope);
+                  stuck.VectorField(*tr, x1, v1), release_gradients_[stop], slope);
   }
-  x_ = EmbedAtStop(x1, c_, hybrid_.GetStop(section_).Position());
-  v_ = EmbedAtStop(v1, c_, 0.0);
+  x_ = EmbedAtStop(x1, c, holding.Position());
+  v_ = EmbedAtStop(v1, c, 0.0);
   t_ = *tr;
   cycle->next_release = *tr;
   return StickingMapStatus::kOk;
@@ -348,10 +390,10 @@ void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const 
   dt_ = std::move(d.time);
 }
 
-Eigen::MatrixXd StickingMap::Cycle::HeldRows(const Eigen::MatrixXd& full) const {
+Eigen::MatrixXd StickingMap::Cycle::HeldRows(const Eigen::MatrixXd& full, int dof) const {
   if (full.rows() != 2 * n_) return full;  // already the held mode's
   Eigen::MatrixXd rows(2 * (n_ - 1), full.cols());
-  rows << WithoutRow(full.topRows(n_), c_), WithoutRow(full.bottomRows(n_), c_);
+  rows << WithoutRow(full.topRows(n_), dof), WithoutRow(full.bottomRows(n_), dof);
   return rows;
 }
 
@@ -390,17 +432,25 @@ StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_
   Cycle cycle(*hybrid_, options_, with_jacobian, with_contacts);
   Eigen::VectorXd next;
   Eigen::MatrixXd step_jacobian;
+  int from = options_.stop;
   for (int i = 0; i < k; ++i) {
     StickingCycle record;
-    result.status = cycle.Run(result.state, &next, &step_jacobian, &record);
+    result.status = cycle.Run(result.state, from, &next, &step_jacobian, &record);
     if (result.status != StickingMapStatus::kOk) {
       result.jacobian.resize(0, 0);
       return result;
     }
     result.state = next;
     if (with_jacobian) result.jacobian = step_jacobian * result.jacobian;
+    from = record.stop;
     result.cycles.push_back(std::move(record));
     ++result.cycles_done;
+  }
+  // P_R^k is a map of the section only if its last release is the
+  // section stop's (as an impact map's p-th impact).
+  if (from != options_.stop) {
+    result.status = StickingMapStatus::kOtherStop;
+    result.jacobian.resize(0, 0);
   }
   return result;
 }

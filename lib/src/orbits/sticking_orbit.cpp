@@ -61,7 +61,7 @@ PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
     for (const StickingImpact& impact : cycle.impacts) {
       orbit.impacts.push_back({impact.t, system.Phase(impact.t), impact.velocity, impact.stop});
     }
-    orbit.stuck.push_back({orbit.stop, cycle.accumulation, system.Phase(cycle.accumulation),
+    orbit.stuck.push_back({cycle.stop, cycle.accumulation, system.Phase(cycle.accumulation),
                            cycle.next_release, system.Phase(cycle.next_release),
                            cycle.contact_force, cycle.hold_margin,
                            static_cast<int>(cycle.impacts.size())});

@@ -16,16 +16,16 @@ namespace impactkit {
 
 struct StickingSeed {
   int stop = 0;           ///< the stop released from (System::stops), the section's
-  int releases = 0;       ///< k: releases per repetition
+  int releases = 0;       ///< k: releases per repetition, from any stop
   int q = 0;              ///< forcing periods per repetition
   Eigen::VectorXd state;  ///< the last release of the window, a section state of sticking_map.hpp
 };
 
 /// Simulates `transient` periods from rest, then 2 max_q + 1 more, and
-/// returns the last release with the least (k, q) for which the release
-/// from the same stop k such releases earlier is the same state q periods
-/// before (to 1e-6 relative); nothing
-/// if the window has no release or its releases do not repeat. Throws
+/// returns the last release with the least (k, q) for which the release k
+/// releases earlier (counting every stop's) is from the same stop and the
+/// same state q periods before (to 1e-6 relative); nothing if the window
+/// has no release or its releases do not repeat. Throws
 /// InvalidInput for transient < 0, max_q < 1 or invalid options.
 std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int transient = 500,
                                                        int max_q = 32,

@@ -2,8 +2,9 @@
 /// \file sticking_map.hpp
 /// The release map P_R of sticking motions: from one release of the contact
 /// mass c from its stop (any of the system's stops, StickingMapOptions::stop)
-/// to the next. Its Poincaré section is the release (x_c = xs, v_c = 0, the
-/// contact force Fs falling through 0), with coordinates
+/// to the next release, from whichever stop (below). Its Poincaré section is
+/// the release (x_c = xs, v_c = 0, the contact force Fs falling through 0),
+/// with coordinates
 ///
 ///     s = (x_j for j != c, v_j for j != c, t)            (size 2N − 1)
 ///
@@ -34,9 +35,15 @@
 /// one exact zero multiplier besides those of the 2N − 2 dimensional
 /// release section (sticking_orbit.hpp).
 ///
-/// With several stops, a cycle may impact the others; it may not stick at
-/// them, nor meet them while this stop holds its mass (kOtherStop): one
-/// cycle follows one stop's sticking phase.
+/// With several stops, a cycle may impact any of them and stick at any of
+/// them: it ends at the next release from whichever stop its chatter
+/// sticks at (StickingCycle::stop), in that stop's coordinates s (its DOF
+/// left out), and the next cycle starts there. P_R^k is a map of the
+/// section when its k-th release is from the section's stop (else
+/// kOtherStop), as the impact map's p-th impact must be at its stop: a
+/// motion that sticks at an upper and a lower stop in turn is a fixed point
+/// of P_R^2. One stop holds a mass at a time: a mass reaching its stop while
+/// another holds one ends the map (kMetWhileHeld).
 
 #include <Eigen/Dense>
 #include <limits>
@@ -53,14 +60,15 @@ namespace impactkit {
 
 /// What happened when the release map was applied.
 enum class StickingMapStatus {
-  kOk,           ///< every release followed: the result is valid
-  kNotReleased,  ///< the state is not a release: the contact force still presses the mass into the
-                 ///< stop
-  kNoImpact,     ///< no impact within max_free_periods of a release
-  kNoChatter,    ///< impacts for max_free_periods (or max_impacts of them) without sticking
-  kNoSticking,   ///< the chatter accumulated with Fs <= 0: the mass is not held
-  kNoRelease,    ///< held for max_stuck_periods without a release
-  kOtherStop,    ///< another stop holds a mass, or is met while this one holds its mass
+  kOk,            ///< every release followed: the result is valid
+  kNotReleased,   ///< the state is not a release: the contact force still presses the mass into the
+                  ///< stop
+  kNoImpact,      ///< no impact within max_free_periods of a release
+  kNoChatter,     ///< impacts for max_free_periods (or max_impacts of them) without sticking
+  kNoSticking,    ///< the chatter accumulated with Fs <= 0: the mass is not held
+  kNoRelease,     ///< held for max_stuck_periods without a release
+  kOtherStop,     ///< the k-th release is from another stop than the section's
+  kMetWhileHeld,  ///< a mass reaches its stop while another stop holds a mass
 };
 
 std::string ToString(StickingMapStatus status);
@@ -91,6 +99,7 @@ struct StickingImpact {
 /// One application of the map: from a release to the next.
 struct StickingCycle {
   double release = 0.0;                 ///< the release it starts from
+  int stop = 0;                         ///< the stop it sticks at, and the next release's
   std::vector<StickingImpact> impacts;  ///< simulated impacts at every stop, the last one te
   double accumulation = 0.0;            ///< t*: the chatter's end, sticking begins
   double contact_force = 0.0;           ///< Fs(t*) > 0
