@@ -35,15 +35,18 @@ Mode::Mode(const System& system, const std::vector<Stop>& stops, StopSet held)
   for (std::size_t k = 0; k < stops.size(); ++k) {
     if (Holds(static_cast<int>(k))) held_positions_(stops[k].Dof()) = stops[k].Position();
   }
+  auto prepare = [&](const impactkit::Witness& witness) {
+    return PreparedWitness{flow_.Prepare(witness.output), witness.action};
+  };
   for (std::size_t k = 0; k < stops.size(); ++k) {
     const Stop& stop = stops[k];
     const auto at = std::find(moving_.begin(), moving_.end(), stop.Dof());
     dof_index_.push_back(at == moving_.end() ? -1 : static_cast<int>(at - moving_.begin()));
     if (Holds(static_cast<int>(k))) {
       contact_forces_[k] = stop.ContactForce(system, moving_, held_positions_);
-      witnesses_[k] = flow_.Prepare(stop.Release(system, moving_, held_positions_).output);
+      witnesses_[k] = prepare(stop.Release(system, moving_, held_positions_));
     } else if (dof_index_.back() >= 0) {
-      witnesses_[k] = flow_.Prepare(stop.Gap(moving_).output);
+      witnesses_[k] = prepare(stop.Gap(moving_));
       impulse_directions_[k] =
           held == 0 ? stop.ImpulseDirection() : stop.ImpulseDirection(system.mass, moving_);
     }

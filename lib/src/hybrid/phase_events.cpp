@@ -65,7 +65,7 @@ std::optional<PhaseEvents::SequenceEnd> PhaseEvents::AfterImpact(
   }
   const Mode& held = hybrid_.Holding(mode_->Held() | StopBit(stop));
   held.Flow().Transient(te, held.Reduced(x), held.Reduced(v), &held_transient_);
-  held.Flow().Output(*held.Witness(stop), te, held_transient_, &held_witness_);
+  held.Flow().Output(held.Witness(stop)->output, te, held_transient_, &held_witness_);
   const ChatterTail tail = rule.SumTail(held_witness_, mode_->Contact(stop), te, rebound);
   if (!tail.accumulates) return std::nullopt;
   return SequenceEnd{tail.end, tail.cut};

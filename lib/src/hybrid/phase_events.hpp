@@ -36,10 +36,11 @@ class PhaseEvents {
   /// `options` must outlive this (the rules refer to it).
   PhaseEvents(const HybridSystem& hybrid, const SimulationOptions& options);
 
-  /// Stop `stop`'s witness crossing at `t`.
+  /// Stop `stop`'s witness crossing at `t`, and what it triggers.
   struct Event {
     int stop = -1;
     double t = 0.0;
+    EventAction action = EventAction::kArrival;
   };
   /// A stop whose search begins only at `begin` (> the phase's start): the
   /// release map's own stop just after a release, where the gap leaves 0
@@ -133,10 +134,10 @@ inline void PhaseEvents::Begin(const Mode& mode, const HybridState& state,
   mode_ = &mode;
   t0_ = state.t;
   for (int k = 0; k < hybrid_.StopCount(); ++k) {
-    const PreparedOutput* witness = mode.Witness(k);
+    const PreparedWitness* witness = mode.Witness(k);
     if (!witness) continue;
-    mode.Flow().Output(*witness, t0_, z0, &witnesses_[k]);
-    if (mode.Holds(k)) continue;
+    mode.Flow().Output(witness->output, t0_, z0, &witnesses_[k]);
+    if (witness->action != EventAction::kArrival) continue;
     const Stop& stop = hybrid_.GetStop(k);
     const double gap = stop.GapOf(state.x), speed = stop.SpeedTowards(state.v(stop.Dof()));
     length_scales_[k] = GapLengthScale(hybrid_, k, state.x, state.v, witnesses_[k]);
@@ -152,11 +153,12 @@ inline std::optional<PhaseEvents::Event> PhaseEvents::First(double end, int last
   const int stops = hybrid_.StopCount();
   for (int i = 1; i <= stops; ++i) {
     const int k = (last + i) % stops;
-    if (!mode_->Witness(k)) continue;  // another stop holds its mass
+    const PreparedWitness* witness = mode_->Witness(k);
+    if (!witness) continue;  // another stop holds its mass
     const std::optional<double> te =
-        mode_->Holds(k) ? ReleaseTime(k, end) : ArrivalTime(k, end, late);
+        witness->action == EventAction::kRelease ? ReleaseTime(k, end) : ArrivalTime(k, end, late);
     if (!te || (first && *te >= end)) continue;
-    first = Event{k, *te};
+    first = Event{k, *te, witness->action};
     end = *te;
     if (end == t0_) break;  // nothing comes earlier
   }

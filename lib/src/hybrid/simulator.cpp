@@ -196,15 +196,19 @@ void HybridRun::Phase() {
   if (stuck) summary_.stuck_time += end - t0;
   if (!event) return;
   const int k = event->stop;
-  if (mode.Holds(k)) {
-    state_.held &= ~StopBit(k);
-    ++summary_.releases;
-    observer_.OnRelease({k, stick_begins_[k], end});
-    return;
+  switch (event->action) {
+    case EventAction::kRelease:
+      state_.held &= ~StopBit(k);
+      ++summary_.releases;
+      observer_.OnRelease({k, stick_begins_[k], end});
+      return;
+    case EventAction::kArrival: {
+      const Stop& stop = hybrid_.GetStop(k);
+      state_.x(stop.Dof()) = stop.Position();
+      ArriveAtStop(k, end, std::max(stop.SpeedTowards(state_.v(stop.Dof())), 0.0));
+      return;
+    }
   }
-  const Stop& stop = hybrid_.GetStop(k);
-  state_.x(stop.Dof()) = stop.Position();
-  ArriveAtStop(k, end, std::max(stop.SpeedTowards(state_.v(stop.Dof())), 0.0));
 }
 
 /// The state at t along the mode's flow from z0.
@@ -304,7 +308,7 @@ void HybridRun::LandAtStop(int stop) {
   const Mode& held = hybrid_.Holding(candidate);
   const Eigen::VectorXd z0 =
       held.Flow().Transient(state_.t, held.Reduced(state_.x), held.Reduced(state_.v));
-  held.Flow().Output(*held.Witness(stop), state_.t, z0, &held_witness_);
+  held.Flow().Output(held.Witness(stop)->output, state_.t, z0, &held_witness_);
   if (!Stop::Holds(held_witness_, state_.t, phase_events_.HeldSearch(held_witness_))) return;
   state_.held = candidate;
   stick_begins_[stop] = state_.t;

@@ -52,9 +52,10 @@ void Stop::Reset(Eigen::VectorXd& v, const Eigen::VectorXd& direction, double re
 
 Witness Stop::Gap(const std::vector<int>& moving) const {
   const auto m = static_cast<int>(moving.size());
-  return {"a mass reaches its stop (an impact)",
+  return {"a mass reaches its stop (an impact or a landing)",
           {sign_ * Eigen::RowVectorXd::Unit(m, IndexAmong(moving, dof_)),
-           Eigen::RowVectorXd::Zero(m), 0.0, -sign_ * position_}};
+           Eigen::RowVectorXd::Zero(m), 0.0, -sign_ * position_},
+          EventAction::kArrival};
 }
 
 /// Fs = s × row c of (A cos Ωt − C v − K x − M a), with the held masses at
@@ -93,7 +94,8 @@ Witness Stop::Release(const System& system, const std::vector<int>& moving,
   minus.wv = -minus.wv;
   minus.cos_amplitude = -minus.cos_amplitude;
   minus.offset = -minus.offset;
-  return {"the stop's force on the held mass falls through zero (a release)", minus};
+  return {"the stop's force on the held mass falls through zero (a release)", minus,
+          EventAction::kRelease};
 }
 
 Eigen::MatrixXd Stop::ResetJacobian(int dofs, double restitution) const {

@@ -296,8 +296,8 @@ bool StickingMap::Cycle::HeldMeetsOtherStop(int stop, const LinearFlow& flow, do
   const Mode& held = hybrid_.Holding(StopBit(stop));
   for (int j = 0; j < hybrid_.StopCount(); ++j) {
     // Null for the stops of the held mass: it does not move.
-    const PreparedOutput* gap = j == stop ? nullptr : held.Witness(j);
-    if (gap && FirstUpcrossing(flow.Output(*gap, te, z0), te, end, events_)) return true;
+    const PreparedWitness* gap = j == stop ? nullptr : held.Witness(j);
+    if (gap && FirstUpcrossing(flow.Output(gap->output, te, z0), te, end, events_)) return true;
   }
   return false;
 }

@@ -45,10 +45,10 @@ class HybridSystem {
 
   const LinearFlow& FreeFlow() const { return free_->Flow(); }
   /// Stop `stop`'s gap on the free flow.
-  const PreparedOutput& Gap(int stop) const { return *free_->Witness(stop); }
+  const PreparedOutput& Gap(int stop) const { return free_->Witness(stop)->output; }
   /// The flow while stop `stop` alone holds its mass, and −Fs on it.
   const LinearFlow& StuckFlow(int stop) const { return held_[stop]->Flow(); }
-  const PreparedOutput& Release(int stop) const { return *held_[stop]->Witness(stop); }
+  const PreparedOutput& Release(int stop) const { return held_[stop]->Witness(stop)->output; }
   /// The shortest time scale of the free motion (event search, chatter).
   double TimeScale() const { return time_scale_; }
 

@@ -34,6 +34,13 @@ struct ContactResponse {
   double coupling = 0.0;
 };
 
+/// A stop's witness prepared on a mode's flow, with the action its
+/// crossing triggers (Stop::Gap's arrival, Stop::Release's release).
+struct PreparedWitness {
+  PreparedOutput output;
+  EventAction action = EventAction::kArrival;
+};
+
 class Mode {
  public:
   /// Throws InvalidInput if the masses that move have no bounded steady
@@ -45,9 +52,10 @@ class Mode {
   const LinearFlow& Flow() const { return flow_; }
   /// The DOFs that move, in order: the flow's coordinates.
   const std::vector<int>& Moving() const { return moving_; }
-  /// Stop `stop`'s witness prepared on the flow: its gap, or −Fs when it
-  /// holds its mass; null when another stop holds its mass.
-  const PreparedOutput* Witness(int stop) const {
+  /// Stop `stop`'s witness prepared on the flow: its gap (an arrival), or
+  /// −Fs when it holds its mass (a release); null when another stop holds
+  /// its mass.
+  const PreparedWitness* Witness(int stop) const {
     return witnesses_[stop] ? &*witnesses_[stop] : nullptr;
   }
 
@@ -92,7 +100,7 @@ class Mode {
   std::vector<int> dof_index_;      ///< per stop: its DOF among moving_, or -1
   Eigen::VectorXd held_positions_;  ///< size N: xs of the held masses, 0 elsewhere
   LinearFlow flow_;
-  std::vector<std::optional<PreparedOutput>> witnesses_;
+  std::vector<std::optional<PreparedWitness>> witnesses_;
   std::vector<std::optional<LinearOutput>> contact_forces_;  ///< of held stops
   std::vector<Eigen::VectorXd> impulse_directions_;          ///< of stops whose mass moves
   Eigen::MatrixXd inverse_mass_;                             ///< M_FF⁻¹

@@ -34,11 +34,25 @@
 
 namespace impactkit {
 
+/// What a witness's crossing triggers (Drake's event beside its witness
+/// function): the simulator and the section maps act on this, not on the
+/// mode the crossing happened in.
+enum class EventAction {
+  /// The mass reaches its stop: an impact by the stop's reset, or a landing
+  /// where its chatter rule cannot resolve the bounce (then held if the stop
+  /// pushes on it).
+  kArrival,
+  /// The stop stops pushing on the mass it holds: the mass moves again.
+  kRelease,
+};
+
 /// An event as data: w(t) = l_x·x + l_v·v + α cos Ωt + β evaluated on a
-/// flow's exact motion; the event is w crossing 0 upwards.
+/// flow's exact motion; the event is w crossing 0 upwards, and `action` what
+/// it does.
 struct Witness {
   std::string_view description;  ///< what the crossing means
   LinearOutput output;           ///< w, over the coordinates of the mode it watches
+  EventAction action = EventAction::kArrival;
 };
 
 class Stop {
