@@ -217,8 +217,9 @@ TEST_CASE("a mass that sticks at both stops of a clearance: one orbit of two rel
   }
 }
 
-TEST_CASE("a family that sticks at both stops of a clearance ends where the simulator stops sticking",
-          "[stops][sticking][continuation]") {
+TEST_CASE(
+    "a family that sticks at both stops of a clearance ends where the simulator stops sticking",
+    "[stops][sticking][continuation]") {
   System system = UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Ones(1), 0.2, 0.5, 0.8);
   system.stops.push_back({0, StopSide::kLower, -0.5, 0.8});
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
@@ -239,4 +240,43 @@ TEST_CASE("a family that sticks at both stops of a clearance ends where the simu
   };
   CHECK(sticks(omega_end - 1e-3));
   CHECK(!sticks(omega_end + 1e-3));
+}
+
+TEST_CASE("past a sticking family's grazing: the family with an impact more, as simulated",
+          "[stops][sticking][continuation]") {
+  // On paper-mass1-stop.toml the family from Ω = 0.2 ends, going down, where
+  // a new impact appears before the chatter (Ω ≈ 0.14484). The release map
+  // is continuous there: the grazing orbit's release state, refined just
+  // below, is the sticking orbit with one impact more, and it is the one
+  // the simulator settles on there.
+  const System system = PaperWithMass1Stop();
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
+  ContinuationOptions options;
+  options.lower = 0.12;
+  options.upper = 0.2;
+  options.direction = ContinuationDirection::kDecreasing;
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  REQUIRE(branch.end == BranchEnd::kGrazing);
+  // On the way one period doubling (Ω ≈ 0.148449), and only one: just
+  // above it a multiplier passes through infinity from −2.9 to −0.11, a
+  // sign change of det(D P + I) that no multiplier −1 explains.
+  const auto doublings = std::count_if(
+      branch.special_points.begin(), branch.special_points.end(),
+      [](const SpecialPoint& s) { return s.type == SpecialPointType::kPeriodDoubling; });
+  CHECK(doublings == 1);
+  const SpecialPoint& graze = branch.special_points.back();
+  REQUIRE(graze.type == SpecialPointType::kGrazing);
+  CHECK_THAT(graze.parameter, WithinAbs(0.14484, 1e-4));
+  const std::vector<GrazingSeed> seeds = SeedsAtGrazing(system, branch, graze, options);
+  REQUIRE(seeds.size() == 2);
+  const GrazingSeed& below = seeds[0];
+  REQUIRE(below.system.omega < graze.parameter);
+  PeriodicOrbit past;
+  REQUIRE(FindOrbit(below.system, below.eta, below.orbit, &past).termination ==
+          Termination::kConverged);
+  CHECK(past.p == graze.point.orbit.p + 1);
+  const PeriodicOrbit simulated = testing::SeededStickingOrbit(below.system);
+  CHECK(simulated.p == past.p);
+  CHECK_THAT(past.stuck[0].stick_phase, WithinAbs(simulated.stuck[0].stick_phase, 1e-8));
+  CHECK_THAT(past.stuck[0].release_phase, WithinAbs(simulated.stuck[0].release_phase, 1e-9));
 }

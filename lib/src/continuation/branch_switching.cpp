@@ -107,17 +107,40 @@ std::optional<BranchStart> PitchforkBranchStart(const System& system, const Bran
   return StartAt(problem, *x, w);
 }
 
+namespace {
+
+/// The seed `state` with `orbit` at `offset` either side of μ, where the
+/// parameter's range allows.
+std::vector<GrazingSeed> SidesOf(const BranchProblem& problem, double mu, double offset,
+                                 const OrbitOptions& orbit, const Eigen::VectorXd& state) {
+  std::vector<GrazingSeed> seeds;
+  for (double side : {-1.0, 1.0}) {
+    try {
+      seeds.push_back({problem.SystemAt(mu + side * offset), orbit, state});
+    } catch (const InvalidInput&) {
+      // That side is outside the parameter's range.
+    }
+  }
+  return seeds;
+}
+
+}  // namespace
+
 std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& branch,
                                         const SpecialPoint& graze,
                                         const ContinuationOptions& options, double offset) {
   if (graze.type != SpecialPointType::kGrazing && graze.type != SpecialPointType::kSticking) {
     throw InvalidInput("SeedsAtGrazing needs a located grazing or sticking point");
   }
-  if (branch.section != OrbitSection::kImpact) {
-    throw InvalidInput("SeedsAtGrazing needs a branch of impacting orbits");
-  }
   const BranchPoint& point = graze.point;
   const BranchProblem problem = ProblemOf(system, branch, options);
+  if (branch.section == OrbitSection::kRelease) {
+    OrbitOptions orbit = options.orbit;
+    orbit.releases = branch.releases;
+    orbit.q = branch.q;
+    orbit.release_map.stop = point.orbit.stop;
+    return SidesOf(problem, point.parameter, offset, orbit, point.orbit.eta);
+  }
   const ImpactMap* map = problem.ImpactMapAt(point.parameter);
   const MapResult image = map->Apply(point.orbit.eta, branch.p, false);
   auto impact_state = [&](int k) { return k == 0 ? point.orbit.eta : image.path[k - 1]; };
@@ -160,15 +183,7 @@ std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& bran
     orbit.map.stop = contacts.clearance_stop;
     eta = map->ToEta(at.t, at.x, v, contacts.clearance_stop);
   }
-  std::vector<GrazingSeed> seeds;
-  for (double side : {-1.0, 1.0}) {
-    try {
-      seeds.push_back({problem.SystemAt(point.parameter + side * offset), orbit, eta});
-    } catch (const InvalidInput&) {
-      // That side is outside the parameter's range.
-    }
-  }
-  return seeds;
+  return SidesOf(problem, point.parameter, offset, orbit, eta);
 }
 
 }  // namespace impactkit

@@ -312,8 +312,12 @@ class BranchTracer {
   /// the critical point solved directly from it (critical_point.hpp) — the
   /// bracketing falls short where trials between a and b do not converge,
   /// as on long orbits near a graze. Empty if the direct solve fails or
-  /// lands away from the stretch a–b: a sign change of det(D P ∓ I) that no
-  /// multiplier at ±1 explains (one passing through infinity) is no point.
+  /// lands off the stretch a–b (its distances to a and b sum to more than
+  /// 1.5 times the chord: the stretch's curvature allows a little more than
+  /// the chord, a point outside it much more): a sign change of
+  /// det(D P ∓ I) that no multiplier at ±1 explains (one passing through
+  /// infinity) is no point, and a solve that runs back to a point located
+  /// before is none either.
   std::optional<BranchPoint> SolvedCriticalPoint(const BranchPoint& a, const BranchPoint& b,
                                                  const BranchPoint& located, double lambda) const {
     if (CriticalDistance(located, lambda) <= kCriticalSolved) return located;
@@ -321,8 +325,8 @@ class BranchTracer {
         problem_, BranchProblem::PointX(located), lambda, options_.orbit.newton);
     if (!x) return std::nullopt;
     const double stretch = (BranchProblem::PointX(b) - BranchProblem::PointX(a)).norm();
-    if ((*x - BranchProblem::PointX(a)).norm() > 2.0 * stretch ||
-        (*x - BranchProblem::PointX(b)).norm() > 2.0 * stretch) {
+    if ((*x - BranchProblem::PointX(a)).norm() + (*x - BranchProblem::PointX(b)).norm() >
+        1.5 * stretch) {
       return std::nullopt;
     }
     std::optional<BranchPoint> point = problem_.Describe(*x, a.tangent);

@@ -311,10 +311,9 @@ class NetworkTracer {
           }
         }
       }
-      // Seeds past a grazing are impacting orbits with an impact more or fewer.
+      // Seeds past a grazing are orbits with an impact more or fewer.
       const bool graze =
-          branch.section == OrbitSection::kImpact &&
-          (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking);
+          s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking;
       if (graze && options_.switch_grazing) {
         ContinuationOptions options = options_.continuation;
         options.orbit.p = branch.p;

@@ -196,9 +196,13 @@ std::optional<BranchStart> PitchforkBranchStart(const System& system, const Bran
 /// impact), at the parameter `offset` to either side of it: which side
 /// such an orbit lives on depends on the grazing. Not yet orbits: refine
 /// each with FindOrbit (p and q in `orbit`). None when p would drop to 0.
+/// A sticking family's grazing (an impact appearing or vanishing before a
+/// chatter) leaves the release map continuous: its seeds are the grazing
+/// orbit's own release state, the same k releases in q periods, and the
+/// orbit refined beyond the grazing has the impact more or fewer.
 struct GrazingSeed {
   System system;       ///< at the seed's parameter value
-  OrbitOptions orbit;  ///< p ± 1, q
+  OrbitOptions orbit;  ///< p ± 1 (or the k releases of a sticking family), q
   Eigen::VectorXd eta;
 };
 std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& branch,
