@@ -153,12 +153,23 @@ TEST_CASE("a mass at rest on the stop lands: no impact at zero speed (closed for
   HybridState state = RestState(s);
   ImpactRecorder impacts;
   Releases releases;
+  struct Landings : Observer {
+    void OnLanding(const Landing& landing) override { all.push_back(landing); }
+    std::vector<Landing> all;
+  } landings;
   ObserverList observers;
   observers.Add(impacts);
   observers.Add(releases);
+  observers.Add(landings);
   const SimulationSummary summary = Simulator(s).Run(state, 20 * s.ForcingPeriod(), observers);
   CHECK(summary.status == SimulationStatus::kReachedEnd);
   CHECK(summary.landings >= 1);
+  // The observer hears each landing, with its stop: the mass at rest on
+  // the stop (x = 0) and pushed into it lands at once, at t = 0 to the
+  // event search's time tolerance (1e-13).
+  REQUIRE(landings.all.size() == static_cast<std::size_t>(summary.landings));
+  CHECK(landings.all.front().stop == 0);
+  CHECK_THAT(landings.all.front().t, WithinAbs(0.0, 1e-13));
   REQUIRE(!releases.times.empty());
   CHECK_THAT(releases.times.front(), WithinAbs(t_r, 1e-12));
   REQUIRE(!impacts.Impacts().empty());

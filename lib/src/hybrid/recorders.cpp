@@ -16,6 +16,9 @@ void ObserverList::OnImpact(const Impact& impact) {
 void ObserverList::OnChatter(const ChatterEnd& chatter) {
   for (Observer* o : observers_) o->OnChatter(chatter);
 }
+void ObserverList::OnLanding(const Landing& landing) {
+  for (Observer* o : observers_) o->OnLanding(landing);
+}
 void ObserverList::OnRelease(const Release& release) {
   for (Observer* o : observers_) o->OnRelease(release);
 }

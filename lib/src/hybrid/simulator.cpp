@@ -248,6 +248,7 @@ void HybridRun::ArriveAtStop(int stop, double te, double speed) {
       s.Absorb(state_.v, hybrid_.Holding(state_.held).ImpulseDirection(stop));
     }
     ++summary_.landings;
+    observer_.OnLanding({stop, te});
     LandAtStop(stop);
     return;
   }

@@ -19,6 +19,7 @@ class ObserverList : public Observer {
   void OnSegment(const Segment& segment) override;
   void OnImpact(const Impact& impact) override;
   void OnChatter(const ChatterEnd& chatter) override;
+  void OnLanding(const Landing& landing) override;
   void OnRelease(const Release& release) override;
   bool ShouldStop() const override;
 

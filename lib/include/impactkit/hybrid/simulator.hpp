@@ -21,7 +21,8 @@
 ///     at an arrival (c moving, at its stop):
 ///       y- <- F(te)
 ///       an arrival whose bounce height is unresolved is a landing: v_c <- 0,
-///           no impact (docs/theory.md §4); then as after chatter, below
+///           no impact (docs/theory.md §4); observer.OnLanding({stop, te});
+///           then as after chatter, below
 ///       otherwise v_c(te+) <- -r v_c(te-);  observer.OnImpact(...)
 ///       chatter (hybrid/chatter_rule.hpp), r < 1: once the rebound's
 ///           height is unresolved, or the chatter map is exact to the
@@ -157,6 +158,13 @@ struct ChatterEnd {
   double t_end = 0.0;
 };
 
+/// Stop `stop`'s mass arrives at it at t too slowly for a resolved bounce
+/// (a landing: no impact); it is held from there if the stop pushes on it.
+struct Landing {
+  int stop = 0;  ///< index into System::stops
+  double t = 0.0;
+};
+
 /// Stop `stop`'s mass leaves it at t_release after sticking since t_begin.
 struct Release {
   int stop = 0;  ///< index into System::stops
@@ -164,8 +172,9 @@ struct Release {
   double t_release = 0.0;
 };
 
-/// Receives what the simulator finds; every method has an empty default.
-/// A segment is valid only during the call.
+/// Receives what the simulator finds, every event with the stop it belongs
+/// to; every method has an empty default. A segment is valid only during
+/// the call.
 class Observer {
  public:
   virtual ~Observer() = default;
@@ -173,6 +182,7 @@ class Observer {
   virtual void OnSegment(const Segment& segment) { (void)segment; }
   virtual void OnImpact(const Impact& impact) { (void)impact; }
   virtual void OnChatter(const ChatterEnd& chatter) { (void)chatter; }
+  virtual void OnLanding(const Landing& landing) { (void)landing; }
   virtual void OnRelease(const Release& release) { (void)release; }
   /// Return true to stop the run after the current event.
   virtual bool ShouldStop() const { return false; }
