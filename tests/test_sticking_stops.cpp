@@ -217,6 +217,39 @@ TEST_CASE("a mass that sticks at both stops of a clearance: one orbit of two rel
   }
 }
 
+TEST_CASE("masses that stick in turn at stops of their own: one orbit through both stuck flows",
+          "[stops][sticking]") {
+  // paper-mass1-stop.toml with mass 1's stop raised to -0.3: mass 1 is held
+  // at it, then mass 2 at the paper's stop, each once per period. Between
+  // the two the section's coordinates leave out another mass, and while
+  // mass 1 is held mass 2 moves: its extent is measured on that stuck flow.
+  System system = PaperWithMass1Stop();
+  system.stops[0].position = -0.3;
+  Validate(system);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
+  REQUIRE((orbit.releases == 2 && orbit.q == 1));
+  CHECK(orbit.stuck[0].stop != orbit.stuck[1].stop);
+  CheckEveryStuckPhase(system, orbit);
+  StickingMapOptions map_options;
+  map_options.stop = orbit.stop;
+  const Eigen::MatrixXd fd =
+      FiniteDifferenceJacobian(StickingMap(system, map_options), orbit.eta, 2);
+  REQUIRE(fd.size() > 0);
+  CHECK((orbit.jacobian - fd).cwiseAbs().maxCoeff() < 1e-6 * orbit.jacobian.cwiseAbs().maxCoeff());
+  // The section stop's mass's extent against the simulator's exact
+  // extrema of a steady period.
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, 300 * system.ForcingPeriod());
+  ExtremaRecorder extrema(system.ForcingPeriod());
+  simulator.Run(state, 303 * system.ForcingPeriod(), extrema);
+  const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
+  REQUIRE(!periods.empty());
+  const int dof = system.stops[orbit.stop].dof;
+  CHECK_THAT(orbit.contacts.contact_max, WithinAbs(periods.front().max(dof), 1e-9));
+  CHECK_THAT(orbit.contacts.contact_min, WithinAbs(periods.front().min(dof), 1e-9));
+}
+
 TEST_CASE(
     "a family that sticks at both stops of a clearance ends where the simulator stops sticking",
     "[stops][sticking][continuation]") {
