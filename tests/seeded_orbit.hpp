@@ -45,6 +45,20 @@ inline PeriodicOrbit SeededStickingOrbit(const System& system) {
   return orbit;
 }
 
+/// The simulator's exact extrema of each coordinate over one steady period
+/// (its interior turns found like events, recorders.hpp): the first whole
+/// period after 300 from rest.
+inline PeriodExtrema SteadyPeriodExtrema(const System& system) {
+  HybridState state = RestState(system);
+  const Simulator simulator(system);
+  simulator.Run(state, 300 * system.ForcingPeriod());
+  ExtremaRecorder extrema(system.ForcingPeriod());
+  simulator.Run(state, 303 * system.ForcingPeriod(), extrema);
+  const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
+  REQUIRE(!periods.empty());
+  return periods.front();
+}
+
 /// A stuck phase of a steady simulation as the simulator's recorders see
 /// it: from its chatter's accumulation point (begin) to the release (end),
 /// and the stop it was at: the first whole one in the two periods after

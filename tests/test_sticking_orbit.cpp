@@ -111,15 +111,8 @@ TEST_CASE("paper system at Omega = 0.2: stick and release phases match a long si
   CHECK(orbit.p == orbit.stuck[0].impacts);
   CHECK(orbit.contacts.contact_margin == orbit.stuck[0].contact_force);
   // The extent of x2 over the orbit against the simulator's exact extrema
-  // of a steady period (its interior turns found like events, recorders.hpp).
-  HybridState state = RestState(system);
-  const Simulator simulator(system);
-  simulator.Run(state, 300 * system.ForcingPeriod());
-  ExtremaRecorder extrema(system.ForcingPeriod());
-  simulator.Run(state, 303 * system.ForcingPeriod(), extrema);
-  const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
-  REQUIRE(!periods.empty());
-  const PeriodExtrema& period = periods.front();
+  // of a steady period.
+  const PeriodExtrema period = testing::SteadyPeriodExtrema(system);
   CHECK_THAT(orbit.contacts.contact_max, WithinAbs(period.max(1), 1e-9));
   CHECK_THAT(orbit.contacts.contact_min, WithinAbs(period.min(1), 1e-9));
 }
