@@ -2,8 +2,8 @@
 /// \file event_time.hpp (private)
 /// How the state and the time at an event depend on what the flight to it
 /// started from, when the event is where a witness w(y) crosses 0: the one
-/// event-time correction (saltation) of the impact map, the release map and
-/// the fixed-time orbit equations.
+/// event-time correction (saltation) of the impact map, the release map,
+/// the fixed-time orbit equations and the grazing limit.
 ///
 /// A flight from (t0, y0), both depending on p, has at a fixed time t1
 ///
@@ -36,6 +36,22 @@ inline EventDerivatives ThroughEvent(const Eigen::MatrixXd& g, const Eigen::RowV
   d.time = -(gradient * g) / slope;
   d.state = g + field * d.time;
   return d;
+}
+
+/// The saltation matrix of an event with reset Jacobian `reset`: how a
+/// perturbation of the state at the event's time, just before it, is
+/// carried to just after it at that same time,
+///
+///     S = R (I − f⁻ l / ẇ) + f⁺ l / ẇ = R + (f⁺ − R f⁻) l / ẇ,
+///
+/// f⁻ and f⁺ the vector fields before and after: ThroughEvent to the
+/// perturbed event, the reset, and AtFixedTime back on the flow after it.
+inline Eigen::MatrixXd Saltation(const Eigen::MatrixXd& reset, const Eigen::RowVectorXd& gradient,
+                                 double slope, const Eigen::VectorXd& before,
+                                 const Eigen::VectorXd& after) {
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(reset.rows(), reset.cols());
+  const EventDerivatives event = ThroughEvent(identity, gradient, slope, before);
+  return AtFixedTime(identity, reset * event.state, event.time, after);
 }
 
 }  // namespace impactkit

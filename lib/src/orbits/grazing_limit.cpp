@@ -5,31 +5,35 @@
 #include <cmath>
 #include <numbers>
 
+#include "hybrid/event_time.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
 
 namespace impactkit {
 namespace {
 
-/// S(ε) = regular + d0 nᵀ / ε at one contact (nothing multiplied by G yet).
+/// S(u) = regular + d0 n / u at one contact: the saltation matrix as the
+/// mass arrives at speed u, with its 1/u part split off. f⁺ − R f⁻ is
+/// affine in u (the arrival velocity enters the vector field linearly), so
+/// S(u) = A + B / u exactly, and two speeds give A and B = d0 n.
 SpeedSplitMonodromy SplitSaltation(const HybridSystem& hybrid, const StopContact& at) {
   const Stop& stop = hybrid.GetStop(at.stop);
   const HybridState& contact = at.state;
   const int n = hybrid.GetSystem().Dof(), c = stop.Dof();
   const Eigen::MatrixXd reset = stop.ResetJacobian(n);
-  // f⁺ − R f⁻ with the mass arriving at `speed`: affine in it.
-  auto jump = [&](double speed) {
+  Eigen::RowVectorXd normal = Eigen::RowVectorXd::Zero(2 * n);
+  normal(c) = stop.Sign();  // the gap's gradient: its slope is the speed
+  auto saltation = [&](double speed) {
     Eigen::VectorXd before = contact.v;
     before(c) = stop.Sign() * speed;
     Eigen::VectorXd after = before;
     stop.Reset(after);
-    return Eigen::VectorXd(hybrid.VectorField(contact.t, contact.x, after) -
-                           reset * hybrid.VectorField(contact.t, contact.x, before));
+    return Saltation(reset, normal, speed, hybrid.VectorField(contact.t, contact.x, before),
+                     hybrid.VectorField(contact.t, contact.x, after));
   };
-  const Eigen::VectorXd d0 = jump(0.0), d1 = jump(1.0) - d0;
-  Eigen::RowVectorXd normal = Eigen::RowVectorXd::Zero(2 * n);
-  normal(c) = stop.Sign();
-  return {reset + d1 * normal, d0, normal};
+  const Eigen::MatrixXd at_1 = saltation(1.0), at_2 = saltation(2.0);
+  const Eigen::MatrixXd singular = 2.0 * (at_1 - at_2);
+  return {at_1 - singular, singular * normal.transpose(), normal};
 }
 
 }  // namespace
