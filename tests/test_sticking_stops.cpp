@@ -269,13 +269,16 @@ TEST_CASE(
   CHECK(!sticks(omega_end + 1e-3));
 }
 
-TEST_CASE("past a sticking family's grazing: the family with an impact more, as simulated",
-          "[stops][sticking][continuation]") {
-  // On paper-mass1-stop.toml the family from Ω = 0.2 ends, going down, where
-  // a new impact appears before the chatter (Ω ≈ 0.14484). The release map
-  // is continuous there: the grazing orbit's release state, refined just
-  // below, is the sticking orbit with one impact more, and it is the one
-  // the simulator settles on there.
+TEST_CASE(
+    "a sticking family ends where an impact at another stop appears, and both sides meet there",
+    "[stops][sticking][continuation]") {
+  // On paper-mass1-stop.toml the family from Ω = 0.2 (mass 2 sticking at
+  // its stop, mass 1 hitting its own stop 3 times per period) ends, going
+  // down, where mass 1's next turn reaches its stop (Ω ≈ 0.1901614). The
+  // release map is continuous there: the grazing orbit's release state,
+  // refined just below, is the sticking orbit with that impact more, it is
+  // the one the simulator settles on there, and its own family, followed
+  // back up, ends where that impact vanishes at the same Ω.
   const System system = PaperWithMass1Stop();
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
@@ -284,16 +287,26 @@ TEST_CASE("past a sticking family's grazing: the family with an impact more, as 
   options.direction = ContinuationDirection::kDecreasing;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == BranchEnd::kGrazing);
-  // On the way one period doubling (Ω ≈ 0.148449), and only one: just
-  // above it a multiplier passes through infinity from −2.9 to −0.11, a
-  // sign change of det(D P + I) that no multiplier −1 explains.
-  const auto doublings = std::count_if(
-      branch.special_points.begin(), branch.special_points.end(),
-      [](const SpecialPoint& s) { return s.type == SpecialPointType::kPeriodDoubling; });
-  CHECK(doublings == 1);
   const SpecialPoint& graze = branch.special_points.back();
   REQUIRE(graze.type == SpecialPointType::kGrazing);
-  CHECK_THAT(graze.parameter, WithinAbs(0.14484, 1e-4));
+  CHECK(graze.monitor < 1e-9);  // the new impact's clearance
+  // Fixed-Ω solves 1e-5 either side (FindOrbit, not the march): mass 1's
+  // impacts per period are 3 above and 4 below.
+  auto impacts_at_mass_1 = [&](double omega) {
+    System s = system;
+    s.omega = omega;
+    OrbitOptions on_family;
+    on_family.releases = start.releases;
+    on_family.q = start.q;
+    on_family.release_map.stop = start.stop;
+    PeriodicOrbit orbit;
+    REQUIRE(FindOrbit(s, start.eta, on_family, &orbit).termination == Termination::kConverged);
+    return std::count_if(orbit.impacts.begin(), orbit.impacts.end(),
+                         [](const OrbitImpact& impact) { return impact.stop == 0; });
+  };
+  CHECK(impacts_at_mass_1(graze.parameter + 1e-5) == 3);
+  CHECK(impacts_at_mass_1(graze.parameter - 1e-5) == 4);
+
   const std::vector<GrazingSeed> seeds = SeedsAtGrazing(system, branch, graze, options);
   REQUIRE(seeds.size() == 2);
   const GrazingSeed& below = seeds[0];
@@ -306,4 +319,43 @@ TEST_CASE("past a sticking family's grazing: the family with an impact more, as 
   CHECK(simulated.p == past.p);
   CHECK_THAT(past.stuck[0].stick_phase, WithinAbs(simulated.stuck[0].stick_phase, 1e-8));
   CHECK_THAT(past.stuck[0].release_phase, WithinAbs(simulated.stuck[0].release_phase, 1e-9));
+
+  ContinuationOptions back = options;
+  back.direction = ContinuationDirection::kIncreasing;
+  const Branch returning = ContinueBranch({below.system, past, {}}, back);
+  REQUIRE(returning.end == BranchEnd::kGrazing);
+  const SpecialPoint& vanishing = returning.special_points.back();
+  REQUIRE(vanishing.vanishing_impact >= 0);
+  const auto which = static_cast<std::size_t>(vanishing.vanishing_impact);
+  CHECK(returning.points.back().orbit.impacts[which].stop == 0);
+  CHECK(vanishing.monitor < 1e-5);  // its speed
+  CHECK_THAT(vanishing.parameter, WithinAbs(graze.parameter, 1e-8));
+}
+
+TEST_CASE("a sticking family between two grazings has one period doubling, listed once",
+          "[stops][sticking][continuation]") {
+  // paper-mass1-stop's family through Ω = 0.148 runs between a new impact
+  // of mass 1 (Ω ≈ 0.1448346) and one vanishing (Ω ≈ 0.1486756). Just above
+  // its period doubling (Ω ≈ 0.148449) a multiplier passes through
+  // infinity from −2.9 to −0.11: a sign change of det(D P + I) that no
+  // multiplier −1 explains, and no second period doubling.
+  System system = PaperWithMass1Stop();
+  system.omega = 0.148;
+  const PeriodicOrbit start = testing::SeededStickingOrbit(system);
+  ContinuationOptions options;
+  options.lower = 0.12;
+  options.upper = 0.2;
+  options.direction = ContinuationDirection::kBoth;
+  const Branch branch = ContinueBranch({system, start, {}}, options);
+  CHECK(branch.begin == BranchEnd::kGrazing);
+  CHECK(branch.end == BranchEnd::kGrazing);
+  const auto doublings = std::count_if(
+      branch.special_points.begin(), branch.special_points.end(),
+      [](const SpecialPoint& s) { return s.type == SpecialPointType::kPeriodDoubling; });
+  CHECK(doublings == 1);
+  const auto [lowest, highest] = std::minmax_element(
+      branch.points.begin(), branch.points.end(),
+      [](const BranchPoint& a, const BranchPoint& b) { return a.parameter < b.parameter; });
+  CHECK_THAT(lowest->parameter, WithinAbs(0.1448346, 1e-6));
+  CHECK_THAT(highest->parameter, WithinAbs(0.1486756, 1e-6));
 }

@@ -207,23 +207,29 @@ class BranchTracer {
   /// it: named by the monitor extrapolated to 0 nearest ahead (within
   /// kExtrapolationReach: a refused trial's report can come from beyond the
   /// event, as past a graze a map may stop accumulating), else by what a
-  /// refused trial showed, and moved to it by bisection in μ where a
-  /// refused trial brackets it (sticking_end.hpp). The
-  /// march's own last point lies up to min_step short of the end, where
-  /// the stuck duration still varies as a fractional power of the distance
-  /// to it (theory.md §5a).
+  /// refused trial showed, and moved to it by bisection in μ between the
+  /// last point and a refused trial, or where none was refused (the
+  /// corrector failing next to a new impact, whose map is not smooth) a μ
+  /// twice as far as the monitor's extrapolated zero (sticking_end.hpp).
+  /// The bisection's Newton solves get the orbit solver's iterations: a
+  /// solve next to a vanishing impact may bounce off the map's non-smooth
+  /// boundary before it converges. The march's own last point lies up to min_step
+  /// short of the end, where the stuck duration still varies as a
+  /// fractional power of the distance to it (theory.md §5a).
   bool EndOfSticking(HalfBranch& half) const {
     std::optional<StickingEnd> end = refused_.end;
+    double beyond = refused_.beyond;
     const std::size_t n = half.points.size();
     if (n >= 2) {
-      if (std::optional<StickingEnd> nearest =
+      if (std::optional<detail::ExtrapolatedEnd> nearest =
               detail::NearestEnd(half.points[n - 2], half.points[n - 1], kExtrapolationReach)) {
-        end = nearest;
+        end = nearest->end;
+        if (!refused_.end) beyond = nearest->beyond;
       }
     }
     if (!end) return false;
     if (std::optional<BranchPoint> located = detail::LocateStickingEnd(
-            problem_, half.points.back(), refused_.beyond, options_.end_tolerance, newton_)) {
+            problem_, half.points.back(), beyond, options_.end_tolerance, options_.orbit.newton)) {
       Accept(*located, &half);
     }
     const SpecialPoint special = detail::EndPoint(half.points.back(), *end);

@@ -92,8 +92,10 @@ bool SectionCurve::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian)
   if (!MapJacobian(x, &dp)) return false;
   jacobian->leftCols(n) = dp;
   jacobian->leftCols(n).diagonal().array() -= 1.0;
-  const double mu = Mu(x), h = 1e-6 * std::max(1.0, std::abs(mu));
+  const double mu = Mu(x);
   const SectionMap* here = MapAt(mu);
+  if (!here) return false;
+  const double h = here->ParameterStep(dp) * std::max(1.0, std::abs(mu));
   const SectionMap* sides[] = {MapAt(mu - h), MapAt(mu + h)};
   // Central where the map works on both sides, else one-sided: at the edge
   // of the parameter's range, or within h of a family's end, where the map

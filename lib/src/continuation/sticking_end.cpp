@@ -1,5 +1,6 @@
 #include "continuation/sticking_end.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -18,7 +19,7 @@ constexpr double kDelayJump = 0.25;
 std::array<double, 4> Monitors(const PeriodicOrbit& orbit) {
   const OrbitContacts& c = orbit.contacts;
   return {c.contact_margin, c.clearance.value_or(std::numeric_limits<double>::infinity()),
-          c.hold_margin, c.first_impact_speed};
+          c.hold_margin, c.approach_impact_speed};
 }
 
 /// The delay from each release to the first impact after it (NaN for a
@@ -35,11 +36,26 @@ std::vector<double> FirstImpactDelays(const PeriodicOrbit& orbit) {
   return delays;
 }
 
+/// The impacts of each cycle at other stops than the one holding it at the
+/// cycle's end, in the order of the orbit's stuck phases: approach impacts
+/// (orbit_contacts.hpp) whose number changes only where one appears or
+/// vanishes.
+std::vector<std::ptrdiff_t> OtherStopImpacts(const PeriodicOrbit& orbit) {
+  std::vector<std::ptrdiff_t> counts;
+  for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
+    const std::span<const OrbitImpact> cycle = CycleImpacts(orbit, k);
+    counts.push_back(std::count_if(cycle.begin(), cycle.end(), [&](const OrbitImpact& impact) {
+      return impact.stop != orbit.stuck[k].stop;
+    }));
+  }
+  return counts;
+}
+
 }  // namespace
 
 std::optional<StickingEnd> Violation(const PeriodicOrbit& orbit) {
   const std::array<double, 4> monitors = Monitors(orbit);
-  for (std::size_t i = 0; i < 3; ++i) {  // a first impact's speed is > 0 by definition
+  for (std::size_t i = 0; i < 3; ++i) {  // an impact's speed is > 0 by definition
     if (!(monitors[i] > 0)) return static_cast<StickingEnd>(i);
   }
   return std::nullopt;
@@ -48,24 +64,32 @@ std::optional<StickingEnd> Violation(const PeriodicOrbit& orbit) {
 std::optional<StickingEnd> ImpactChange(const PeriodicOrbit& a, const PeriodicOrbit& b) {
   if (a.stuck.size() != b.stuck.size()) return std::nullopt;
   const std::vector<double> from = FirstImpactDelays(a), to = FirstImpactDelays(b);
+  const std::vector<std::ptrdiff_t> others_from = OtherStopImpacts(a),
+                                    others_to = OtherStopImpacts(b);
   for (std::size_t k = 0; k < from.size(); ++k) {
-    if (to[k] < (1.0 - kDelayJump) * from[k]) return StickingEnd::kNewImpact;
-    if (to[k] > (1.0 + kDelayJump) * from[k]) return StickingEnd::kVanishingImpact;
+    if (to[k] < (1.0 - kDelayJump) * from[k] || others_to[k] > others_from[k]) {
+      return StickingEnd::kNewImpact;
+    }
+    if (to[k] > (1.0 + kDelayJump) * from[k] || others_to[k] < others_from[k]) {
+      return StickingEnd::kVanishingImpact;
+    }
   }
   return std::nullopt;
 }
 
-std::optional<StickingEnd> NearestEnd(const BranchPoint& a, const BranchPoint& b, double reach) {
+std::optional<ExtrapolatedEnd> NearestEnd(const BranchPoint& a, const BranchPoint& b,
+                                          double reach) {
   const double step = (BranchProblem::PointX(b) - BranchProblem::PointX(a)).norm();
   const std::array<double, 4> before = Monitors(a.orbit), after = Monitors(b.orbit);
-  std::optional<StickingEnd> nearest;
+  std::optional<ExtrapolatedEnd> nearest;
   double best = reach;
   for (std::size_t i = 0; i < before.size(); ++i) {
     const double fall = (before[i] - after[i]) / step;  // per unit arclength
     if (!std::isfinite(after[i]) || !(fall > 0)) continue;
     if (const double distance = after[i] / fall; distance < best) {
       best = distance;
-      nearest = static_cast<StickingEnd>(i);
+      const double mu_rate = (b.parameter - a.parameter) / step;
+      nearest = {static_cast<StickingEnd>(i), b.parameter + 2.0 * distance * mu_rate};
     }
   }
   return nearest;
@@ -78,9 +102,15 @@ std::optional<BranchPoint> LocateStickingEnd(const BranchProblem& problem, const
   // The family's point at μ, from the last point inside, or none if μ is
   // past its end.
   auto point_at = [&](const BranchPoint& inside, double mu) -> std::optional<BranchPoint> {
+    // Near a vanishing impact of speed v, D P ~ 1/v and so does the
+    // rounding of U: Newton is asked for no less than that floor (as
+    // FindOrbit is), or it fails at every μ next to the end.
+    NewtonOptions at_floor = newton;
+    at_floor.residual_tolerance =
+        std::max(newton.residual_tolerance, ResidualFloor(inside.orbit.jacobian, inside.orbit.eta));
     int iterations = 0;
     const std::optional<Eigen::VectorXd> x =
-        problem.Correct(BranchProblem::Join(inside.orbit.eta, mu), e_mu, mu, newton, &iterations);
+        problem.Correct(BranchProblem::Join(inside.orbit.eta, mu), e_mu, mu, at_floor, &iterations);
     problem.TakeStoppedSticking();
     if (!x) return std::nullopt;
     std::optional<BranchPoint> point = problem.Describe(*x, inside.tangent);
@@ -125,7 +155,7 @@ SpecialPoint EndPoint(const BranchPoint& point, StickingEnd end) {
       special.type = SpecialPointType::kGrazing;
       const std::vector<OrbitImpact>& impacts = point.orbit.impacts;
       for (std::size_t i = 0; i < impacts.size(); ++i) {
-        if (impacts[i].velocity == point.orbit.contacts.first_impact_speed) {
+        if (impacts[i].velocity == point.orbit.contacts.approach_impact_speed) {
           special.vanishing_impact = static_cast<int>(i);
           break;
         }

@@ -12,12 +12,14 @@
 ///     Beyond, the release map has the extra impact and stays continuous,
 ///     and the flight's turn is gone rather than past the stop: the event
 ///     shows as the first impact after a release jumping to an earlier time
-///     between two points;
+///     between two points, or one more impact at another stop than the
+///     cycle's;
 ///   - an early release: an interior minimum of Fs in a stuck phase reaches
 ///     0 (beyond, the mass leaves the stop there: one more sticking phase);
 ///   - a vanishing impact (a grazing): the same graze met from the side
-///     where the impact exists — the first impact after a release slows to
-///     0, and beyond it jumps to a later time.
+///     where the impact exists — an approach impact (orbit_contacts.hpp)
+///     slows to 0, and beyond it the first impact after a release jumps to
+///     a later time or an impact at another stop is gone.
 /// Past each the map still converges, onto another motion: a point beyond
 /// is recognised (Violation, ImpactChange) and refused; the end is named by
 /// the monitor whose linear extrapolation reaches 0 first (NearestEnd),
@@ -44,26 +46,34 @@ std::optional<StickingEnd> Violation(const PeriodicOrbit& orbit);
 /// Where the impacts before the chatter changed between two neighbouring
 /// orbits of a family: the first impact after some release jumped to an
 /// earlier time (an impact appeared before it) or to a later one (it
-/// vanished). Along the family that delay moves continuously; a jump of a
-/// quarter of it between two points is none of that motion.
+/// vanished), or a cycle has an impact more or fewer at the other stops.
+/// Along the family that delay moves continuously; a jump of a quarter of
+/// it between two points is none of that motion.
 std::optional<StickingEnd> ImpactChange(const PeriodicOrbit& a, const PeriodicOrbit& b);
+
+/// An end ahead of a family's last point, by its monitors' extrapolation,
+/// and a μ past it (twice as far as the extrapolated zero).
+struct ExtrapolatedEnd {
+  StickingEnd end;
+  double beyond;
+};
 
 /// The end whose monitor, extrapolated linearly in arclength from a to b,
 /// reaches 0 first within `reach` beyond b; none if none does.
-std::optional<StickingEnd> NearestEnd(const BranchPoint& a, const BranchPoint& b, double reach);
+std::optional<ExtrapolatedEnd> NearestEnd(const BranchPoint& a, const BranchPoint& b, double reach);
 
 /// The family's point nearest its end between `last` (on the family) and
 /// μ = `beyond` (past the end): bisection in μ to `tolerance`, each μ
-/// solved at fixed μ from the last point inside and judged as above. Empty
-/// when μ = `beyond` still holds a point of the family (no bracket) or no
-/// bisection point does.
+/// solved at fixed μ from the last point inside and judged as above, to
+/// the residual's rounding floor. Empty when μ = `beyond` still holds a
+/// point of the family (no bracket) or no bisection point does.
 std::optional<BranchPoint> LocateStickingEnd(const BranchProblem& problem, const BranchPoint& last,
                                              double beyond, double tolerance,
                                              const NewtonOptions& newton);
 
 /// The special point `end` at `point`, a located end: a new or vanishing
-/// impact is a grazing (for a vanishing one, of the slowest first impact
-/// after a release); its monitor is the one that reached 0.
+/// impact is a grazing (for a vanishing one, of the slowest approach
+/// impact); its monitor is the one that reached 0.
 SpecialPoint EndPoint(const BranchPoint& point, StickingEnd end);
 /// The branch's end there.
 BranchEnd BranchEndOf(StickingEnd end);

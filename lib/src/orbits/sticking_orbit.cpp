@@ -70,9 +70,11 @@ PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
     contacts.contact_margin = std::min(contacts.contact_margin, cycle.contact_force);
     contacts.hold_margin = std::min(contacts.hold_margin, cycle.hold_margin);
     clearance = std::min(clearance, cycle.clearance);
-    if (!cycle.impacts.empty()) {
-      contacts.first_impact_speed =
-          std::min(contacts.first_impact_speed, cycle.impacts.front().velocity);
+    for (std::size_t i = 0; i < cycle.impacts.size(); ++i) {
+      if (i == 0 || cycle.impacts[i].stop != cycle.stop) {
+        contacts.approach_impact_speed =
+            std::min(contacts.approach_impact_speed, cycle.impacts[i].velocity);
+      }
     }
   }
   if (std::isfinite(clearance)) contacts.clearance = clearance;

@@ -101,6 +101,10 @@ class ImpactMap : public SectionMap {
   /// near its cube root: 1e-5 (of the period for τ) gives ~1e-7 relative
   /// accuracy, 1e-6 only ~1e-6.
   double FiniteDifferenceStep() const override { return 1e-5; }
+  /// 1e-6 at every state: ParameterRate differences each flight alone and
+  /// chains the impacts through their analytic Jacobians, so a slow
+  /// impact's 1/v is exact rather than differenced.
+  double ParameterStep(const Eigen::MatrixXd&) const override { return 1e-6; }
   /// ParameterDerivative, for `below` and `above` impact maps.
   SectionImage ParameterRate(const Eigen::VectorXd& eta, int p, const SectionMap& below,
                              const SectionMap& above, double delta) const override;

@@ -46,18 +46,22 @@ struct OrbitContacts {
   std::optional<double> next_clearance;
   /// v² / (2|a|) of the slowest impact (the one with the least depth); a
   /// sticking orbit's chatter has impacts of every depth down to 0, so
-  /// there it is not measured (infinity): its first impacts after each
-  /// release are watched instead (first_impact_speed).
+  /// there it is not measured (infinity): its approach impacts are watched
+  /// instead (approach_impact_speed).
   double slowest_depth = 0.0;
   int slowest_impact = 0;        ///< its index among the orbit's p impacts
   bool slowest_pressed = false;  ///< a > 0 there: pressed into the stop
   /// Sticking orbits only (infinity otherwise), each 0 where the family
   /// ends: the least Fs(t*) of its stuck phases (the chatter stops ending
   /// in sticking), the least hold margin (an early release), and the
-  /// slowest first impact after a release (a vanishing impact).
+  /// slowest approach impact (a vanishing impact). A cycle's approach
+  /// impacts are those of the flights before its chatter: its first impact
+  /// after the release and its impacts at other stops than the one that
+  /// holds it at the cycle's end (the chatter's own impacts, at that stop,
+  /// have speeds down to 0 on every orbit).
   double contact_margin = std::numeric_limits<double>::infinity();
   double hold_margin = std::numeric_limits<double>::infinity();
-  double first_impact_speed = std::numeric_limits<double>::infinity();
+  double approach_impact_speed = std::numeric_limits<double>::infinity();
   double Range() const { return contact_max - contact_min; }
 };
 

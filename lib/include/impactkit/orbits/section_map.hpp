@@ -47,6 +47,9 @@ class SectionMap {
   /// The relative step of the map's central differences: near the cube
   /// root of its event-time rounding (FiniteDifferenceJacobian).
   virtual double FiniteDifferenceStep() const = 0;
+  /// The relative step δ of ParameterRate's differences at a state where
+  /// D P^k = `jacobian`.
+  virtual double ParameterStep(const Eigen::MatrixXd& jacobian) const = 0;
   /// ∂P^k(x; μ)/∂μ at fixed x (in `state`) for a scalar parameter μ, of
   /// which `below` and `above` are this map's kind at μ − δ₋ and μ + δ₊
   /// (δ₋ + δ₊ = `delta`; either may be this map). By default the
