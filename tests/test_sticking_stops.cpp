@@ -46,6 +46,15 @@ System PaperWithMass1Stop() {
   return system;
 }
 
+/// Continuation within paper-mass1-stop's sticking region, Ω in [0.12, 0.2].
+ContinuationOptions StickingRegion(ContinuationDirection direction) {
+  ContinuationOptions options;
+  options.lower = 0.12;
+  options.upper = 0.2;
+  options.direction = direction;
+  return options;
+}
+
 }  // namespace
 
 TEST_CASE("a sticking orbit at the second stop of a system: its section is that stop's",
@@ -281,10 +290,7 @@ TEST_CASE(
   // back up, ends where that impact vanishes at the same Ω.
   const System system = PaperWithMass1Stop();
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  ContinuationOptions options;
-  options.lower = 0.12;
-  options.upper = 0.2;
-  options.direction = ContinuationDirection::kDecreasing;
+  const ContinuationOptions options = StickingRegion(ContinuationDirection::kDecreasing);
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == BranchEnd::kGrazing);
   const SpecialPoint& graze = branch.special_points.back();
@@ -342,11 +348,8 @@ TEST_CASE("a sticking family between two grazings has one period doubling, liste
   System system = PaperWithMass1Stop();
   system.omega = 0.148;
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
-  ContinuationOptions options;
-  options.lower = 0.12;
-  options.upper = 0.2;
-  options.direction = ContinuationDirection::kBoth;
-  const Branch branch = ContinueBranch({system, start, {}}, options);
+  const Branch branch =
+      ContinueBranch({system, start, {}}, StickingRegion(ContinuationDirection::kBoth));
   CHECK(branch.begin == BranchEnd::kGrazing);
   CHECK(branch.end == BranchEnd::kGrazing);
   const auto doublings = std::count_if(
