@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -26,6 +27,7 @@
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/modal.hpp"
+#include "impactkit/model/parameters.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::Equals;
@@ -232,6 +234,31 @@ TEST_CASE("SystemToJson reads back to the same general system", "[io]") {
   System expected = chain_elsewhere;
   expected.chain.reset();
   CheckSameSystem(FromJson(SystemToJson(chain_elsewhere)), expected);
+}
+
+TEST_CASE("every stop parameter of the parameter table is a stops key, written and read back",
+          "[io]") {
+  // The parameter table is where a stop parameter is declared: each row
+  // with a StopField must appear under its key in every `stops` entry and
+  // read back to the same value, set by name (xs2, r2, ...) on stop 2.
+  System system = PaperSystem(0.9);
+  system.stops.push_back({0, StopSide::kLower, -0.2, 0.5});
+  int stop_rows = 0;
+  for (const ParameterSpec& spec : ParameterTable()) {
+    if (!spec.stop) continue;
+    ++stop_rows;
+    const double value = system.stops[1].*spec.stop->member + 1.0 / 64.0;
+    SetParameter(system, StopParameterName(spec.name, 1), value);
+    CHECK(system.stops[1].*spec.stop->member == value);
+  }
+  CHECK(stop_rows == 2);  // xs and r
+  const nlohmann::json written = nlohmann::json::parse(SystemToJson(system));
+  for (const ParameterSpec& spec : ParameterTable()) {
+    if (!spec.stop) continue;
+    const std::string key(spec.stop->key);
+    CHECK(written["stops"][1][key].get<double>() == system.stops[1].*spec.stop->member);
+  }
+  CheckSameSystem(FromJson(written.dump()), system);
 }
 
 TEST_CASE("a TOML and a JSON file of the same system read the same", "[io]") {

@@ -78,7 +78,7 @@ std::string ParameterHelp() {
   std::vector<std::string> any, chain;
   for (const ParameterSpec& spec : ParameterTable()) {
     const std::string name =
-        spec.get ? std::string(spec.name) : fmt::format("{0}1..{0}N", spec.name);
+        spec.PerMass() ? fmt::format("{0}1..{0}N", spec.name) : std::string(spec.name);
     (spec.chain_only ? chain : any)
         .push_back(fmt::format("{} ({}, {})", name, spec.meaning, spec.range));
   }

@@ -1,6 +1,7 @@
 #include "impactkit/io/system_file.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -23,7 +24,22 @@ using Keys = std::span<const std::string_view>;
 
 constexpr std::array<std::string_view, 10> kTopLevelKeys = {
     "chain", "mass", "damping", "stiffness", "forcing", "omega", "xs", "r", "contact_dof", "stops"};
-constexpr std::array<std::string_view, 4> kStopKeys = {"dof", "side", "position", "restitution"};
+
+/// The parameters every stop has (model/parameters.hpp): a `stops` entry's
+/// keys after dof and side.
+std::vector<const ParameterSpec*> StopParameterSpecs() {
+  std::vector<const ParameterSpec*> specs;
+  for (const ParameterSpec& spec : ParameterTable()) {
+    if (spec.stop) specs.push_back(&spec);
+  }
+  return specs;
+}
+
+std::vector<std::string_view> StopKeys() {
+  std::vector<std::string_view> keys = {"dof", "side"};
+  for (const ParameterSpec* spec : StopParameterSpecs()) keys.push_back(spec->stop->key);
+  return keys;
+}
 /// The chain's keys are the model's chain parameters (model/parameters.hpp),
 /// n first: it sizes the chain the others fill.
 std::vector<std::string_view> ChainKeys() {
@@ -36,12 +52,11 @@ std::vector<std::string_view> ChainKeys() {
 }
 
 /// One entry of `stops`, before the defaults (the last mass, upper, the
-/// paper's restitution) fill its gaps.
+/// paper's stop's values) fill its gaps.
 struct StopFields {
   std::optional<int> dof;  ///< 1-based, as in the file
   StopSide side = StopSide::kUpper;
-  double position = 0.0;
-  std::optional<double> restitution;
+  std::vector<std::optional<double>> values;  ///< in StopParameterSpecs' order
 };
 
 /// What a file states, before the paper's defaults fill the gaps.
@@ -169,7 +184,7 @@ ChainParameters ReadChain(const Json& value, const ChainParameters& defaults,
 
 StopFields ReadStop(const Json& value, std::size_t index, const FieldReader& reader) {
   const std::string name = fmt::format("stops[{}]", index + 1);
-  reader.RequireObject(value, name, kStopKeys);
+  reader.RequireObject(value, name, StopKeys());
   auto field = [&](const char* key) { return Field(fmt::format("{}.{}", name, key)); };
   StopFields stop;
   if (value.contains("dof")) stop.dof = reader.WholeNumber(value["dof"], field("dof"), 1);
@@ -182,18 +197,21 @@ StopFields ReadStop(const Json& value, std::size_t index, const FieldReader& rea
     }
     stop.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
   }
-  if (!value.contains("position")) reader.Fail(field("position"), "is required");
-  stop.position = reader.Number(value["position"], field("position"));
-  if (value.contains("restitution")) {
-    stop.restitution = reader.Number(value["restitution"], field("restitution"));
+  for (const ParameterSpec* spec : StopParameterSpecs()) {
+    const std::string key(spec->stop->key);
+    if (!value.contains(key) && spec->stop->required)
+      reader.Fail(field(key.c_str()), "is required");
+    stop.values.push_back(value.contains(key)
+                              ? std::optional(reader.Number(value[key], field(key.c_str())))
+                              : std::nullopt);
   }
   return stop;
 }
 
 std::vector<StopFields> ReadStops(const Json& value, const FieldReader& reader) {
   if (!value.is_array() || value.empty()) {
-    reader.Fail(Field("stops"),
-                "must be a non-empty array of stops, each {dof, side, position, restitution}");
+    reader.Fail(Field("stops"), fmt::format("must be a non-empty array of stops, each {{{}}}",
+                                            fmt::join(StopKeys(), ", ")));
   }
   std::vector<StopFields> stops;
   for (std::size_t i = 0; i < value.size(); ++i) stops.push_back(ReadStop(value[i], i, reader));
@@ -283,13 +301,19 @@ System BuildWithoutStopList(const SystemFields& fields, const System& paper) {
 }
 
 /// The stops of a `stops` list, gaps filled: the last mass, the paper's
-/// restitution.
+/// stop's values.
 std::vector<StopParameters> BuildStops(const std::vector<StopFields>& fields, int dof,
                                        const System& paper) {
+  const std::vector<const ParameterSpec*> specs = StopParameterSpecs();
   std::vector<StopParameters> stops;
-  for (const StopFields& stop : fields) {
-    stops.push_back({stop.dof.value_or(dof) - 1, stop.side, stop.position,
-                     stop.restitution.value_or(paper.stops[0].restitution)});
+  for (const StopFields& given : fields) {
+    StopParameters stop = paper.stops[0];
+    stop.dof = given.dof.value_or(dof) - 1;
+    stop.side = given.side;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      if (given.values[i]) stop.*specs[i]->stop->member = *given.values[i];
+    }
+    stops.push_back(stop);
   }
   return stops;
 }
@@ -456,10 +480,12 @@ std::string SystemToJson(const System& system) {
   } else {
     json["stops"] = nlohmann::ordered_json::array();
     for (const StopParameters& stop : system.stops) {
-      json["stops"].push_back({{"dof", stop.dof + 1},
-                               {"side", stop.side == StopSide::kUpper ? "upper" : "lower"},
-                               {"position", stop.position},
-                               {"restitution", stop.restitution}});
+      nlohmann::ordered_json entry = {{"dof", stop.dof + 1},
+                                      {"side", stop.side == StopSide::kUpper ? "upper" : "lower"}};
+      for (const ParameterSpec* spec : StopParameterSpecs()) {
+        entry[std::string(spec->stop->key)] = stop.*spec->stop->member;
+      }
+      json["stops"].push_back(entry);
     }
   }
   return json.dump(2);

@@ -33,20 +33,6 @@ int StopIndex(std::string_view name, std::string_view base, const System& s) {
   return index >= 1 ? index : -1;
 }
 
-/// Stop parameters name the stop in the name; the table's get and set
-/// stand for the first stop, these for any.
-double GetStopParameter(const System& s, std::string_view base, int stop) {
-  const StopParameters& p = s.stops[stop];
-  return base == "xs" ? p.position : p.restitution;
-}
-
-void SetStopParameter(System& s, std::string_view base, int stop, double value) {
-  StopParameters& p = s.stops[stop];
-  (base == "xs" ? p.position : p.restitution) = value;
-}
-
-bool IsStopParameter(const ParameterSpec& spec) { return spec.name == "xs" || spec.name == "r"; }
-
 /// Applies `change` to the chain's parameters and rebuilds its matrices; A
 /// keeps the entries the new size has room for.
 template <typename Change>
@@ -78,12 +64,10 @@ void SetDof(System& s, double value) {
 constexpr std::array<ParameterSpec, 8> kTable = {{
     {"omega", "forcing frequency", "> 0", false, [](const System& s) { return s.omega; },
      [](System& s, double v) { s.omega = v; }},
-    {"xs", "stop position (xs2, xs3, ... of further stops)", "finite", false,
-     [](const System& s) { return s.stops[0].position; },
-     [](System& s, double v) { s.stops[0].position = v; }},
-    {"r", "coefficient of restitution (r2, r3, ... of further stops)", "in [0, 1]", false,
-     [](const System& s) { return s.stops[0].restitution; },
-     [](System& s, double v) { s.stops[0].restitution = v; }},
+    {"xs", "stop position (xs2, xs3, ... of further stops)", "finite", false, nullptr, nullptr,
+     StopField{&StopParameters::position, "position", true}},
+    {"r", "coefficient of restitution (r2, r3, ... of further stops)", "in [0, 1]", false, nullptr,
+     nullptr, StopField{&StopParameters::restitution, "restitution", false}},
     {"A", "forcing amplitude on mass i", "finite", false, nullptr, nullptr},
     {"m", "mass", "> 0", true, [](const System& s) { return s.chain->mass; },
      [](System& s, double v) { RebuildChain(s, [&](ChainParameters& c) { c.mass = v; }); }},
@@ -107,9 +91,9 @@ std::span<const ParameterSpec> ParameterTable() { return kTable; }
 const ParameterSpec* FindParameter(const System& s, std::string_view name) {
   for (const ParameterSpec& spec : kTable) {
     if (spec.chain_only && !s.chain) continue;
-    if (IsStopParameter(spec) ? StopIndex(name, spec.name, s) >= 0
-        : spec.get            ? name == spec.name
-                              : ForcingIndex(name, s.Dof()) >= 0) {
+    if (spec.stop  ? StopIndex(name, spec.name, s) >= 0
+        : spec.get ? name == spec.name
+                   : ForcingIndex(name, s.Dof()) >= 0) {
       return &spec;
     }
   }
@@ -120,7 +104,7 @@ std::vector<std::string> ParameterNames(const System& s) {
   std::vector<std::string> names;
   for (const ParameterSpec& spec : kTable) {
     if (spec.chain_only && !s.chain) continue;
-    if (IsStopParameter(spec)) {
+    if (spec.stop) {
       for (int k = 0; k < s.StopCount(); ++k) names.push_back(StopParameterName(spec.name, k));
     } else if (spec.get) {
       names.emplace_back(spec.name);
@@ -134,16 +118,15 @@ std::vector<std::string> ParameterNames(const System& s) {
 double GetParameter(const System& s, std::string_view name) {
   const ParameterSpec* spec = FindParameter(s, name);
   if (!spec) UnknownParameter(s, name);
-  if (IsStopParameter(*spec))
-    return GetStopParameter(s, spec->name, StopIndex(name, spec->name, s));
+  if (spec->stop) return s.stops[StopIndex(name, spec->name, s)].*spec->stop->member;
   return spec->get ? spec->get(s) : s.forcing(ForcingIndex(name, s.Dof()));
 }
 
 void SetParameter(System& s, std::string_view name, double value) {
   const ParameterSpec* spec = FindParameter(s, name);
   if (!spec) UnknownParameter(s, name);
-  if (IsStopParameter(*spec)) {
-    SetStopParameter(s, spec->name, StopIndex(name, spec->name, s), value);
+  if (spec->stop) {
+    s.stops[StopIndex(name, spec->name, s)].*spec->stop->member = value;
   } else if (spec->set) {
     spec->set(s, value);
   } else {

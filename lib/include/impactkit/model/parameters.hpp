@@ -4,6 +4,7 @@
 /// sets them by name, system files take their chain keys from it, and the
 /// command line lists them in `--set`'s help and in every provenance line.
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -13,15 +14,29 @@
 
 namespace impactkit {
 
+/// A parameter every stop has: the field of StopParameters it is, and its
+/// key in a system file's `stops` entries. A contact law's new parameter is
+/// a StopParameters field and a row of the table with this; the system
+/// files, --set, continuation and the provenance lines follow.
+struct StopField {
+  double StopParameters::*member;
+  std::string_view key;
+  bool required;  ///< a `stops` entry must give it (else the paper's stop's value)
+};
+
 struct ParameterSpec {
-  /// The name; "A" stands for A1 … AN, one per mass.
+  /// The name; "A" stands for A1 … AN, one per mass; a stop parameter's
+  /// name is the first stop's, name<k> stop k's (xs, xs2, …).
   std::string_view name;
   std::string_view meaning;  ///< e.g. "forcing frequency"
   std::string_view range;    ///< the values Validate() accepts, e.g. "> 0"
   bool chain_only;           ///< only a uniform chain has it (m, k, c, n)
-  /// Value and assignment; null for the indexed "A" (see Get/SetParameter).
+  /// Value and assignment of a single parameter; null for the indexed ones
+  /// ("A", the stop parameters: see Get/SetParameter).
   double (*get)(const System& system);
   void (*set)(System& system, double value);
+  std::optional<StopField> stop = std::nullopt;  ///< set for a parameter of each stop
+  bool PerMass() const { return !get && !stop; }
 };
 
 /// omega, xs, r, A, m, k, c, n: the order of ParameterNames.
