@@ -40,6 +40,7 @@ std::vector<std::string_view> StopKeys() {
   for (const ParameterSpec* spec : StopParameterSpecs()) keys.push_back(spec->stop->key);
   return keys;
 }
+
 /// The chain's keys are the model's chain parameters (model/parameters.hpp),
 /// n first: it sizes the chain the others fill.
 std::vector<std::string_view> ChainKeys() {
@@ -51,12 +52,11 @@ std::vector<std::string_view> ChainKeys() {
   return keys;
 }
 
-/// One entry of `stops`, before the defaults (the last mass, upper, the
-/// paper's stop's values) fill its gaps.
+/// One entry of `stops`: its values over the paper's stop's, and its mass
+/// if given (the last one, known once N is, by default).
 struct StopFields {
   std::optional<int> dof;  ///< 1-based, as in the file
-  StopSide side = StopSide::kUpper;
-  std::vector<std::optional<double>> values;  ///< in StopParameterSpecs' order
+  StopParameters values;   ///< side and the stop parameters; dof not yet set
 };
 
 /// What a file states, before the paper's defaults fill the gaps.
@@ -182,11 +182,13 @@ ChainParameters ReadChain(const Json& value, const ChainParameters& defaults,
   return chain;
 }
 
-StopFields ReadStop(const Json& value, std::size_t index, const FieldReader& reader) {
+StopFields ReadStop(const Json& value, std::size_t index, const StopParameters& defaults,
+                    const FieldReader& reader) {
   const std::string name = fmt::format("stops[{}]", index + 1);
   reader.RequireObject(value, name, StopKeys());
   auto field = [&](const char* key) { return Field(fmt::format("{}.{}", name, key)); };
-  StopFields stop;
+  StopFields stop{std::nullopt, defaults};
+  stop.values.side = StopSide::kUpper;
   if (value.contains("dof")) stop.dof = reader.WholeNumber(value["dof"], field("dof"), 1);
   if (value.contains("side")) {
     const std::string side = reader.Text(value["side"], field("side"));
@@ -195,30 +197,34 @@ StopFields ReadStop(const Json& value, std::size_t index, const FieldReader& rea
                                              "position), got {}",
                                              Json(side).dump()));
     }
-    stop.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
+    stop.values.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
   }
   for (const ParameterSpec* spec : StopParameterSpecs()) {
     const std::string key(spec->stop->key);
-    if (!value.contains(key) && spec->stop->required)
+    if (value.contains(key)) {
+      stop.values.*spec->stop->member = reader.Number(value[key], field(key.c_str()));
+    } else if (spec->stop->required) {
       reader.Fail(field(key.c_str()), "is required");
-    stop.values.push_back(value.contains(key)
-                              ? std::optional(reader.Number(value[key], field(key.c_str())))
-                              : std::nullopt);
+    }
   }
   return stop;
 }
 
-std::vector<StopFields> ReadStops(const Json& value, const FieldReader& reader) {
+std::vector<StopFields> ReadStops(const Json& value, const StopParameters& defaults,
+                                  const FieldReader& reader) {
   if (!value.is_array() || value.empty()) {
     reader.Fail(Field("stops"), fmt::format("must be a non-empty array of stops, each {{{}}}",
                                             fmt::join(StopKeys(), ", ")));
   }
   std::vector<StopFields> stops;
-  for (std::size_t i = 0; i < value.size(); ++i) stops.push_back(ReadStop(value[i], i, reader));
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    stops.push_back(ReadStop(value[i], i, defaults, reader));
+  }
   return stops;
 }
 
-/// The fields of `document`; the chain's gaps are filled from `paper`.
+/// The fields of `document`; the gaps of the chain and of each stop are
+/// filled from `paper`.
 SystemFields ReadFields(const Json& document, const System& paper, const FieldReader& reader) {
   reader.RequireObject(document, "", kTopLevelKeys);
   auto number = [&](const char* key) -> std::optional<double> {
@@ -249,7 +255,7 @@ SystemFields ReadFields(const Json& document, const System& paper, const FieldRe
                   "cannot be combined with xs, r or contact_dof: give the one stop by those "
                   "keys or every stop in 'stops'");
     }
-    fields.stops = ReadStops(document["stops"], reader);
+    fields.stops = ReadStops(document["stops"], paper.stops[0], reader);
   }
   if (fields.chain && fields.General()) {
     reader.Fail(Field("chain"),
@@ -300,20 +306,12 @@ System BuildWithoutStopList(const SystemFields& fields, const System& paper) {
                        restitution, contact_dof);
 }
 
-/// The stops of a `stops` list, gaps filled: the last mass, the paper's
-/// stop's values.
-std::vector<StopParameters> BuildStops(const std::vector<StopFields>& fields, int dof,
-                                       const System& paper) {
-  const std::vector<const ParameterSpec*> specs = StopParameterSpecs();
+/// The stops of a `stops` list, each on its mass or the last.
+std::vector<StopParameters> BuildStops(const std::vector<StopFields>& fields, int dof) {
   std::vector<StopParameters> stops;
   for (const StopFields& given : fields) {
-    StopParameters stop = paper.stops[0];
-    stop.dof = given.dof.value_or(dof) - 1;
-    stop.side = given.side;
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-      if (given.values[i]) stop.*specs[i]->stop->member = *given.values[i];
-    }
-    stops.push_back(stop);
+    stops.push_back(given.values);
+    stops.back().dof = given.dof.value_or(dof) - 1;
   }
   return stops;
 }
@@ -322,7 +320,7 @@ std::vector<StopParameters> BuildStops(const std::vector<StopFields>& fields, in
 /// InvalidInput (without the file name) for values the model rejects.
 System Build(const SystemFields& fields, const System& paper) {
   System system = BuildWithoutStopList(fields, paper);
-  if (fields.stops) system.stops = BuildStops(*fields.stops, system.Dof(), paper);
+  if (fields.stops) system.stops = BuildStops(*fields.stops, system.Dof());
   return system;
 }
 
