@@ -236,29 +236,34 @@ TEST_CASE("SystemToJson reads back to the same general system", "[io]") {
   CheckSameSystem(FromJson(SystemToJson(chain_elsewhere)), expected);
 }
 
-TEST_CASE("every stop parameter of the parameter table is a stops key, written and read back",
+TEST_CASE("every stop parameter row is a name, a stops key and a sole stop's key, read back",
           "[io]") {
-  // The parameter table is where a stop parameter is declared: each row
-  // with a StopField must appear under its key in every `stops` entry and
-  // read back to the same value, set by name (xs2, r2, ...) on stop 2.
+  // hybrid/stop_parameters.hpp is where a stop parameter is declared: each
+  // row must be set by name on stop 2 (xs2, r2, ...), appear under its key
+  // in every `stops` entry and, for a sole stop, under its name at the top
+  // level, and read back to the same value.
   System system = PaperSystem(0.9);
   system.stops.push_back({0, StopSide::kLower, -0.2, 0.5});
-  int stop_rows = 0;
-  for (const ParameterSpec& spec : ParameterTable()) {
-    if (!spec.stop) continue;
-    ++stop_rows;
-    const double value = system.stops[1].*spec.stop->member + 1.0 / 64.0;
-    SetParameter(system, StopParameterName(spec.name, 1), value);
-    CHECK(system.stops[1].*spec.stop->member == value);
+  for (const StopParameterRow& row : kStopParameterRows) {
+    const std::string name = StopParameterName(row.name, 1);
+    const double value = system.stops[1].*row.member + 1.0 / 64.0;
+    SetParameter(system, name, value);
+    CHECK(system.stops[1].*row.member == value);
+    CHECK(GetParameter(system, name) == value);
   }
-  CHECK(stop_rows == 2);  // xs and r
   const nlohmann::json written = nlohmann::json::parse(SystemToJson(system));
-  for (const ParameterSpec& spec : ParameterTable()) {
-    if (!spec.stop) continue;
-    const std::string key(spec.stop->key);
-    CHECK(written["stops"][1][key].get<double>() == system.stops[1].*spec.stop->member);
+  for (const StopParameterRow& row : kStopParameterRows) {
+    CHECK(written["stops"][1][std::string(row.key)].get<double>() == system.stops[1].*row.member);
   }
   CheckSameSystem(FromJson(written.dump()), system);
+
+  System sole = PaperSystem(0.9);
+  for (const StopParameterRow& row : kStopParameterRows) sole.stops[0].*row.member -= 1.0 / 64.0;
+  const nlohmann::json one = nlohmann::json::parse(SystemToJson(sole));
+  for (const StopParameterRow& row : kStopParameterRows) {
+    CHECK(one[std::string(row.name)].get<double>() == sole.stops[0].*row.member);
+  }
+  CheckSameSystem(FromJson(one.dump()), sole);
 }
 
 TEST_CASE("a TOML and a JSON file of the same system read the same", "[io]") {

@@ -77,8 +77,9 @@ void Apply(const Assignment& assignment, System& system) {
 std::string ParameterHelp() {
   std::vector<std::string> any, chain;
   for (const ParameterSpec& spec : ParameterTable()) {
-    const std::string name =
-        spec.PerMass() ? fmt::format("{0}1..{0}N", spec.name) : std::string(spec.name);
+    const std::string name = spec.PerMass() ? fmt::format("{0}1..{0}N", spec.name)
+                             : spec.stop    ? fmt::format("{0}, {0}2, ...", spec.name)
+                                            : std::string(spec.name);
     (spec.chain_only ? chain : any)
         .push_back(fmt::format("{} ({}, {})", name, spec.meaning, spec.range));
   }

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 
@@ -28,29 +29,46 @@ void SetValidated(System& system, const std::string& name, double value) {
 
 /// A stop as Python sees it: a dict with the file's keys, dof 0-based.
 py::dict StopDict(const StopParameters& stop) {
-  return py::dict(py::arg("dof") = stop.dof,
-                  py::arg("side") = stop.side == StopSide::kUpper ? "upper" : "lower",
-                  py::arg("position") = stop.position, py::arg("restitution") = stop.restitution);
+  py::dict entry(py::arg("dof") = stop.dof,
+                 py::arg("side") = stop.side == StopSide::kUpper ? "upper" : "lower");
+  for (const StopParameterRow& row : kStopParameterRows) {
+    entry[py::str(std::string(row.key))] = stop.*row.member;
+  }
+  return entry;
+}
+
+/// "dof, side, position, restitution": the keys of a stop dict.
+std::string StopDictKeys() {
+  std::string keys = "dof, side";
+  for (const StopParameterRow& row : kStopParameterRows) keys += ", " + std::string(row.key);
+  return keys;
 }
 
 StopParameters StopFromDict(const py::dict& entry, int index) {
   const std::string where = "stops[" + std::to_string(index) + "]";
   for (const auto& [key, unused] : entry) {
     const std::string name = py::str(key);
-    Require(name == "dof" || name == "side" || name == "position" || name == "restitution",
-            where + ": unknown key '" + name + "'; allowed: dof, side, position, restitution");
+    const bool known = name == "dof" || name == "side" ||
+                       std::any_of(kStopParameterRows.begin(), kStopParameterRows.end(),
+                                   [&](const StopParameterRow& row) { return row.key == name; });
+    Require(known, where + ": unknown key '" + name + "'; allowed: " + StopDictKeys());
   }
-  Require(entry.contains("dof") && entry.contains("position"),
-          where + " needs 'dof' (0-based) and 'position'");
+  Require(entry.contains("dof"), where + " needs 'dof' (0-based)");
   StopParameters stop;
   stop.dof = entry["dof"].cast<int>();
-  stop.position = entry["position"].cast<double>();
   const std::string side =
       entry.contains("side") ? entry["side"].cast<std::string>() : std::string("upper");
   Require(side == "upper" || side == "lower",
           where + ": side must be 'upper' (x <= position) or 'lower', got '" + side + "'");
   stop.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
-  if (entry.contains("restitution")) stop.restitution = entry["restitution"].cast<double>();
+  for (const StopParameterRow& row : kStopParameterRows) {
+    const std::string key(row.key);
+    if (entry.contains(key)) {
+      stop.*row.member = entry[key.c_str()].cast<double>();
+    } else {
+      Require(!row.required, where + " needs '" + key + "'");
+    }
+  }
   return stop;
 }
 

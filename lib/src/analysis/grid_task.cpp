@@ -57,14 +57,18 @@ std::string SystemIdentity(const System& system) {
   // One upper stop keeps the identity it had before stop lists, so that
   // its checkpoints stay valid.
   if (system.StopCount() == 1 && first.side == StopSide::kUpper) {
-    return fmt::format("{} xs={} r={} contact={}", matrices, first.position, first.restitution,
-                       first.dof);
+    std::string identity = matrices;
+    for (const StopParameterRow& row : kStopParameterRows) {
+      identity += fmt::format(" {}={}", row.name, first.*row.member);
+    }
+    return identity + fmt::format(" contact={}", first.dof);
   }
   std::string stops;
   for (const StopParameters& stop : system.stops) {
-    stops += fmt::format(" stop={}:{}:{}:{}", stop.dof,
-                         stop.side == StopSide::kUpper ? "upper" : "lower", stop.position,
-                         stop.restitution);
+    stops +=
+        fmt::format(" stop={}:{}", stop.dof, stop.side == StopSide::kUpper ? "upper" : "lower");
+    for (const StopParameterRow& row : kStopParameterRows)
+      stops += fmt::format(":{}", stop.*row.member);
   }
   return matrices + stops;
 }

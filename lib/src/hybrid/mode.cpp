@@ -4,9 +4,9 @@
 #include <cmath>
 #include <complex>
 
+#include "hybrid/stuck_subsystem.hpp"
 #include "impactkit/dynamics/mode_clock.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
-#include "model/stuck_subsystem.hpp"
 
 namespace impactkit {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "model/stuck_subsystem.hpp"
+#include "hybrid/stuck_subsystem.hpp"
 
 namespace impactkit {
 

@@ -22,22 +22,27 @@ namespace {
 using Json = nlohmann::json;
 using Keys = std::span<const std::string_view>;
 
-constexpr std::array<std::string_view, 10> kTopLevelKeys = {
-    "chain", "mass", "damping", "stiffness", "forcing", "omega", "xs", "r", "contact_dof", "stops"};
-
-/// The parameters every stop has (model/parameters.hpp): a `stops` entry's
-/// keys after dof and side.
-std::vector<const ParameterSpec*> StopParameterSpecs() {
-  std::vector<const ParameterSpec*> specs;
-  for (const ParameterSpec& spec : ParameterTable()) {
-    if (spec.stop) specs.push_back(&spec);
-  }
-  return specs;
+/// The top-level keys: with one stop, its parameters by their names (xs,
+/// r: hybrid/stop_parameters.hpp) and contact_dof; else a `stops` list.
+std::vector<std::string_view> TopLevelKeys() {
+  std::vector<std::string_view> keys = {"chain",     "mass",    "damping",
+                                        "stiffness", "forcing", "omega"};
+  for (const StopParameterRow& row : kStopParameterRows) keys.push_back(row.name);
+  keys.insert(keys.end(), {"contact_dof", "stops"});
+  return keys;
 }
 
+/// "xs, r or contact_dof": the top-level keys of a file's sole stop.
+std::string SoleStopKeys() {
+  std::vector<std::string_view> names;
+  for (const StopParameterRow& row : kStopParameterRows) names.push_back(row.name);
+  return fmt::format("{} or contact_dof", fmt::join(names, ", "));
+}
+
+/// A `stops` entry's keys: dof, side and each stop parameter's key.
 std::vector<std::string_view> StopKeys() {
   std::vector<std::string_view> keys = {"dof", "side"};
-  for (const ParameterSpec* spec : StopParameterSpecs()) keys.push_back(spec->stop->key);
+  for (const StopParameterRow& row : kStopParameterRows) keys.push_back(row.key);
   return keys;
 }
 
@@ -64,7 +69,10 @@ struct SystemFields {
   std::optional<ChainParameters> chain;  ///< the chain form, its gaps already filled
   std::optional<Eigen::MatrixXd> mass, damping, stiffness;
   std::optional<Eigen::VectorXd> forcing;
-  std::optional<double> omega, stop, restitution;
+  std::optional<double> omega;
+  /// The one stop of a file without `stops`: the paper's stop's values
+  /// under the top-level keys given (xs, r); unset if none is.
+  std::optional<StopParameters> sole_stop;
   std::optional<int> contact_dof;  ///< 1-based, as in the file
   std::optional<std::vector<StopFields>> stops;
   bool General() const { return mass || damping || stiffness || contact_dof; }
@@ -199,11 +207,11 @@ StopFields ReadStop(const Json& value, std::size_t index, const StopParameters& 
     }
     stop.values.side = side == "upper" ? StopSide::kUpper : StopSide::kLower;
   }
-  for (const ParameterSpec* spec : StopParameterSpecs()) {
-    const std::string key(spec->stop->key);
+  for (const StopParameterRow& row : kStopParameterRows) {
+    const std::string key(row.key);
     if (value.contains(key)) {
-      stop.values.*spec->stop->member = reader.Number(value[key], field(key.c_str()));
-    } else if (spec->stop->required) {
+      stop.values.*row.member = reader.Number(value[key], field(key.c_str()));
+    } else if (row.required) {
       reader.Fail(field(key.c_str()), "is required");
     }
   }
@@ -226,7 +234,7 @@ std::vector<StopFields> ReadStops(const Json& value, const StopParameters& defau
 /// The fields of `document`; the gaps of the chain and of each stop are
 /// filled from `paper`.
 SystemFields ReadFields(const Json& document, const System& paper, const FieldReader& reader) {
-  reader.RequireObject(document, "", kTopLevelKeys);
+  reader.RequireObject(document, "", TopLevelKeys());
   auto number = [&](const char* key) -> std::optional<double> {
     if (!document.contains(key)) return std::nullopt;
     return reader.Number(document[key], Field(key));
@@ -244,16 +252,20 @@ SystemFields ReadFields(const Json& document, const System& paper, const FieldRe
     fields.forcing = reader.Vector(document["forcing"], Field("forcing"));
   }
   fields.omega = number("omega");
-  fields.stop = number("xs");
-  fields.restitution = number("r");
+  for (const StopParameterRow& row : kStopParameterRows) {
+    const std::string key(row.name);
+    if (!document.contains(key)) continue;
+    if (!fields.sole_stop) fields.sole_stop = paper.stops[0];
+    *fields.sole_stop.*row.member = reader.Number(document[key], Field(key));
+  }
   if (document.contains("contact_dof")) {
     fields.contact_dof = reader.WholeNumber(document["contact_dof"], Field("contact_dof"), 1);
   }
   if (document.contains("stops")) {
-    if (fields.stop || fields.restitution || fields.contact_dof) {
-      reader.Fail(Field("stops"),
-                  "cannot be combined with xs, r or contact_dof: give the one stop by those "
-                  "keys or every stop in 'stops'");
+    if (fields.sole_stop || fields.contact_dof) {
+      reader.Fail(Field("stops"), fmt::format("cannot be combined with {}: give the one stop by "
+                                              "those keys or every stop in 'stops'",
+                                              SoleStopKeys()));
     }
     fields.stops = ReadStops(document["stops"], paper.stops[0], reader);
   }
@@ -287,23 +299,29 @@ int GeneralDof(const SystemFields& fields, const System& paper) {
 /// keys xs, r and contact_dof.
 System BuildWithoutStopList(const SystemFields& fields, const System& paper) {
   const double omega = fields.omega.value_or(paper.omega);
-  const double stop = fields.stop.value_or(paper.stops[0].position);
-  const double restitution = fields.restitution.value_or(paper.stops[0].restitution);
+  const StopParameters& sole = fields.sole_stop.value_or(paper.stops[0]);
+  System system;
   if (!fields.General()) {
     const ChainParameters chain = fields.chain.value_or(*paper.chain);
-    return UniformChain(chain, fields.forcing.value_or(DefaultForcing(paper, chain.dof)), omega,
-                        stop, restitution);
+    system = UniformChain(chain, fields.forcing.value_or(DefaultForcing(paper, chain.dof)), omega,
+                          sole.position, sole.restitution);
+  } else {
+    ChainParameters chain = *paper.chain;
+    chain.dof = GeneralDof(fields, paper);
+    const Eigen::VectorXd forcing = fields.forcing.value_or(DefaultForcing(paper, chain.dof));
+    const System defaults = UniformChain(chain, forcing, omega, sole.position, sole.restitution);
+    std::optional<int> contact_dof;
+    if (fields.contact_dof) contact_dof = *fields.contact_dof - 1;
+    system = GeneralSystem(fields.mass.value_or(defaults.mass),
+                           fields.damping.value_or(defaults.damping),
+                           fields.stiffness.value_or(defaults.stiffness), forcing, omega,
+                           sole.position, sole.restitution, contact_dof);
   }
-  ChainParameters chain = *paper.chain;
-  chain.dof = GeneralDof(fields, paper);
-  const Eigen::VectorXd forcing = fields.forcing.value_or(DefaultForcing(paper, chain.dof));
-  const System defaults = UniformChain(chain, forcing, omega, stop, restitution);
-  std::optional<int> contact_dof;
-  if (fields.contact_dof) contact_dof = *fields.contact_dof - 1;
-  return GeneralSystem(fields.mass.value_or(defaults.mass),
-                       fields.damping.value_or(defaults.damping),
-                       fields.stiffness.value_or(defaults.stiffness), forcing, omega, stop,
-                       restitution, contact_dof);
+  // Every stop parameter, those the constructors above do not take too.
+  const int dof = system.stops[0].dof;
+  system.stops[0] = sole;
+  system.stops[0].dof = dof;
+  return system;
 }
 
 /// The stops of a `stops` list, each on its mass or the last.
@@ -472,16 +490,17 @@ std::string SystemToJson(const System& system) {
   json["forcing"] = std::vector<double>(system.forcing.begin(), system.forcing.end());
   json["omega"] = system.omega;
   if (one_stop) {
-    json["xs"] = system.stops[0].position;
-    json["r"] = system.stops[0].restitution;
+    for (const StopParameterRow& row : kStopParameterRows) {
+      json[std::string(row.name)] = system.stops[0].*row.member;
+    }
     if (!chain_form) json["contact_dof"] = system.stops[0].dof + 1;
   } else {
     json["stops"] = nlohmann::ordered_json::array();
     for (const StopParameters& stop : system.stops) {
       nlohmann::ordered_json entry = {{"dof", stop.dof + 1},
                                       {"side", stop.side == StopSide::kUpper ? "upper" : "lower"}};
-      for (const ParameterSpec* spec : StopParameterSpecs()) {
-        entry[std::string(spec->stop->key)] = stop.*spec->stop->member;
+      for (const StopParameterRow& row : kStopParameterRows) {
+        entry[std::string(row.key)] = stop.*row.member;
       }
       json["stops"].push_back(entry);
     }

@@ -61,13 +61,15 @@ void SetDof(System& s, double value) {
   RebuildChain(s, [&](ChainParameters& c) { c.dof = static_cast<int>(value); });
 }
 
-constexpr std::array<ParameterSpec, 8> kTable = {{
-    {"omega", "forcing frequency", "> 0", false, [](const System& s) { return s.omega; },
-     [](System& s, double v) { s.omega = v; }},
-    {"xs", "stop position (xs2, xs3, ... of further stops)", "finite", false, nullptr, nullptr,
-     StopField{&StopParameters::position, "position", true}},
-    {"r", "coefficient of restitution (r2, r3, ... of further stops)", "in [0, 1]", false, nullptr,
-     nullptr, StopField{&StopParameters::restitution, "restitution", false}},
+constexpr ParameterSpec kOmega = {"omega",
+                                  "forcing frequency",
+                                  "> 0",
+                                  false,
+                                  [](const System& s) { return s.omega; },
+                                  [](System& s, double v) { s.omega = v; }};
+
+/// The parameters after the stops' own.
+constexpr std::array<ParameterSpec, 5> kSystemParameters = {{
     {"A", "forcing amplitude on mass i", "finite", false, nullptr, nullptr},
     {"m", "mass", "> 0", true, [](const System& s) { return s.chain->mass; },
      [](System& s, double v) { RebuildChain(s, [&](ChainParameters& c) { c.mass = v; }); }},
@@ -78,6 +80,21 @@ constexpr std::array<ParameterSpec, 8> kTable = {{
     {"n", "number of masses", "a whole number in [1, 1000]", true,
      [](const System& s) { return static_cast<double>(s.chain->dof); }, SetDof},
 }};
+
+/// omega, then a row per stop parameter (hybrid/stop_parameters.hpp), then
+/// the rest: a contact law's new parameter joins without an edit here.
+constexpr auto BuildTable() {
+  std::array<ParameterSpec, 1 + kStopParameterRows.size() + kSystemParameters.size()> table{};
+  auto next = table.begin();
+  *next++ = kOmega;
+  for (const StopParameterRow& row : kStopParameterRows) {
+    *next++ = {row.name, row.meaning, row.range, false, nullptr, nullptr, &row};
+  }
+  for (const ParameterSpec& spec : kSystemParameters) *next++ = spec;
+  return table;
+}
+
+constexpr auto kTable = BuildTable();
 
 [[noreturn]] void UnknownParameter(const System& s, std::string_view name) {
   throw InvalidInput(

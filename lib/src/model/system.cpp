@@ -7,8 +7,6 @@
 #include <complex>
 #include <numbers>
 
-#include "model/stuck_subsystem.hpp"
-
 namespace impactkit {
 namespace {
 
@@ -132,18 +130,12 @@ void ValidateDerivedScales(const System& s) {
                       response, s.omega, kLargest));
 }
 
-/// How messages name stop k's position and restitution: the parameter
-/// names (xs and r for the first stop, xs<k>, r<k> for the others).
+/// How messages name stop k's position: xs (stop position), or xs<k>
+/// (position of stop k) with several stops.
 std::string PositionName(const System& s, int k) {
-  return s.StopCount() == 1
-             ? "xs (stop position)"
-             : fmt::format("{} (position of stop {})", StopParameterName("xs", k), k + 1);
-}
-
-std::string RestitutionName(const System& s, int k) {
-  return s.StopCount() == 1
-             ? "r (coefficient of restitution)"
-             : fmt::format("{} (restitution of stop {})", StopParameterName("r", k), k + 1);
+  constexpr const StopParameterRow& kPosition = kStopParameterRows[0];
+  static_assert(kPosition.member == &StopParameters::position);
+  return StopParameterLabel(kPosition, k, s.StopCount());
 }
 
 void ValidateStop(const System& s, int k) {
@@ -154,10 +146,7 @@ void ValidateStop(const System& s, int k) {
       s.StopCount() == 1
           ? fmt::format("contact DOF must be in [1, {}], got {}", n, stop.dof + 1)
           : fmt::format("the mass of stop {} must be in [1, {}], got {}", k + 1, n, stop.dof + 1));
-  Require(std::isfinite(stop.position),
-          fmt::format("{} must be finite, got {}", PositionName(s, k), stop.position));
-  Require(std::isfinite(stop.restitution) && stop.restitution >= 0 && stop.restitution <= 1,
-          fmt::format("{} must be in [0, 1], got {}", RestitutionName(s, k), stop.restitution));
+  CheckStopParameterRanges(stop, k, s.StopCount());
 }
 
 /// Two stops on one mass: one above and one below it, leaving room
@@ -197,9 +186,6 @@ void ValidateScalars(const System& s) {
   ValidateStops(s);
 }
 
-/// The subsystem that moves while one stop holds its mass must have a
-/// bounded steady response too (sets of several held stops are checked
-/// when a motion first reaches them: there can be 2^K of them).
 }  // namespace
 
 double System::ForcingPeriod() const { return 2.0 * std::numbers::pi / omega; }
@@ -223,10 +209,6 @@ Eigen::MatrixXd ChainCouplingMatrix(int dof) {
     if (i + 1 < dof) e(i, i + 1) = e(i + 1, i) = -1.0;
   }
   return e;
-}
-
-std::string StopParameterName(std::string_view base, int stop) {
-  return stop == 0 ? std::string(base) : fmt::format("{}{}", base, stop + 1);
 }
 
 System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
@@ -322,29 +304,4 @@ void ValidateState(const System& s, const HybridState& state) {
   }
 }
 
-namespace detail {
-
-std::vector<int> MovingDofs(const System& s, StopSet held) {
-  std::vector<int> moving;
-  for (int i = 0; i < s.Dof(); ++i) {
-    bool is_held = false;
-    for (int k = 0; k < s.StopCount(); ++k) {
-      is_held = is_held || ((held & StopBit(k)) != 0 && s.stops[k].dof == i);
-    }
-    if (!is_held) moving.push_back(i);
-  }
-  return moving;
-}
-
-StuckSubsystem StuckSubsystemOf(const System& s, StopSet held) {
-  const std::vector<int> moving = MovingDofs(s, held);
-  Eigen::VectorXd held_positions = Eigen::VectorXd::Zero(s.Dof());
-  for (int k = 0; k < s.StopCount(); ++k) {
-    if ((held & StopBit(k)) != 0) held_positions(s.stops[k].dof) = s.stops[k].position;
-  }
-  return {s.mass(moving, moving), s.damping(moving, moving), s.stiffness(moving, moving),
-          s.forcing(moving), -(s.stiffness(moving, Eigen::all) * held_positions)};
-}
-
-}  // namespace detail
 }  // namespace impactkit

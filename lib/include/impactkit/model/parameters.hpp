@@ -4,7 +4,6 @@
 /// sets them by name, system files take their chain keys from it, and the
 /// command line lists them in `--set`'s help and in every provenance line.
 
-#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -13,16 +12,6 @@
 #include "impactkit/model/system.hpp"
 
 namespace impactkit {
-
-/// A parameter every stop has: the field of StopParameters it is, and its
-/// key in a system file's `stops` entries. A contact law's new parameter is
-/// a StopParameters field and a row of the table with this; the system
-/// files, --set, continuation and the provenance lines follow.
-struct StopField {
-  double StopParameters::*member;
-  std::string_view key;
-  bool required;  ///< a `stops` entry must give it (else the paper's stop's value)
-};
 
 struct ParameterSpec {
   /// The name; "A" stands for A1 … AN, one per mass; a stop parameter's
@@ -35,11 +24,14 @@ struct ParameterSpec {
   /// ("A", the stop parameters: see Get/SetParameter).
   double (*get)(const System& system);
   void (*set)(System& system, double value);
-  std::optional<StopField> stop = std::nullopt;  ///< set for a parameter of each stop
+  /// A parameter of each stop: its row in hybrid/stop_parameters.hpp,
+  /// whose name, meaning and range this entry repeats.
+  const StopParameterRow* stop = nullptr;
   bool PerMass() const { return !get && !stop; }
 };
 
-/// omega, xs, r, A, m, k, c, n: the order of ParameterNames.
+/// omega, the stop parameters (xs, r), A, m, k, c, n: the order of
+/// ParameterNames.
 std::span<const ParameterSpec> ParameterTable();
 
 /// The entry for a name (A1 … AN map to "A", xs2 … to "xs", r2 … to "r");

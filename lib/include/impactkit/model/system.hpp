@@ -24,6 +24,9 @@
 #include <vector>
 
 #include "impactkit/core/errors.hpp"
+// A stop's parameters are declared beside its law, as data (the header
+// includes nothing of the library): a contact law is one folder.
+#include "impactkit/hybrid/stop_parameters.hpp"
 
 namespace impactkit {
 
@@ -38,25 +41,6 @@ struct ChainParameters {
 /// The most masses a system may have: the modal decomposition costs O(N³)
 /// and each event O(N²) (docs/performance.md gives the costs).
 inline constexpr int kMaxDegreesOfFreedom = 1000;
-
-/// Which way a stop limits its mass.
-enum class StopSide {
-  kUpper,  ///< x_i <= position: met moving up (v_i > 0)
-  kLower,  ///< x_i >= position: met moving down (v_i < 0)
-};
-
-/// One rigid stop: the mass it limits, from which side, where, and the
-/// coefficient of restitution of its impacts.
-struct StopParameters {
-  int dof = 1;                       ///< the mass it limits (0-based)
-  StopSide side = StopSide::kUpper;  ///< which way
-  double position = 0.1;             ///< xs
-  double restitution = 0.7;          ///< r in [0, 1]
-  /// +1 for an upper stop, -1 for a lower one: Sign() (x_i - position) is
-  /// the gap (< 0 inside) and Sign() v_i the speed towards the stop.
-  double Sign() const { return side == StopSide::kUpper ? 1.0 : -1.0; }
-  bool operator==(const StopParameters&) const = default;
-};
 
 /// The most stops a system may have: a set of stops holding their masses
 /// is a bit set (StopSet).
@@ -89,10 +73,6 @@ struct System {
   double Phase(double t) const;
   int StopCount() const { return static_cast<int>(stops.size()); }
 };
-
-/// The name of a stop's parameter as files and the command line write it:
-/// `base` for the first stop (xs, r), base<k> for stop k >= 2 (xs2, r2).
-std::string StopParameterName(std::string_view base, int stop);
 
 /// The coupling matrix E of the uniform chain (N x N).
 Eigen::MatrixXd ChainCouplingMatrix(int dof);

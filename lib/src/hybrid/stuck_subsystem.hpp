@@ -6,8 +6,9 @@
 ///
 ///     M' x'' + C' x' + K' x = A' cos(Ω t) − K_{·H} xs_H.
 ///
-/// Validation and the hybrid system build their held flows from this one
-/// place (dynamics/held_flow.hpp).
+/// A rigid stop holds its mass at xs: this is the held phase of the stop's
+/// law (hybrid/stop.hpp), beside it. The held modes (hybrid/mode.hpp) and
+/// their flows (hybrid/system_flows.hpp) are built from this one place.
 
 #include <Eigen/Dense>
 #include <vector>
