@@ -58,6 +58,25 @@ void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std
       ->group(group);
 }
 
+void AddStickingSeedOptions(CLI::App& command, StickingSeedOptions& options,
+                            const std::string& group) {
+  command
+      .add_flag("--sticking", options.sticking,
+                "Start from a sticking orbit P(inf,q): from the steady simulation, or from "
+                "--guess (a release state: x and v of the other masses, then t) with --q")
+      ->group(group);
+  command
+      .add_option("--releases", options.releases,
+                  "With --sticking --guess: sticking phases per orbit")
+      ->type_name("K")
+      ->check(CLI::Range(1, static_cast<int>(kMaxOrbitPeriod)))
+      ->capture_default_str()
+      ->group(group);
+}
+
+namespace {
+
+/// The 0-based stop of a --guess: --stop K, or the first.
 int GuessStop(const System& system, const OrbitSeedOptions& options) {
   if (options.stop && options.guess.empty()) {
     throw InvalidInput("--stop goes with --guess (a seed from simulation knows its stop)");
@@ -70,51 +89,12 @@ int GuessStop(const System& system, const OrbitSeedOptions& options) {
   return stop - 1;
 }
 
-OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& request,
-                        Eigen::VectorXd* eta) {
-  if (request.transient < 0) throw InvalidInput("--transient must be >= 0");
-  OrbitOptions options;
-  if (request.p.has_value() != request.q.has_value()) {
-    throw InvalidInput("--p and --q go together: give both, or neither to detect them");
-  }
-  const int stop = GuessStop(system, request);
-  if (!request.guess.empty()) {
-    if (!request.p) throw InvalidInput("--guess needs --p and --q");
-    *eta = Eigen::Map<const Eigen::VectorXd>(request.guess.data(),
-                                             static_cast<Eigen::Index>(request.guess.size()));
-    options.map.stop = stop;
-  } else {
-    const std::optional<OrbitSeed> seed = SeedFromSimulation(system, request.transient);
-    if (!seed) throw std::runtime_error("the simulated motion has no impacts: no orbit to refine");
-    if (!request.p && (!seed->motion.periodic || seed->motion.sticking)) {
-      throw std::runtime_error(fmt::format(
-          "the simulated motion is {}; give --p and --q (and --guess) to look for an orbit",
-          seed->motion.sticking ? "sticking (an impact map orbit cannot stick)"
-                                : seed->motion.ToString()));
-    }
-    *eta = seed->eta;
-    options.map.stop = seed->stop;
-    options.p = static_cast<int>(seed->motion.p);
-    options.q = seed->motion.q;
-  }
-  if (request.p) {
-    options.p = *request.p;
-    options.q = *request.q;
-  }
-  options.jacobian =
-      request.jacobian == "fd" ? JacobianMethod::kFiniteDifference : JacobianMethod::kAnalytic;
-  options.least_squares_fallback = !request.no_fallback;
-  return options;
-}
-
-namespace {
-
 /// What to try when no orbit converged from the seed: the solver's report
 /// says only why it stopped, not what the user can change.
-std::string OrbitSearchHint(const OrbitSeedOptions& request) {
+std::string OrbitSearchHint(const StartOrbitRequest& request) {
   const std::string elsewhere =
       "or find the orbit where it exists and follow it here with `impactkit continue`";
-  if (!request.guess.empty()) {
+  if (request.guess) {
     return "the guess may be too far from an orbit: take one from an impact of `impactkit "
            "simulate` at this value, " +
            elsewhere;
@@ -129,18 +109,36 @@ std::string OrbitSearchHint(const OrbitSeedOptions& request) {
 
 }  // namespace
 
-PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
-                             OrbitOptions* options, OrbitSummary* summary) {
-  Eigen::VectorXd eta;
-  *options = ChooseSeed(system, seed, &eta);
-  PeriodicOrbit orbit;
-  const OrbitSummary result = FindOrbit(system, eta, *options, &orbit);
-  if (result.termination != Termination::kConverged) {
-    throw std::runtime_error(fmt::format("no P({},{}) orbit found ({}); {}", options->p, options->q,
-                                         result.BriefReport(), OrbitSearchHint(seed)));
+StartOrbitRequest StartRequest(const System& system, const OrbitSeedOptions& seed,
+                               const StickingSeedOptions& sticking, StartOrbitKind kind) {
+  StartOrbitRequest request;
+  request.kind = sticking.sticking ? StartOrbitKind::kSticking : kind;
+  request.p = seed.p;
+  request.q = seed.q;
+  request.stop = GuessStop(system, seed);
+  if (!seed.guess.empty()) {
+    request.guess = Eigen::Map<const Eigen::VectorXd>(seed.guess.data(),
+                                                      static_cast<Eigen::Index>(seed.guess.size()));
+    if (sticking.sticking) request.releases = sticking.releases;
   }
-  if (summary) *summary = result;
-  return orbit;
+  request.transient = seed.transient;
+  request.solver.jacobian =
+      seed.jacobian == "fd" ? JacobianMethod::kFiniteDifference : JacobianMethod::kAnalytic;
+  request.solver.least_squares_fallback = !seed.no_fallback;
+  return request;
+}
+
+StartOrbit SolveStartOrbit(const System& system, const StartOrbitRequest& request) {
+  StartOrbit start = FindStartOrbit(system, request);
+  if (!start.seeded) throw std::runtime_error(start.summary.message);
+  if (start.summary.termination != Termination::kConverged) {
+    const OrbitOptions& o = start.options;
+    throw std::runtime_error(fmt::format(
+        "no {} orbit found ({}); {}",
+        o.releases > 0 ? fmt::format("sticking P(inf,{})", o.q) : fmt::format("P({},{})", o.p, o.q),
+        start.summary.BriefReport(), OrbitSearchHint(request)));
+  }
+  return start;
 }
 
 }  // namespace impactkit::cli

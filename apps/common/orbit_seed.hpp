@@ -1,8 +1,9 @@
 #pragma once
 /// \file common/orbit_seed.hpp
-/// The flags that choose a starting orbit, shared by `orbit` and
-/// `continue` (and the starts of `paper`'s branches): p and q, and either a
-/// guess or a steady simulation.
+/// The flags that choose a starting orbit, shared by `orbit`, `continue`,
+/// `diagram` and `curve`: p and q (or --sticking and --releases), and
+/// either a guess or a steady simulation. The rule that picks the orbit is
+/// the library's (analysis/start_orbit.hpp).
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Dense>
@@ -10,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/orbits/orbit.hpp"
+#include "impactkit/analysis/start_orbit.hpp"
+#include "impactkit/model/system.hpp"
 
 namespace impactkit::cli {
 
@@ -24,22 +25,26 @@ struct OrbitSeedOptions {
   bool no_fallback = false;
 };
 
+struct StickingSeedOptions {
+  bool sticking = false;  ///< --sticking: the start must be a sticking orbit
+  int releases = 1;       ///< --releases: sticking phases per orbit, with --guess
+};
+
 /// Adds --p, --q, --guess, --stop, --transient, --jacobian, --no-fallback in `group`.
 void AddOrbitSeedOptions(CLI::App& command, OrbitSeedOptions& options, const std::string& group);
 
-/// The orbit options and the seed η: the user's guess, or the last impact
-/// of a steady simulation (whose P(p, q) is used unless p and q are given).
-/// Throws InvalidInput for inconsistent flags, std::runtime_error when the
-/// simulated motion offers no orbit.
-OrbitOptions ChooseSeed(const System& system, const OrbitSeedOptions& options,
-                        Eigen::VectorXd* eta);
+/// Adds --sticking and --releases in `group`.
+void AddStickingSeedOptions(CLI::App& command, StickingSeedOptions& options,
+                            const std::string& group);
 
-/// The 0-based stop of a --guess: --stop K, or the first. Throws
+/// The library's request (analysis/start_orbit.hpp) from the flags: of
+/// `kind`, or a sticking orbit where --sticking asks for one. Throws
 /// InvalidInput for a --stop without --guess or one the system lacks.
-int GuessStop(const System& system, const OrbitSeedOptions& options);
+StartOrbitRequest StartRequest(const System& system, const OrbitSeedOptions& seed,
+                               const StickingSeedOptions& sticking, StartOrbitKind kind);
 
-/// FindOrbit from the chosen seed; throws std::runtime_error if it fails.
-PeriodicOrbit FindStartOrbit(const System& system, const OrbitSeedOptions& seed,
-                             OrbitOptions* options, OrbitSummary* summary = nullptr);
+/// FindStartOrbit; throws std::runtime_error, with what to try, when no
+/// orbit was seeded or found.
+StartOrbit SolveStartOrbit(const System& system, const StartOrbitRequest& request);
 
 }  // namespace impactkit::cli

@@ -22,7 +22,6 @@
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/provenance.hpp"
-#include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/continuation/diagram.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
@@ -151,10 +150,10 @@ void RunContinue(const ContinueRequest& request) {
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   // A motion that sticks starts its sticking family; any other, the
   // impact map's.
-  OrbitOptions orbit_options;
-  const PeriodicOrbit start =
-      FindAnyStartOrbit(system, request.seed, request.sticking, &orbit_options);
-  const ContinuationOptions options = MakeOptions(request, orbit_options);
+  const StartOrbit found = SolveStartOrbit(
+      system, StartRequest(system, request.seed, request.sticking, StartOrbitKind::kAny));
+  const PeriodicOrbit& start = found.orbit;
+  const ContinuationOptions options = MakeOptions(request, found.options);
   fmt::print("system:     {}\n", DescribeSystem(system));
   fmt::print("start:      {}{} at {} = {}, {}\n", start.Sticks() ? "sticking " : "",
              OrbitName(start), request.parameter, GetParameter(system, request.parameter),

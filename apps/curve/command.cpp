@@ -111,14 +111,15 @@ CurveOptions MakeOptions(const CurveRequest& request, const System& system) {
 /// values, its branch in --param, the point of --type nearest.
 CurveStart FindStart(const CurveRequest& request, const System& system, CurveOptions* options) {
   const SpecialPointType type = CurveType(request.type);
-  OrbitOptions orbit_options;
-  const PeriodicOrbit orbit = FindStartOrbit(system, request.seed, &orbit_options);
-  options->orbit = orbit_options;
+  const StartOrbit found =
+      SolveStartOrbit(system, StartRequest(system, request.seed, {}, StartOrbitKind::kImpacting));
+  const PeriodicOrbit& orbit = found.orbit;
+  options->orbit = found.options;
   ContinuationOptions search;
   search.parameter = request.parameter;
   search.lower = options->lower;
   search.upper = options->upper;
-  search.orbit = orbit_options;
+  search.orbit = found.options;
   const std::optional<SpecialPoint> special = LocateSpecialPoint({system, orbit, {}}, search, type);
   Require(
       special.has_value(),

@@ -22,7 +22,6 @@
 #include "common/output.hpp"
 #include "common/plot.hpp"
 #include "common/provenance.hpp"
-#include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
@@ -121,10 +120,11 @@ void RunDiagram(const DiagramRequest& request) {
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   std::vector<DiagramSeed> seeds;
   if (request.start) {
-    const PeriodicOrbit start =
-        FindAnyStartOrbit(system, request.seed, request.sticking, &options.seeds.orbit);
+    const StartOrbit found = SolveStartOrbit(
+        system, StartRequest(system, request.seed, request.sticking, StartOrbitKind::kAny));
+    options.seeds.orbit = found.options;
     seeds.push_back(
-        {system, start, fmt::format("start at {} = {}", request.parameter, *request.start)});
+        {system, found.orbit, fmt::format("start at {} = {}", request.parameter, *request.start)});
   }
   fmt::print("system:     {}\n", DescribeSystem(system));
   const bool tty = ::isatty(STDERR_FILENO) == 1;

@@ -90,16 +90,18 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
 
 void RunOrbit(const OrbitRequest& request) {
   const System system = ResolveSystem(request.system);
-  if (const auto seed = ChooseStickingSeed(system, request.seed, request.sticking)) {
-    RunStickingOrbit(system, *seed, request.min_speed, request.check_jacobian, request.json,
-                     request.system);
-    return;
-  }
   std::optional<AtomicOutputFile> json;  // created first: a bad path fails before the work
   if (!request.json.empty()) json.emplace(request.json);
-  OrbitOptions options;
-  OrbitSummary summary;
-  const PeriodicOrbit orbit = FindStartOrbit(system, request.seed, &options, &summary);
+  const StartOrbit start = SolveStartOrbit(
+      system, StartRequest(system, request.seed, request.sticking, StartOrbitKind::kAny));
+  const PeriodicOrbit& orbit = start.orbit;
+  const OrbitSummary& summary = start.summary;
+  const OrbitOptions& options = start.options;
+  if (orbit.Sticks()) {
+    ReportStickingOrbit(system, orbit, summary, request.min_speed, request.check_jacobian,
+                        json ? &*json : nullptr, request.json, request.system);
+    return;
+  }
   Print(system, orbit, summary, options.jacobian);
   std::optional<JacobianComparison> check;
   if (request.check_jacobian) {

@@ -125,12 +125,10 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
 
 }  // namespace
 
-void RunStickingOrbit(const System& system, const StickingSeed& seed, double min_speed,
-                      bool check_jacobian, const std::string& json, const SystemOptions& source) {
-  std::optional<AtomicOutputFile> file;  // created first: a bad path fails before the work
-  if (!json.empty()) file.emplace(json);
-  OrbitSummary summary;
-  const PeriodicOrbit orbit = RefineStickingOrbit(system, seed, &summary);
+void ReportStickingOrbit(const System& system, const PeriodicOrbit& orbit,
+                         const OrbitSummary& summary, double min_speed, bool check_jacobian,
+                         AtomicOutputFile* json, const std::string& json_path,
+                         const SystemOptions& source) {
   Print(system, orbit, summary, min_speed);
   nlohmann::json j = OrbitJson(system, orbit, summary, min_speed);
   j["provenance"] =
@@ -152,10 +150,10 @@ void RunStickingOrbit(const System& system, const StickingSeed& seed, double min
         difference, relative);
     j["jacobian_check"] = {{"max_difference", difference}, {"max_relative_difference", relative}};
   }
-  if (file) {
-    file->Write(j.dump(2) + "\n");
-    file->Commit();
-    fmt::print("wrote:       {}\n", json);
+  if (json) {
+    json->Write(j.dump(2) + "\n");
+    json->Commit();
+    fmt::print("wrote:       {}\n", json_path);
   }
 }
 

@@ -1,23 +1,25 @@
 #pragma once
 /// \file orbit/sticking.hpp
-/// `impactkit orbit` for sticking motions: a sticking steady state (or a
-/// release-state guess with --sticking) refined into a sticking orbit
+/// `impactkit orbit` for sticking motions: the output of a sticking orbit
 /// P(∞, q) of the release map (impactkit/orbits/sticking_orbit.hpp).
 
 #include <string>
 
-#include "common/sticking_seed.hpp"
 #include "common/system_options.hpp"
+#include "impactkit/io/output_file.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/orbit.hpp"
 
 namespace impactkit::cli {
 
-/// Refines the seed and prints the orbit: the impacts before each
-/// accumulation faster than `min_speed`, and with `check_jacobian` the
-/// analytic Jacobian's distance from finite differences. Writes it to
-/// `json` if not empty, with the provenance of a run of the system that
-/// `source` names. Throws std::runtime_error if Newton does not converge.
-void RunStickingOrbit(const System& system, const StickingSeed& seed, double min_speed,
-                      bool check_jacobian, const std::string& json, const SystemOptions& source);
+/// Prints the sticking orbit found, with its solver's summary: the impacts
+/// before each accumulation faster than `min_speed`, and with
+/// `check_jacobian` the analytic Jacobian's distance from finite
+/// differences. Writes it to `json` (at `json_path`) if given, with the
+/// provenance of a run of the system that `source` names.
+void ReportStickingOrbit(const System& system, const PeriodicOrbit& orbit,
+                         const OrbitSummary& summary, double min_speed, bool check_jacobian,
+                         AtomicOutputFile* json, const std::string& json_path,
+                         const SystemOptions& source);
 
 }  // namespace impactkit::cli

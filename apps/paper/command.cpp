@@ -26,6 +26,7 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/swept_diagram.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -186,11 +187,11 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
     system.omega = omega;
     // The start as `impactkit orbit` finds it; a failure ends the job with
     // its reason rather than leave a branch out of the summary.
-    OrbitSeedOptions seed;
-    seed.transient = resolution.transient;
-    OrbitOptions orbit;
-    const PeriodicOrbit start = FindStartOrbit(system, seed, &orbit);
-    seeds.push_back({system, start, fmt::format("the orbit at omega = {}", omega)});
+    StartOrbitRequest request;
+    request.kind = StartOrbitKind::kImpacting;
+    request.transient = resolution.transient;
+    seeds.push_back({system, SolveStartOrbit(system, request).orbit,
+                     fmt::format("the orbit at omega = {}", omega)});
   }
   SweptDiagram swept;
   swept.seeds = seeds;

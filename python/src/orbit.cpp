@@ -1,6 +1,5 @@
-// impactkit.find_orbit and impactkit.Orbit:
-// orbits/orbit.hpp (either section), seeded by
-// analysis/orbit_seed.hpp and analysis/sticking_seed.hpp when no seed is given.
+// impactkit.find_orbit and impactkit.Orbit: the start orbit of
+// analysis/start_orbit.hpp (either section, orbits/orbit.hpp).
 #include "impactkit/orbits/orbit.hpp"
 
 #include <pybind11/complex.h>
@@ -14,8 +13,7 @@
 #include <vector>
 
 #include "bindings.hpp"
-#include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/analysis/sticking_seed.hpp"
+#include "impactkit/analysis/start_orbit.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -26,78 +24,34 @@ JacobianMethod JacobianFromName(const std::string& name) {
   throw InvalidInput("jacobian must be 'analytic' or 'finite_difference', got '" + name + "'");
 }
 
-/// A seed's stop is one of the system's (0-based).
-void RequireStop(const System& system, int stop) {
-  Require(stop >= 0 && stop < system.StopCount(), "stop must be in [0, " +
-                                                      std::to_string(system.StopCount() - 1) +
-                                                      "] (0-based), got " + std::to_string(stop));
-}
-
-/// The seed of find_orbit when none is given, from a steady simulation:
-/// its sticking orbit where it sticks (unless p and q ask for an impacting
-/// one) or `releases` asks for one, else its last impact with the period it
-/// shows.
-Eigen::VectorXd SeedFromMotion(const System& system, std::optional<int> p, std::optional<int> q,
-                               std::optional<int> releases, int transient, OrbitOptions* options) {
-  Require(transient >= 0, "transient must be >= 0, got " + std::to_string(transient));
-  std::optional<OrbitSeed> found;
-  if (!releases) {
-    found = SeedFromSimulation(system, transient);
-    Require(found.has_value(), "no seed: the simulation from rest has no impact");
-  }
-  if (releases || (!p && found->motion.sticking)) {
-    const std::optional<StickingSeed> sticking = SeedStickingFromSimulation(system, transient);
-    Require(sticking.has_value(), "no seed: the simulation from rest does not stick periodically");
-    options->release_map.stop = sticking->stop;
-    options->releases = releases.value_or(sticking->releases);
-    options->q = q.value_or(sticking->q);
-    return sticking->state;
-  }
-  Require((p && q) || found->motion.periodic,
-          "no p and q given, and the simulation from rest shows " + found->motion.ToString() +
-              "; give p and q");
-  options->map.stop = found->stop;
-  options->p = p.value_or(static_cast<int>(found->motion.p));
-  options->q = q.value_or(found->motion.q);
-  return found->eta;
-}
-
 PeriodicOrbit FindOrbitPy(const System& system, std::optional<int> p, std::optional<int> q,
                           std::optional<int> releases, std::optional<Eigen::VectorXd> seed,
                           int stop, const std::string& jacobian, double residual_tolerance,
                           int max_iterations, bool least_squares_fallback, int transient) {
-  Require(!(p && releases),
-          "give p (an impacting orbit) or releases (a sticking orbit, whose impacts are "
-          "counted, not asked for), not both");
-  Require(!releases || *releases >= 1,
-          "releases must be >= 1, got " + std::to_string(releases.value_or(0)));
-  OrbitOptions options;
-  options.jacobian = JacobianFromName(jacobian);
-  options.newton.residual_tolerance = residual_tolerance;
-  options.newton.max_iterations = max_iterations;
-  options.least_squares_fallback = least_squares_fallback;
-  PeriodicOrbit orbit;
-  const OrbitSummary summary = WithoutGil([&] {
-    Eigen::VectorXd guess;
-    if (seed) {
-      guess = *seed;
-      RequireStop(system, stop);
-      options.map.stop = options.release_map.stop = stop;
-      options.p = p.value_or(1);
-      options.releases = releases.value_or(0);
-      options.q = q.value_or(1);
-    } else {
-      guess = SeedFromMotion(system, p, q, releases, transient, &options);
-    }
-    return FindOrbit(system, guess, options, &orbit);
-  });
-  if (summary.termination != Termination::kConverged) ThrowNumericalError(summary.BriefReport());
+  StartOrbitRequest request;
+  request.p = p;
+  request.q = q;
+  request.releases = releases;
+  request.guess = std::move(seed);
+  request.stop = stop;
+  request.transient = transient;
+  request.solver.jacobian = JacobianFromName(jacobian);
+  request.solver.newton.residual_tolerance = residual_tolerance;
+  request.solver.newton.max_iterations = max_iterations;
+  request.solver.least_squares_fallback = least_squares_fallback;
+  const StartOrbit start = WithoutGil([&] { return FindStartOrbit(system, request); });
+  // No seed of the kind asked for at these values: the request, not the
+  // solver, is what to change.
+  if (!start.seeded) throw InvalidInput(start.summary.message);
+  if (start.summary.termination != Termination::kConverged) {
+    ThrowNumericalError(start.summary.BriefReport());
+  }
   // The orbit holds, but a simulation does not see all its impacts: say so.
-  if (summary.unresolved_impacts > 0 &&
-      PyErr_WarnEx(PyExc_RuntimeWarning, summary.BriefReport().c_str(), 1) != 0) {
+  if (start.summary.unresolved_impacts > 0 &&
+      PyErr_WarnEx(PyExc_RuntimeWarning, start.summary.BriefReport().c_str(), 1) != 0) {
     throw py::error_already_set();
   }
-  return orbit;
+  return start.orbit;
 }
 
 /// One field of a sticking orbit's stuck phases, as a numpy array of shape (k,).
@@ -216,8 +170,10 @@ releases) and q default to 1. Without a seed, a simulation from rest
 (transient forcing periods, then a window) gives it: where the motion sticks
 periodically (and p is not given), its last release, with the releases and
 q after which it repeats; else its last impact, at whichever stop it is,
-with the period it shows.
-Raises ValueError for bad input (a release seed the stop still pushes on),
+with the period it shows (p and q, if given, go together). The rule is
+the library's, shared with `impactkit orbit` (analysis/start_orbit.hpp).
+Raises ValueError for bad input (a release seed the stop still pushes on,
+no seed of the kind asked for in the simulated motion),
 NumericalError when Newton does not converge.
 Warns (RuntimeWarning) when an impact of the orbit is below the arrival
 resolution: near a grazing, a simulation sees a touch there, not an impact.
