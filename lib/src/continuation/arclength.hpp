@@ -1,10 +1,14 @@
 #pragma once
 /// \file arclength.hpp
 /// What every pseudo-arclength driver (branches, two-parameter curves)
-/// shares: the checks of its step controls, so that their messages agree,
-/// and the tangent of the solution curve of an underdetermined system.
+/// shares: the checks of its step controls, so that their messages agree;
+/// the bordered corrector, the predictor–corrector step and the step-size
+/// rule; the tangent of the solution curve of an underdetermined system;
+/// and the zero locator of a test function along it.
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -19,12 +23,6 @@ std::optional<std::string> StepControlProblem(double min_step, double initial_st
                                               int max_points, int corrector_iterations,
                                               double max_correction);
 
-/// The unit tangent of {x : F(x) = 0} at a point where F's Jacobian `j`
-/// (n x (n + 1)) has full rank: with `previous` (a tangent, size n + 1) the
-/// solution of the bordered system [J; previousᵀ] t = e_last, regular at
-/// folds and continuing `previous` (previous · t = 1 > 0); without (size 0)
-/// the null vector of J from its SVD, of either sign. Nothing where J is
-/// singular or not finite.
 /// The bordered corrector: solves F(x) = 0 (n equations, `residual`, with
 /// its n x (n + 1) Jacobian `jacobian`) together with c · x = value (the
 /// pseudo-arclength constraint, or a parameter held fixed) by Newton from
@@ -34,7 +32,76 @@ std::optional<Eigen::VectorXd> CorrectBordered(const Residual& residual, const J
                                                const Eigen::VectorXd& c, double value,
                                                const NewtonOptions& newton, int* iterations);
 
+/// The unit tangent of {x : F(x) = 0} at a point where F's Jacobian `j`
+/// (n x (n + 1)) has full rank: with `previous` (a tangent, size n + 1) the
+/// solution of the bordered system [J; previousᵀ] t = e_last, regular at
+/// folds and continuing `previous` (previous · t = 1 > 0); without (size 0)
+/// the null vector of J from its SVD, of either sign. Nothing where J is
+/// singular or not finite.
 std::optional<Eigen::VectorXd> ArclengthTangent(const Eigen::MatrixXd& j,
                                                 const Eigen::VectorXd& previous);
+
+/// Predicts from the point x0 along its unit tangent t by arclength s and
+/// corrects on the hyperplane t · (X − x0) = s (`problem`.Correct, the
+/// bordered corrector of a branch's or a curve's problem). Nothing where
+/// the corrector fails or moves farther than max_correction |s| from the
+/// prediction (a jump to another branch).
+template <typename Problem>
+std::optional<Eigen::VectorXd> PredictCorrect(const Problem& problem, const Eigen::VectorXd& x0,
+                                              const Eigen::VectorXd& t, double s,
+                                              const NewtonOptions& newton, double max_correction,
+                                              int* iterations) {
+  const Eigen::VectorXd guess = x0 + s * t;
+  std::optional<Eigen::VectorXd> x = problem.Correct(guess, t, t.dot(x0) + s, newton, iterations);
+  if (!x || (*x - guess).norm() > max_correction * std::abs(s)) return std::nullopt;
+  return x;
+}
+
+/// The step after one whose corrector took `iterations`: 1.5 times longer
+/// after an easy one (<= 2), 0.7 times after a hard one (>= 5), within
+/// [min_step, max_step].
+inline double NextStep(double step, int iterations, double min_step, double max_step) {
+  if (iterations <= 2) return std::min(1.5 * step, max_step);
+  if (iterations >= 5) return std::max(0.7 * step, min_step);
+  return step;
+}
+
+/// Iterations of the locators (the Illinois method, secant approaches).
+inline constexpr int kMaxLocateIterations = 80;
+
+/// The Illinois method on arclength for the zero of `value` between the
+/// points a (s = 0) and b, where it changes sign, each trial `advance(a,
+/// s)` corrected onto the curve from a (nothing where the corrector
+/// fails). The point with the least |value| found; where no trial
+/// converged (rare: the corrector failing between two good points) the
+/// nearer end stands in, its value saying how near.
+template <typename Point, typename Advance, typename Value>
+Point IllinoisZero(const Point& a, const Point& b, Advance advance, Value value) {
+  double lo = 0.0, hi = b.arclength - a.arclength;
+  double f_lo = value(a), f_hi = value(b);
+  std::optional<Point> best;
+  int side = 0;
+  for (int k = 0; k < kMaxLocateIterations && std::abs(hi - lo) > 1e-14 * std::abs(hi); ++k) {
+    const double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    const std::optional<Point> trial = advance(a, s);
+    if (!trial) break;
+    const double f = value(*trial);
+    if (!best || std::abs(f) < std::abs(value(*best))) best = trial;
+    if (f == 0.0) break;
+    if ((f > 0) == (f_lo > 0)) {
+      lo = s;
+      f_lo = f;
+      if (side == -1) f_hi /= 2.0;
+      side = -1;
+    } else {
+      hi = s;
+      f_hi = f;
+      if (side == +1) f_lo /= 2.0;
+      side = +1;
+    }
+  }
+  if (!best) best = std::abs(value(a)) < std::abs(value(b)) ? a : b;
+  return *best;
+}
 
 }  // namespace impactkit

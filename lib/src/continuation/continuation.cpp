@@ -10,6 +10,7 @@
 #include "continuation/arclength.hpp"
 #include "continuation/branch_problem.hpp"
 #include "continuation/critical_point.hpp"
+#include "continuation/existence_monitor.hpp"
 #include "continuation/sticking_end.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
@@ -20,15 +21,11 @@ namespace impactkit {
 namespace {
 
 using detail::BranchProblem;
+using detail::kGrazingTolerance;
+using detail::Monitor;
+using detail::MonitorLength;
 using detail::StickingEnd;
 
-/// Illinois and secant iterations of the locators.
-constexpr int kMaxLocateIterations = 80;
-/// A grazing or sticking point counts as located when its monitor (a
-/// length: clearance or depth) is below this; the search stops when the
-/// bracket is narrower than kGrazingBracket (arclength).
-constexpr double kGrazingTolerance = 1e-10;
-constexpr double kGrazingBracket = 1e-13;
 /// A vanishing impact whose approach stalls at a depth below this (the
 /// depth of NearContact's message) is located by its reduced orbit.
 constexpr double kReducibleDepth = 1e-6;
@@ -45,41 +42,17 @@ struct HalfBranch {
   std::string end_message;
 };
 
-/// A grazing monitor of a point: positive on the branch, zero at the event.
-enum class Monitor { kClearance, kDepth };
-
-/// The monitor in the form that varies linearly in arclength near its zero,
-/// so that secant steps converge fast: the clearance itself, and the
-/// square root of the depth (the slowest impact's speed goes to zero
-/// linearly along a branch: Nordmark's normal form has the fixed point's
-/// penetration quadratic in the distance to grazing).
-std::optional<double> LinearMonitor(const BranchPoint& point, Monitor monitor) {
-  const OrbitContacts& c = point.orbit.contacts;
-  if (monitor == Monitor::kClearance) return c.clearance;
-  if (!std::isfinite(c.slowest_depth)) return std::nullopt;
-  return std::sqrt(c.slowest_depth);
-}
-
-/// The monitor as reported (a length) from its linear form.
-double MonitorLength(double linear, Monitor monitor) {
-  return monitor == Monitor::kClearance ? linear : linear * linear;
+/// A branch point's existence monitor in its linear form
+/// (existence_monitor.hpp).
+std::optional<double> PointMonitor(const BranchPoint& point, Monitor monitor) {
+  return detail::LinearMonitor(point.orbit, monitor);
 }
 
 /// Why a branch may stop short of a located grazing: "; an impact vanishes
 /// just beyond (depth 2.2e-09, not located to 1e-10)" when a monitor is
 /// small, else nothing.
 std::string NearContact(const BranchPoint& point) {
-  const OrbitContacts& c = point.orbit.contacts;
-  if (c.slowest_depth < kReducibleDepth) {
-    return fmt::format("; impact {} vanishes just beyond (depth {:.1e}, not located to {:.0e})",
-                       c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
-  }
-  if (c.clearance && *c.clearance < 1e-6) {
-    return fmt::format(
-        "; a new contact is born just beyond (clearance {:.1e}, not located to {:.0e})",
-        *c.clearance, kGrazingTolerance);
-  }
-  return "";
+  return detail::ShortOfEvent(point.orbit.contacts, kReducibleDepth, "just beyond", true);
 }
 
 /// Traces one direction of a branch from an oriented start point.
@@ -162,11 +135,12 @@ class BranchTracer {
       }
       if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
       Accept(*next, &half);
-      if (!sticks_ && GrazingAhead(half, step) && EndAtGrazing(half, /*last_resort=*/false)) {
+      if (!sticks_ && half.points.size() >= 2 &&
+          detail::ZeroAhead(half.points.end()[-2], half.points.back(), step, PointMonitor) &&
+          EndAtGrazing(half, /*last_resort=*/false)) {
         return half;
       }
-      if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
-      if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
+      step = NextStep(step, iterations, options_.min_step, options_.max_step);
     }
   }
 
@@ -178,15 +152,14 @@ class BranchTracer {
                                      double tolerance_scale = 1.0) const {
     const Eigen::VectorXd x0 = BranchProblem::PointX(from);
     const Eigen::VectorXd& t = from.tangent;
-    const Eigen::VectorXd guess = x0 + s * t;
     NewtonOptions newton = newton_;
     newton.residual_tolerance *= tolerance_scale;
     const std::optional<Eigen::VectorXd> x =
-        problem_.Correct(guess, t, t.dot(x0) + s, newton, iterations);
+        PredictCorrect(problem_, x0, t, s, newton, options_.max_correction, iterations);
     if (sticks_ && problem_.TakeStoppedSticking()) {
-      refused_ = {StickingEnd::kNoSticking, BranchProblem::Mu(guess)};
+      refused_ = {StickingEnd::kNoSticking, BranchProblem::Mu(x0 + s * t)};
     }
-    if (!x || (*x - guess).norm() > options_.max_correction * std::abs(s)) return std::nullopt;
+    if (!x) return std::nullopt;
     std::optional<BranchPoint> point = problem_.Describe(*x, t);
     if (point) point->arclength = from.arclength + s;
     if (point && sticks_) return OnStickingFamily(from, *std::move(point));
@@ -296,7 +269,7 @@ class BranchTracer {
   std::optional<SpecialPoint> LocateZero(const BranchPoint& a, const BranchPoint& b,
                                          std::size_t test) const {
     std::optional<BranchPoint> located =
-        IllinoisZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; });
+        LocateZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; });
     const SpecialPointType type = BifurcationTests()[test].type;
     if (type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling) {
       located = SolvedCriticalPoint(a, b, *located, type == SpecialPointType::kFold ? 1.0 : -1.0);
@@ -346,39 +319,16 @@ class BranchTracer {
     return (point.orbit.multipliers.array() - lambda).abs().minCoeff();
   }
 
-  /// The Illinois method on s for the zero of `value` between a (s = 0)
-  /// and b, where it changes sign, each trial corrected onto the branch from
-  /// a. The point with the least |value| found.
+  /// The zero of `value` between a and b, where it changes sign, by the
+  /// Illinois method on arclength (arclength.hpp), each trial corrected
+  /// onto the branch from a.
   template <typename Value>
-  BranchPoint IllinoisZero(const BranchPoint& a, const BranchPoint& b, Value value) const {
-    double lo = 0.0, hi = b.arclength - a.arclength;
-    double f_lo = value(a), f_hi = value(b);
-    std::optional<BranchPoint> best;
-    int side = 0;
-    for (int k = 0; k < kMaxLocateIterations && hi - lo > 1e-14 * std::abs(hi); ++k) {
-      const double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+  BranchPoint LocateZero(const BranchPoint& a, const BranchPoint& b, Value value) const {
+    auto advance = [this](const BranchPoint& from, double s) {
       int iterations = 0;
-      std::optional<BranchPoint> trial = Advance(a, s, &iterations);
-      if (!trial) break;
-      const double f = value(*trial);
-      if (!best || std::abs(f) < std::abs(value(*best))) best = trial;
-      if (f == 0.0) break;
-      if ((f > 0) == (f_lo > 0)) {
-        lo = s;
-        f_lo = f;
-        if (side == -1) f_hi /= 2.0;
-        side = -1;
-      } else {
-        hi = s;
-        f_hi = f;
-        if (side == +1) f_lo /= 2.0;
-        side = +1;
-      }
-    }
-    // No trial converged (rare: the corrector fails between two good
-    // points): the nearer end stands in, its test value saying how near.
-    if (!best) best = std::abs(value(a)) < std::abs(value(b)) ? a : b;
-    return *best;
+      return Advance(from, s, &iterations);
+    };
+    return IllinoisZero(a, b, advance, value);
   }
 
   /// True when the branch passed between a and b through a point where its
@@ -446,11 +396,10 @@ class BranchTracer {
   /// their impacts renumbered.
   void EndAtBranchPoint(const BranchPoint& from, const BranchPoint& next, HalfBranch* half) const {
     const Eigen::VectorXd direction = from.repeat_gap;
-    const BranchPoint located =
-        PrimitiveBifurcation(from, next)
-            .value_or(IllinoisZero(from, next, [&](const BranchPoint& point) {
-              return point.repeat_gap.dot(direction);
-            }));
+    const BranchPoint located = PrimitiveBifurcation(from, next)
+                                    .value_or(LocateZero(from, next, [&](const BranchPoint& point) {
+                                      return point.repeat_gap.dot(direction);
+                                    }));
     Accept(located, half);
     SpecialPoint special;
     special.type = SpecialPointType::kBranchPoint;
@@ -509,21 +458,6 @@ class BranchTracer {
     return solver.eigenvectors().col(best).real().normalized();
   }
 
-  /// True when a grazing monitor, extrapolated linearly in arclength from
-  /// the last two points, reaches zero within the next step.
-  bool GrazingAhead(const HalfBranch& half, double step) const {
-    if (half.points.size() < 2) return false;
-    const BranchPoint& a = half.points[half.points.size() - 2];
-    const BranchPoint& b = half.points.back();
-    for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
-      const std::optional<double> ma = LinearMonitor(a, monitor), mb = LinearMonitor(b, monitor);
-      if (!ma || !mb || !(*mb < *ma)) continue;
-      const double ds = b.arclength - a.arclength;
-      if (*mb * ds / (*ma - *mb) < step) return true;
-    }
-    return false;
-  }
-
   /// Looks for a grazing or sticking point just ahead of the last point;
   /// if one is found, ends the branch there (with the points that led to
   /// it) and returns true. `last_resort`: the corrector failed even with
@@ -557,56 +491,34 @@ class BranchTracer {
     return true;
   }
 
-  /// The zero of `monitor` beyond b, approached from the branch side: past
-  /// it the orbit does not exist, so the far side is only known to fail.
-  /// Secant steps on the monitor from the last two valid points, each from
-  /// the newest point along its own tangent (near a vanishing impact the
-  /// branch bends fast), halved when they land where the corrector failed.
+  /// The grazing or sticking point where `monitor` reaches zero beyond b
+  /// (ApproachMonitorZero: the approach from the branch side).
   std::optional<SpecialPoint> LocateGrazing(const BranchPoint& a, const BranchPoint& b,
                                             Monitor monitor, bool last_resort,
                                             std::vector<BranchPoint>* path) const {
-    BranchPoint previous = a, best = b;
-    std::optional<double> m_prev = LinearMonitor(a, monitor), m_lo = LinearMonitor(b, monitor);
-    if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
-    const double m_first = *m_prev;
-    auto located = [&] { return MonitorLength(*m_lo, monitor) <= kGrazingTolerance; };
-    double failed = std::numeric_limits<double>::infinity();  // a step from `best` that failed
-    for (int k = 0; k < kMaxLocateIterations && !located(); ++k) {
-      double s = *m_lo * (best.arclength - previous.arclength) / (*m_prev - *m_lo);
-      s = std::min(s, options_.max_step);
-      if (s >= failed) s = 0.5 * failed;
-      if (!(s > kGrazingBracket)) break;
-      // Near a vanishing impact the multipliers grow like 1/v and so does
-      // the rounding in U (the impact time's): ask Newton for what the
-      // conditioning allows.
-      const double conditioning = std::abs(best.orbit.multipliers(0));
+    auto advance = [this](const BranchPoint& from, double s, double tolerance_scale) {
       int iterations = 0;
-      const std::optional<BranchPoint> trial =
-          Advance(best, s, &iterations, std::max(1.0, 1e-4 * conditioning));
-      const std::optional<double> m = trial ? LinearMonitor(*trial, monitor) : std::nullopt;
-      if (!m || !(*m < *m_lo)) {  // failed, or the monitor jumped
-        failed = s;
-        continue;
-      }
-      previous = best;
-      m_prev = m_lo;
-      best = *trial;
-      m_lo = m;
-      failed -= s;
-      path->push_back(best);
-    }
-    // Rounding in the map limits how close the corrector gets (about 1e-10
-    // for the clearance): a zero within ten times the tolerance counts.
+      return Advance(from, s, &iterations, tolerance_scale);
+    };
+    const std::optional<detail::MonitorApproach<BranchPoint>> approach =
+        detail::ApproachMonitorZero(
+            a, b, monitor, PointMonitor, advance, options_.max_step,
+            [](const BranchPoint&) { return false; }, path);
+    if (!approach) return std::nullopt;
+    const BranchPoint& previous = approach->previous;
+    const BranchPoint& best = approach->best;
+    const double m_lo = approach->linear;
     // A vanishing impact of a long orbit, whose rounding grows with its
-    // multipliers like 1/v, may stall farther out: when the branch cannot
-    // go on (`last_resort`), its reduced orbit still locates it (below).
-    const bool reached = MonitorLength(*m_lo, monitor) <= 10 * kGrazingTolerance;
+    // multipliers like 1/v, may stall farther out than 10 kGrazingTolerance:
+    // when the branch cannot go on (`last_resort`), its reduced orbit still
+    // locates it (below).
+    const bool reached = MonitorLength(m_lo, monitor) <= 10 * kGrazingTolerance;
     const bool reducible =
-        last_resort && monitor == Monitor::kDepth && *m_lo * *m_lo <= kReducibleDepth;
+        last_resort && monitor == Monitor::kDepth && m_lo * m_lo <= kReducibleDepth;
     if (!reached && !reducible) return std::nullopt;
     SpecialPoint special;
     special.point = best;
-    special.monitor = MonitorLength(*m_lo, monitor);
+    special.monitor = MonitorLength(m_lo, monitor);
     const OrbitContacts& contacts = best.orbit.contacts;
     const bool pressed = monitor == Monitor::kDepth && contacts.slowest_pressed;
     special.type = pressed ? SpecialPointType::kSticking : SpecialPointType::kGrazing;
@@ -621,7 +533,8 @@ class BranchTracer {
       // (within ten times its linear extrapolation from a: the secant
       // points of a stalled approach are too close to extrapolate from) is
       // this one.
-      const double ahead = std::abs(best.parameter - a.parameter) * *m_lo / (m_first - *m_lo);
+      const double m_first = *PointMonitor(a, monitor);
+      const double ahead = std::abs(best.parameter - a.parameter) * m_lo / (m_first - m_lo);
       if (end && (reached || std::abs(end->parameter - best.parameter) <= 10 * ahead)) {
         special.parameter = end->parameter;
       } else if (!reached) {

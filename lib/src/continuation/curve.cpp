@@ -17,15 +17,10 @@ namespace impactkit {
 namespace {
 
 using detail::CurveProblem;
+using detail::kGrazingTolerance;
 using detail::Monitor;
+using detail::PointMonitor;
 
-/// Illinois and secant iterations of the locators.
-constexpr int kMaxLocateIterations = 80;
-/// An end at a grazing or sticking counts as located when its monitor (a
-/// length) is below this, as for a branch (continuation.cpp); rounding in
-/// the map allows ten times more.
-constexpr double kGrazingTolerance = 1e-10;
-constexpr double kGrazingBracket = 1e-13;
 /// A second test's located zero must be this small relative to its values
 /// at the ends of the interval: where the Illinois method cannot close a
 /// sign change (the test jumps, as the tangent did on P(3,1)'s fold curve
@@ -38,16 +33,7 @@ constexpr double kLocatedZero = 1e-6;
 /// located to 1e-10)" when a monitor is small.
 std::string NearLimit(const CurvePoint& point) {
   if (point.orbit.multipliers.size() == 0) return "";  // the response's grazing: no orbit
-  const OrbitContacts& c = point.orbit.contacts;
-  if (c.slowest_depth < 1e-4) {
-    return fmt::format("; impact {} vanishes nearby (depth {:.1e}, not located to {:.0e})",
-                       c.slowest_impact + 1, c.slowest_depth, kGrazingTolerance);
-  }
-  if (point.defining.size() == 1 && c.clearance && *c.clearance < 1e-4) {
-    return fmt::format("; a new contact is born nearby (clearance {:.1e}, not located to {:.0e})",
-                       *c.clearance, kGrazingTolerance);
-  }
-  return "";
+  return detail::ShortOfEvent(point.orbit.contacts, 1e-4, "nearby", point.defining.size() == 1);
 }
 
 struct HalfCurve {
@@ -128,10 +114,12 @@ class CurveTracer {
             fmt::format("the curve closes on itself (arclength {:.6g})", std::abs(again.arclength));
         return half;
       }
-      if (LimitAhead(half, step) && EndAtExistenceLimit(half)) return half;
+      if (detail::ZeroAhead(half.points.end()[-2], half.points.back(), step, PointMonitor) &&
+          EndAtExistenceLimit(half)) {
+        return half;
+      }
       if (EndAtCorner(half)) return half;
-      if (iterations <= 2) step = std::min(1.5 * step, options_.max_step);
-      if (iterations >= 5) step = std::max(0.7 * step, options_.min_step);
+      step = NextStep(step, iterations, options_.min_step, options_.max_step);
     }
     half.end = CurveEnd::kMaxPoints;
     // Near a vanishing impact the corrector may creep on by tiny steps to
@@ -147,12 +135,11 @@ class CurveTracer {
   std::optional<CurvePoint> Advance(const CurvePoint& from, double s, int* iterations,
                                     double tolerance_scale = 1.0) const {
     const Eigen::VectorXd& t = from.tangent;
-    const Eigen::VectorXd guess = from.x + s * t;
     NewtonOptions newton = newton_;
     newton.residual_tolerance *= tolerance_scale;
     const std::optional<Eigen::VectorXd> x =
-        problem_.Correct(guess, t, t.dot(from.x) + s, newton, iterations);
-    if (!x || (*x - guess).norm() > options_.max_correction * std::abs(s)) return std::nullopt;
+        PredictCorrect(problem_, from.x, t, s, newton, options_.max_correction, iterations);
+    if (!x) return std::nullopt;
     std::optional<CurvePoint> point = problem_.Describe(*x, t);
     if (point) point->arclength = from.arclength + s;
     return point;
@@ -226,7 +213,7 @@ class CurveTracer {
       const double fa = test.value(a, a), fb = test.value(b, a);
       if (!std::isfinite(fa) || !std::isfinite(fb) || (fa > 0) == (fb > 0)) continue;
       const CurvePoint located =
-          IllinoisZero(a, b, [&](const CurvePoint& p) { return test.value(p, a); });
+          LocateZero(a, b, [&](const CurvePoint& p) { return test.value(p, a); });
       const double residual = std::abs(test.value(located, a));
       if (!(residual <= kLocatedZero * std::max(std::abs(fa), std::abs(fb))) ||
           !test.accept(located)) {
@@ -243,51 +230,16 @@ class CurveTracer {
     }
   }
 
-  /// The Illinois method on arclength for the zero of `value` between a
-  /// (s = 0) and b, each trial corrected onto the curve from a; the point
-  /// with the least |value| found.
+  /// The zero of `value` between a and b, where it changes sign, by the
+  /// Illinois method on arclength (arclength.hpp), each trial corrected
+  /// onto the curve from a.
   template <typename Value>
-  CurvePoint IllinoisZero(const CurvePoint& a, const CurvePoint& b, Value value) const {
-    double lo = 0.0, hi = b.arclength - a.arclength;
-    double f_lo = value(a), f_hi = value(b);
-    std::optional<CurvePoint> best;
-    int side = 0;
-    for (int k = 0; k < kMaxLocateIterations && std::abs(hi - lo) > 1e-14 * std::abs(hi); ++k) {
-      const double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+  CurvePoint LocateZero(const CurvePoint& a, const CurvePoint& b, Value value) const {
+    auto advance = [this](const CurvePoint& from, double s) {
       int iterations = 0;
-      const std::optional<CurvePoint> trial = Advance(a, s, &iterations);
-      if (!trial) break;
-      const double f = value(*trial);
-      if (!best || std::abs(f) < std::abs(value(*best))) best = trial;
-      if (f == 0.0) break;
-      if ((f > 0) == (f_lo > 0)) {
-        lo = s;
-        f_lo = f;
-        if (side == -1) f_hi /= 2.0;
-        side = -1;
-      } else {
-        hi = s;
-        f_hi = f;
-        if (side == +1) f_lo /= 2.0;
-        side = +1;
-      }
-    }
-    if (!best) best = std::abs(value(a)) < std::abs(value(b)) ? a : b;
-    return *best;
-  }
-
-  /// True when an existence monitor, extrapolated linearly in arclength
-  /// from the last two points, reaches zero within the next step.
-  bool LimitAhead(const HalfCurve& half, double step) const {
-    if (half.points.size() < 2) return false;
-    const CurvePoint& a = half.points[half.points.size() - 2];
-    const CurvePoint& b = half.points.back();
-    for (Monitor monitor : {Monitor::kClearance, Monitor::kDepth}) {
-      const auto ma = detail::LinearMonitor(a, monitor), mb = detail::LinearMonitor(b, monitor);
-      if (!ma || !mb || !(*mb < *ma)) continue;
-      if (*mb * (b.arclength - a.arclength) / (*ma - *mb) < step) return true;
-    }
-    return false;
+      return Advance(from, s, &iterations);
+    };
+    return IllinoisZero(a, b, advance, value);
   }
 
   /// Looks for the grazing or sticking just ahead of the last point where
@@ -332,45 +284,22 @@ class CurveTracer {
     return true;
   }
 
-  /// The zero of `monitor` beyond b, approached from the side where the
-  /// orbit exists by secant steps, each from the newest point along its
-  /// own tangent, halved when they land where the corrector fails (as
-  /// continuation.cpp's LocateGrazing).
+  /// The curve's end where `monitor` reaches zero beyond b
+  /// (ApproachMonitorZero: the approach from the side where the orbit
+  /// exists). A limit beyond a bound is not this curve's end: it reaches
+  /// the bound first.
   std::optional<Codim2Point> LocateLimit(const CurvePoint& a, const CurvePoint& b, Monitor monitor,
                                          std::vector<CurvePoint>* path) const {
-    CurvePoint previous = a, best = b;
-    std::optional<double> m_prev = detail::LinearMonitor(a, monitor);
-    std::optional<double> m_lo = detail::LinearMonitor(b, monitor);
-    if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
-    double failed = std::numeric_limits<double>::infinity();
-    for (int k = 0;
-         k < kMaxLocateIterations && detail::MonitorLength(*m_lo, monitor) > kGrazingTolerance;
-         ++k) {
-      double s = *m_lo * (best.arclength - previous.arclength) / (*m_prev - *m_lo);
-      s = std::min(s, options_.max_step);
-      if (s >= failed) s = 0.5 * failed;
-      if (!(s > kGrazingBracket)) break;
-      // Near a vanishing impact the multipliers grow like 1/v and so does
-      // the rounding in U: ask Newton for what the conditioning allows.
-      const double conditioning = std::abs(best.orbit.multipliers(0));
+    auto advance = [this](const CurvePoint& from, double s, double tolerance_scale) {
       int iterations = 0;
-      const std::optional<CurvePoint> trial =
-          Advance(best, s, &iterations, std::max(1.0, 1e-4 * conditioning));
-      // A limit beyond a bound is not this curve's end: it reaches the bound first.
-      if (trial && Beyond(trial->parameter, trial->parameter2)) return std::nullopt;
-      const std::optional<double> m = trial ? detail::LinearMonitor(*trial, monitor) : std::nullopt;
-      if (!m || !(*m < *m_lo)) {
-        failed = s;
-        continue;
-      }
-      previous = best;
-      m_prev = m_lo;
-      best = *trial;
-      m_lo = m;
-      failed -= s;
-      path->push_back(best);
-    }
-    const double length = detail::MonitorLength(*m_lo, monitor);
+      return Advance(from, s, &iterations, tolerance_scale);
+    };
+    auto beyond = [this](const CurvePoint& p) { return Beyond(p.parameter, p.parameter2); };
+    const std::optional<detail::MonitorApproach<CurvePoint>> approach = detail::ApproachMonitorZero(
+        a, b, monitor, PointMonitor, advance, options_.max_step, beyond, path);
+    if (!approach) return std::nullopt;
+    const CurvePoint& best = approach->best;
+    const double length = detail::MonitorLength(approach->linear, monitor);
     if (!(length <= 10 * kGrazingTolerance)) return std::nullopt;
     const OrbitContacts& contacts = best.orbit.contacts;
     const bool pressed = monitor == Monitor::kDepth && contacts.slowest_pressed;

@@ -51,26 +51,24 @@ System CurveProblem::SystemAt(double mu1, double mu2) const {
   return system;
 }
 
-const BranchProblem& CurveProblem::Along1(double mu2) const {
-  if (!along1_ || along1_mu2_ != mu2) {
+const BranchProblem& CurveProblem::Along(const std::string& fixed, double value,
+                                         const std::string& free, CachedBranch* cache) const {
+  if (!cache->problem || cache->fixed_at != value) {
     System at = base_;
-    SetParameter(at, options_.parameter2, mu2);
-    along1_ = std::make_unique<BranchProblem>(at, options_.parameter, options_.orbit.p,
-                                              options_.orbit.q, options_.orbit.map);
-    along1_mu2_ = mu2;
+    SetParameter(at, fixed, value);
+    cache->problem = std::make_unique<BranchProblem>(at, free, options_.orbit.p, options_.orbit.q,
+                                                     options_.orbit.map);
+    cache->fixed_at = value;
   }
-  return *along1_;
+  return *cache->problem;
+}
+
+const BranchProblem& CurveProblem::Along1(double mu2) const {
+  return Along(options_.parameter2, mu2, options_.parameter, &along1_);
 }
 
 const BranchProblem& CurveProblem::Along2(double mu1) const {
-  if (!along2_ || along2_mu1_ != mu1) {
-    System at = base_;
-    SetParameter(at, options_.parameter, mu1);
-    along2_ = std::make_unique<BranchProblem>(at, options_.parameter2, options_.orbit.p,
-                                              options_.orbit.q, options_.orbit.map);
-    along2_mu1_ = mu1;
-  }
-  return *along2_;
+  return Along(options_.parameter, mu1, options_.parameter2, &along2_);
 }
 
 bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,

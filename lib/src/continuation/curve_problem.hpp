@@ -118,8 +118,16 @@ class CurveProblem {
   int touched_stop_;
   int eta_size_, size_;
   SigmaBorders borders_;
-  mutable std::unique_ptr<BranchProblem> along1_, along2_;
-  mutable double along1_mu2_ = 0.0, along2_mu1_ = 0.0;
+  /// A branch problem in one parameter at a value of the other, kept
+  /// while that value does not change.
+  struct CachedBranch {
+    std::unique_ptr<BranchProblem> problem;
+    double fixed_at = 0.0;
+  };
+  /// U in (η, `free`) with `fixed` at `value`, from *cache when it is there.
+  const BranchProblem& Along(const std::string& fixed, double value, const std::string& free,
+                             CachedBranch* cache) const;
+  mutable CachedBranch along1_, along2_;
 };
 
 }  // namespace impactkit::detail

@@ -100,21 +100,9 @@ Codim2Type GrazingMeeting(SpecialPointType type) {
   }
 }
 
-std::optional<double> LinearMonitor(const CurvePoint& point, Monitor monitor) {
-  // The non-impacting response's grazing curve has no orbit to watch.
+std::optional<double> PointMonitor(const CurvePoint& point, Monitor monitor) {
   if (point.orbit.multipliers.size() == 0) return std::nullopt;
-  const OrbitContacts& c = point.orbit.contacts;
-  if (monitor == Monitor::kClearance) {
-    // On a grazing curve the least clearance is the curve's own touch
-    // (zero); the next one watches a second contact (double grazing).
-    return point.defining.size() == 2 ? c.next_clearance : c.clearance;
-  }
-  if (!std::isfinite(c.slowest_depth)) return std::nullopt;
-  return std::sqrt(c.slowest_depth);
-}
-
-double MonitorLength(double linear, Monitor monitor) {
-  return monitor == Monitor::kClearance ? linear : linear * linear;
+  return LinearMonitor(point.orbit, monitor, point.defining.size() == 2);
 }
 
 }  // namespace impactkit::detail

@@ -1,12 +1,13 @@
 #pragma once
 /// \file curve_tests.hpp (private)
 /// The second test functions watched along a two-parameter curve, each
-/// zero at one kind of codimension-two point (curve.hpp), and the grazing
-/// and sticking monitors that end a curve.
+/// zero at one kind of codimension-two point (curve.hpp), and the curve
+/// point's grazing and sticking monitors that end a curve.
 
 #include <optional>
 #include <vector>
 
+#include "continuation/existence_monitor.hpp"
 #include "impactkit/continuation/curve.hpp"
 
 namespace impactkit::detail {
@@ -29,12 +30,10 @@ std::vector<SecondTest> SecondTests(SpecialPointType type);
 /// (double grazing for a grazing curve).
 Codim2Type GrazingMeeting(SpecialPointType type);
 
-/// An existence monitor of a curve point: positive while the orbit exists,
-/// in the form linear in arclength near its zero (the clearance; the square
-/// root of the depth, as continuation.cpp explains). Empty when absent.
-enum class Monitor { kClearance, kDepth };
-std::optional<double> LinearMonitor(const CurvePoint& point, Monitor monitor);
-/// The monitor as a length, from its linear form.
-double MonitorLength(double linear, Monitor monitor);
+/// An existence monitor of a curve point in its linear form
+/// (existence_monitor.hpp): on a grazing curve the second-least clearance,
+/// the least being the curve's own touch. Empty when absent, and on the
+/// non-impacting response's grazing curve, which has no orbit to watch.
+std::optional<double> PointMonitor(const CurvePoint& point, Monitor monitor);
 
 }  // namespace impactkit::detail

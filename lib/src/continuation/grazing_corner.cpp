@@ -162,8 +162,8 @@ std::optional<Codim2Point> GrazingCornerAhead(const CurveProblem& problem, Speci
       !(b.orbit.contacts.slowest_depth < kCornerDepth)) {
     return std::nullopt;
   }
-  const std::optional<double> ma = LinearMonitor(a, Monitor::kDepth);
-  const std::optional<double> mb = LinearMonitor(b, Monitor::kDepth);
+  const std::optional<double> ma = PointMonitor(a, Monitor::kDepth);
+  const std::optional<double> mb = PointMonitor(b, Monitor::kDepth);
   if (!ma || !mb || !(*mb < *ma)) return std::nullopt;
   // The monitor (∝ v) is linear in arclength: where it reaches zero.
   const double ahead = *mb / (*ma - *mb);
