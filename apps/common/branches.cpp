@@ -206,22 +206,42 @@ nlohmann::json BranchJson(const TracedBranch& traced) {
   return j;
 }
 
+namespace {
+
+/// The title and gnuplot pointtype of a special point type's marks: 4
+/// square, 6 circle, 8 triangle, 10 down triangle, 12 diamond, 3 star, 14
+/// pentagon, 2 cross, 1 plus. A switch with no default, so that a type
+/// added to the library without a mark here is a compiler warning (-Wswitch).
+std::pair<const char*, int> MarkStyle(SpecialPointType type) {
+  switch (type) {
+    case SpecialPointType::kFold:
+      return {"fold", 4};
+    case SpecialPointType::kPeriodDoubling:
+      return {"period doubling", 6};
+    case SpecialPointType::kNeimarkSacker:
+      return {"Neimark-Sacker", 12};
+    case SpecialPointType::kGrazing:
+      return {"grazing", 8};
+    case SpecialPointType::kSticking:
+      return {"sticking onset", 10};
+    case SpecialPointType::kBranchPoint:
+      return {"branch point", 3};
+    case SpecialPointType::kPitchfork:
+      return {"pitchfork", 14};
+    case SpecialPointType::kNoSticking:
+      return {"no sticking", 2};
+    case SpecialPointType::kEarlyRelease:
+      return {"early release", 1};
+  }
+  return {"special point", 7};  // not reached: every type has its case
+}
+
+}  // namespace
+
 Curve SpecialPointMarks(SpecialPointType type) {
   // Black, so that no branch colour hides them; open, so that they hide no
-  // branch through them; the shape tells the type. gnuplot pointtypes: 4
-  // square, 6 circle, 8 triangle, 10 down triangle, 12 diamond, 3 star, 14
-  // pentagon, 2 cross, 1 plus.
-  static const std::map<SpecialPointType, std::pair<const char*, int>> kStyles = {
-      {SpecialPointType::kFold, {"fold", 4}},
-      {SpecialPointType::kPeriodDoubling, {"period doubling", 6}},
-      {SpecialPointType::kNeimarkSacker, {"Neimark-Sacker", 12}},
-      {SpecialPointType::kGrazing, {"grazing", 8}},
-      {SpecialPointType::kSticking, {"sticking onset", 10}},
-      {SpecialPointType::kBranchPoint, {"branch point", 3}},
-      {SpecialPointType::kPitchfork, {"pitchfork", 14}},
-      {SpecialPointType::kNoSticking, {"no sticking", 2}},
-      {SpecialPointType::kEarlyRelease, {"early release", 1}}};
-  const auto& [title, point_type] = kStyles.at(type);
+  // branch through them; the shape tells the type.
+  const auto [title, point_type] = MarkStyle(type);
   Curve marks;
   marks.title = title;
   marks.color = "#000000";
