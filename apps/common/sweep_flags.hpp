@@ -16,8 +16,8 @@ namespace impactkit::cli {
 
 /// How each value is run: periods, period search, the fixed state.
 struct RunFlags {
-  int transient = 500;
-  int record = 100;
+  int transient = SweepOptions{}.transient_periods;
+  int record = SweepOptions{}.recorded_periods;
   int max_q = PeriodOptions{}.max_q;
   std::vector<double> x0, v0;
 };

@@ -37,8 +37,9 @@ struct ContinueRequest {
   StickingSeedOptions sticking;
   std::string parameter = "omega";
   std::optional<double> from, to, start;
-  double step = 0.01, min_step = 1e-7, max_step = 0.02;
-  int max_points = 10000;
+  double step = ContinuationOptions{}.initial_step, min_step = ContinuationOptions{}.min_step,
+         max_step = ContinuationOptions{}.max_step;
+  int max_points = ContinuationOptions{}.max_points;
   bool switch_period_doubling = false;
   bool follow_grazing = false;
   std::string out, json, plot;

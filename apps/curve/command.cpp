@@ -43,8 +43,9 @@ struct CurveRequest {
   double from2 = 0.0, to2 = 0.0;
   std::string start_json;
   int point = 1;
-  double step = 0.01, min_step = 1e-7, max_step = 0.02;
-  int max_points = 2000;
+  double step = CurveOptions{}.initial_step, min_step = CurveOptions{}.min_step,
+         max_step = CurveOptions{}.max_step;
+  int max_points = CurveOptions{}.max_points;
   std::string out, json, plot;
 };
 

@@ -38,9 +38,9 @@ struct DiagramRequest {
   std::string parameter = "omega";
   double from = 0.1, to = 2.5;
   std::optional<double> start;
-  double step = 0.01, max_step = 0.02;
-  int max_points = 10000;
-  int max_depth = 8, max_branches = 200;
+  double step = ContinuationOptions{}.initial_step, max_step = ContinuationOptions{}.max_step;
+  int max_points = ContinuationOptions{}.max_points;
+  int max_depth = DiagramOptions{}.max_depth, max_branches = DiagramOptions{}.max_branches;
   int sweep_values = 481, sweep_transient = 300, sweep_record = 40, max_q = 16;
   int threads = 0;  ///< 0: all cores
   std::string json, plot, axis = "velocity";

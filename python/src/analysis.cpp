@@ -125,11 +125,13 @@ py::dict ResonancePy(const System& system, double from, double to, int steps) {
 }  // namespace
 
 void BindAnalysis(py::module_& module) {
-  module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(), py::arg("parameter") = "omega",
-             py::arg("first") = 0.1, py::arg("last") = 2.5, py::arg("steps") = 2401,
-             py::arg("transient_periods") = 500, py::arg("recorded_periods") = 100,
-             py::arg("threads") = 1, py::arg("each_from") = "previous",
-             py::arg("chunk_values") = 100,
+  const SweepOptions kSweep;  // the defaults are the library's, as the command line's are
+  module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(),
+             py::arg("parameter") = kSweep.parameter, py::arg("first") = kSweep.from,
+             py::arg("last") = kSweep.to, py::arg("steps") = kSweep.steps,
+             py::arg("transient_periods") = kSweep.transient_periods,
+             py::arg("recorded_periods") = kSweep.recorded_periods, py::arg("threads") = 1,
+             py::arg("each_from") = "previous", py::arg("chunk_values") = kSweep.chunk_values,
              R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
 first to last, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,

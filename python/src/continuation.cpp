@@ -242,16 +242,19 @@ grazing or sticking.
 direction: 'increasing', 'decreasing' or 'both' (a BranchStart's own
 direction, when it has one, takes precedence). Returns a Branch. Raises
 ValueError for bad input. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
+  const ContinuationOptions kBranch;  // the defaults are the library's, as the command line's are
   module.def("continue_branch", &ContinueFromOrbit, py::arg("system"), py::arg("orbit"),
              py::kw_only(), py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
-             py::arg("direction") = "increasing", py::arg("initial_step") = 0.01,
-             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 10000,
-             py::arg("locate_bifurcations") = true, continue_doc);
+             py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
+             py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
+             py::arg("max_points") = kBranch.max_points,
+             py::arg("locate_bifurcations") = kBranch.locate_bifurcations, continue_doc);
   module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
              py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
-             py::arg("direction") = "increasing", py::arg("initial_step") = 0.01,
-             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 10000,
-             py::arg("locate_bifurcations") = true, continue_doc);
+             py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
+             py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
+             py::arg("max_points") = kBranch.max_points,
+             py::arg("locate_bifurcations") = kBranch.locate_bifurcations, continue_doc);
   module.def("doubled_branch_start", &DoubledStart, py::arg("system"), py::arg("branch"),
              py::arg("period_doubling"), py::kw_only(), py::arg("offset") = 1e-3,
              R"(A first point on the P(2p, 2q) branch born at a period doubling of

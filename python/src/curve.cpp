@@ -115,11 +115,13 @@ void BindCurveClass(py::module_& module) {
 void BindCurve(py::module_& module) {
   BindCodim2(module);
   BindCurveClass(module);
+  const CurveOptions kCurve;  // the defaults are the library's, as the command line's are
   module.def("continue_curve", &ContinueCurvePy, py::arg("system"), py::arg("branch"),
              py::arg("special_point"), py::kw_only(), py::arg("parameter2") = "r", py::arg("lower"),
-             py::arg("upper"), py::arg("lower2"), py::arg("upper2"), py::arg("initial_step") = 0.01,
-             py::arg("min_step") = 1e-7, py::arg("max_step") = 0.02, py::arg("max_points") = 2000,
-             py::arg("locate_codim2") = true,
+             py::arg("upper"), py::arg("lower2"), py::arg("upper2"),
+             py::arg("initial_step") = kCurve.initial_step, py::arg("min_step") = kCurve.min_step,
+             py::arg("max_step") = kCurve.max_step, py::arg("max_points") = kCurve.max_points,
+             py::arg("locate_codim2") = kCurve.locate_codim2,
              R"(Follows a fold, period doubling, Neimark-Sacker or grazing point of
 `branch` (continued for `system`) as the branch's parameter (mu1, within
 [lower, upper]) and `parameter2` (mu2, within [lower2, upper2]) move, both

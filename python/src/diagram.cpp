@@ -144,13 +144,18 @@ void BindDiagram(py::module_& module) {
   BindNode(module);
   BindBranch(module);
   BindGraph(module);
+  // The defaults are the library's, as the command line's are.
+  const ContinuationOptions kBranch;
+  const DiagramOptions kNetwork;
   module.def("trace_diagram", &Trace, py::arg("seeds"), py::kw_only(),
              py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
-             py::arg("initial_step") = 0.01, py::arg("max_step") = 0.02,
-             py::arg("max_points") = 10000, py::arg("max_depth") = 8, py::arg("max_branches") = 200,
-             py::arg("threads") = 1, py::arg("switch_period_doubling") = true,
-             py::arg("switch_grazing") = true, py::arg("switch_branch_points") = true,
-             py::arg("switch_pitchforks") = true,
+             py::arg("initial_step") = kBranch.initial_step, py::arg("max_step") = kBranch.max_step,
+             py::arg("max_points") = kBranch.max_points, py::arg("max_depth") = kNetwork.max_depth,
+             py::arg("max_branches") = kNetwork.max_branches, py::arg("threads") = 1,
+             py::arg("switch_period_doubling") = kNetwork.switch_period_doubling,
+             py::arg("switch_grazing") = kNetwork.switch_grazing,
+             py::arg("switch_branch_points") = kNetwork.switch_branch_points,
+             py::arg("switch_pitchforks") = kNetwork.switch_pitchforks,
              R"(Traces the connected bifurcation diagram through `seeds`, a list of
 (system, orbit) pairs: each seed's branch is followed both ways in the named
 parameter within [lower, upper], and at every period doubling, grazing,

@@ -146,12 +146,15 @@ py::dict BasinsPy(const System& system, const std::string& coordinate1, double f
 }  // namespace
 
 void BindGrid(py::module_& module) {
+  // The defaults are the library's (a map's rows are sweeps), as the
+  // command line's are.
+  const SweepOptions kRun;
   module.def("parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
              py::arg("parameter") = "omega", py::arg("first"), py::arg("last"), py::arg("steps"),
              py::arg("parameter2") = "r", py::arg("first2"), py::arg("last2"), py::arg("steps2"),
-             py::arg("transient_periods") = 300, py::arg("recorded_periods") = 100,
-             py::arg("threads") = 1, py::arg("each_from") = "previous",
-             py::arg("chunk_values") = 100,
+             py::arg("transient_periods") = kRun.transient_periods,
+             py::arg("recorded_periods") = kRun.recorded_periods, py::arg("threads") = 1,
+             py::arg("each_from") = "previous", py::arg("chunk_values") = kRun.chunk_values,
              R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
 of `parameter` (steps values from first to last) at one of the steps2
 values of `parameter2` (ascending), each cell's motion classified. Returns
@@ -162,8 +165,9 @@ change the result. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
   module.def("basins", &BasinsPy, py::arg("system"), py::kw_only(), py::arg("coordinate") = "x2",
              py::arg("first"), py::arg("last"), py::arg("steps"), py::arg("coordinate2") = "v2",
              py::arg("first2"), py::arg("last2"), py::arg("steps2"),
-             py::arg("transient_periods") = 300, py::arg("recorded_periods") = 100,
-             py::arg("threads") = 1, py::arg("orbit_tolerance") = 1e-4,
+             py::arg("transient_periods") = kRun.transient_periods,
+             py::arg("recorded_periods") = kRun.recorded_periods, py::arg("threads") = 1,
+             py::arg("orbit_tolerance") = BasinsOptions{}.orbit_tolerance,
              R"(Basins of attraction, as `impactkit basins` computes them: a grid of
 starts over two state coordinates ('x1'..'xN', 'v1'..'vN'; the others at
 rest), each run to its attractor and the attractors identified by their

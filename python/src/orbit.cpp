@@ -153,11 +153,14 @@ void BindOrbit(py::module_& module) {
                (o.stable ? ", stable)" : ", unstable)");
       });
 
+  const StartOrbitRequest kStart;  // the defaults are the library's, as the command line's are
   module.def("find_orbit", &FindOrbitPy, py::arg("system"), py::kw_only(),
              py::arg("p") = py::none(), py::arg("q") = py::none(), py::arg("releases") = py::none(),
              py::arg("seed") = py::none(), py::arg("stop") = 0, py::arg("jacobian") = "analytic",
-             py::arg("residual_tolerance") = 1e-11, py::arg("max_iterations") = 50,
-             py::arg("least_squares_fallback") = true, py::arg("transient") = 500,
+             py::arg("residual_tolerance") = kStart.solver.newton.residual_tolerance,
+             py::arg("max_iterations") = kStart.solver.newton.max_iterations,
+             py::arg("least_squares_fallback") = kStart.solver.least_squares_fallback,
+             py::arg("transient") = kStart.transient,
              R"(The periodic orbit of `system` by Newton (KINSOL), with a
 Levenberg-Marquardt fallback: an impacting orbit P(p, q), a fixed point of
 the impact map, or a sticking orbit P(inf, q) with `releases` sticking

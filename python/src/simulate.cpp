@@ -176,13 +176,15 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
 }  // namespace
 
 void BindSimulate(py::module_& module) {
+  const SimulationOptions kRun;  // the defaults are the library's, as the command line's are
   module.def("simulate", &Simulate, py::arg("system"), py::arg("t_end"), py::kw_only(),
              py::arg("x0") = py::none(), py::arg("v0") = py::none(), py::arg("record_from") = 0.0,
              py::arg("dt") = 0.0, py::arg("chatter") = "accumulation",
-             py::arg("chatter_span") = 1e-4, py::arg("chatter_threshold") = 1e-4,
-             py::arg("bounce_height_resolution") = SimulationOptions{}.bounce_height_resolution,
-             py::arg("max_events_per_period") = 100'000, py::arg("max_events") = 200'000'000,
-             py::arg("events") = false,
+             py::arg("chatter_span") = kRun.chatter_span,
+             py::arg("chatter_threshold") = kRun.chatter_threshold,
+             py::arg("bounce_height_resolution") = kRun.bounce_height_resolution,
+             py::arg("max_events_per_period") = kRun.max_events_per_period,
+             py::arg("max_events") = kRun.max_events, py::arg("events") = false,
              R"(Simulates from (x0, v0) at t = 0 (rest by default) to t_end, exactly.
 
 Nothing is recorded before record_from. Returns a dict of numpy arrays:

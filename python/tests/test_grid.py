@@ -66,6 +66,28 @@ def test_basins_equal_the_command_line(tmp_path):
     assert sum(a["cells"] for a in result["attractors"]) == attractor.size
 
 
+def test_map_and_basins_with_their_defaults_equal_the_command_line(tmp_path):
+    # No run flag given on either side: both take the library's defaults
+    # (they once differed, 300 transient periods in Python, 500 on the
+    # command line, and so did the cells near a transition).
+    cli = os.environ["IMPACTKIT_CLI"]
+    out = tmp_path / "m.csv"
+    subprocess.run([cli, "map", "--param", "omega", "--from", "1.66", "--to", "1.7", "--steps",
+                    "3", "--param2", "r", "--from2", "0.7", "--to2", "0.75", "--steps2", "2",
+                    "--out", str(out)], check=True, capture_output=True)
+    result = impactkit.parameter_map(impactkit.System.paper(), parameter="omega", first=1.66,
+                                     last=1.7, steps=3, parameter2="r", first2=0.7, last2=0.75,
+                                     steps2=2)
+    check_cells(read_rows(out), result, ("omega", "r"))
+    out = tmp_path / "b.csv"
+    subprocess.run([cli, "basins", "--omega", "2", "--from", "-0.5", "--to", "0.1", "--steps", "3",
+                    "--from2", "-0.5", "--to2", "0.5", "--steps2", "2", "--out", str(out)],
+                   check=True, capture_output=True)
+    result = impactkit.basins(impactkit.System.paper(2.0), first=-0.5, last=0.1, steps=3,
+                              first2=-0.5, last2=0.5, steps2=2)
+    check_cells(read_rows(out), result, ("x2", "v2"))
+
+
 def test_bad_input_is_a_value_error():
     with pytest.raises(ValueError, match="unknown parameter"):
         impactkit.parameter_map(impactkit.System.paper(), parameter="q", first=1, last=2,
