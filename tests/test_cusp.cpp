@@ -64,7 +64,7 @@ double NearestFold(const std::vector<double>& folds, double omega) {
 TEST_CASE(
     "cusp: the paper's P(7,4) fold curve in (omega, r) turns back at a cusp, where two folds "
     "of the branch in omega meet",
-    "[curve][cusp]") {
+    "[curve][cusp][slow]") {
   // The seed: a P(7,4) orbit of the brute-force diagram at r = 0.7 (a
   // guess only; the fold is located from the orbit it converges to).
   const System system = PaperSystem(1.6915);

@@ -424,7 +424,7 @@ TEST_CASE("diagram: default options are valid and bad ones are refused", "[diagr
 TEST_CASE(
     "diagram: a long orbit's multiplier passing through infinity is not a fold (the N = 1 "
     "cascade to P(16,16))",
-    "[diagram]") {
+    "[diagram][slow]") {
   // det(D P - I) of P(16,16) changes sign near Ω = 2.281 where one
   // multiplier passes through infinity (an impact slows to a graze), not
   // through +1: it was reported as a fold with multiplier -0.000016. Every
@@ -444,7 +444,7 @@ TEST_CASE(
 TEST_CASE(
     "diagram: every fold, period doubling, Neimark-Sacker and grazing node of the paper's whole "
     "diagram is recomputed (`impactkit diagram` with its defaults)",
-    "[diagram]") {
+    "[diagram][slow]") {
   // The network `impactkit diagram` traces with no options: Ω from 0.1 to
   // 2.5, seeded by a 481-value sweep (300 + 40 periods, periods to 16),
   // depth 8. Which windows the sweep seeds depends on its chaotic runs to

@@ -2,7 +2,7 @@
 # The claims table of docs/paper-reproduction.md is the one a fresh run
 # gives: `impactkit paper` at full resolution and examples/fig3_bifurcation.sh,
 # as scripts/run.sh runs them, then scripts/paper_claims.py; the table between
-# the doc's marker lines must be its output, line for line (~50 s).
+# the doc's marker lines must be its output, line for line.
 source "$(dirname "$0")/testlib.sh"
 impactkit=$(realpath "$1")
 source_dir=$(realpath "$2")
