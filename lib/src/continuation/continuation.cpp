@@ -270,9 +270,8 @@ class BranchTracer {
                                          std::size_t test) const {
     std::optional<BranchPoint> located =
         LocateZero(a, b, [test](const BranchPoint& point) { return point.test_values[test]; });
-    const SpecialPointType type = BifurcationTests()[test].type;
-    if (type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling) {
-      located = SolvedCriticalPoint(a, b, *located, type == SpecialPointType::kFold ? 1.0 : -1.0);
+    if (const std::optional<double> lambda = BifurcationTests()[test].critical_multiplier) {
+      located = SolvedCriticalPoint(a, b, *located, *lambda);
     }
     if (!located) return std::nullopt;
     std::optional<SpecialPoint> special = Classify(*located, test);
@@ -438,8 +437,8 @@ class BranchTracer {
     }
     special.multiplier = lambda(nearest);
     if (function.distance(special.multiplier) > function.max_distance) return std::nullopt;
-    if (function.type == SpecialPointType::kPeriodDoubling) {
-      special.eigenvector = RealEigenvector(point.orbit.jacobian, -1.0);
+    if (function.keeps_eigenvector) {
+      special.eigenvector = RealEigenvector(point.orbit.jacobian, *function.critical_multiplier);
     }
     return special;
   }

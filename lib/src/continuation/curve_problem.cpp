@@ -109,11 +109,12 @@ bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,
   Eigen::MatrixXd dp;
   if (!along.Residual(at, u ? u : &own_u) || !along.MapJacobian(at, &dp)) return false;
   g->resize(1);
-  if (type_ == SpecialPointType::kFold || type_ == SpecialPointType::kPeriodDoubling) {
-    (*g)(0) = kMultiplierRowWeight * MultiplierFunction(dp, CriticalMultiplier(), borders_);
+  const TestFunction& own = *TestFunctionOf(type_);
+  if (own.critical_multiplier) {
+    (*g)(0) = kMultiplierRowWeight * MultiplierFunction(dp, *own.critical_multiplier, borders_);
   } else {
     const Eigen::VectorXcd lambda = dp.eigenvalues();
-    (*g)(0) = BifurcationTests()[2].value(dp, lambda);
+    (*g)(0) = own.value(dp, lambda);
   }
   return g->allFinite();
 }
@@ -202,10 +203,11 @@ Eigen::VectorXd CurveProblem::Inside(const Eigen::VectorXd& x) const {
 }
 
 void CurveProblem::UpdateBorders(const Eigen::VectorXd& x) {
-  if (type_ != SpecialPointType::kFold && type_ != SpecialPointType::kPeriodDoubling) return;
+  const TestFunction* own = TestFunctionOf(type_);
+  if (!own || !own->critical_multiplier) return;
   Eigen::MatrixXd dp;
   if (!Along1(Mu2(x)).MapJacobian(BranchProblem::Join(Eta(x), Mu1(x)), &dp)) return;
-  borders_ = MultiplierBorders(dp, CriticalMultiplier());
+  borders_ = MultiplierBorders(dp, *own->critical_multiplier);
 }
 
 std::optional<Eigen::VectorXd> CurveProblem::Correct(const Eigen::VectorXd& guess,

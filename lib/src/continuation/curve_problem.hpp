@@ -98,7 +98,6 @@ class CurveProblem {
   /// back inside; any other guess unchanged.
   Eigen::VectorXd Inside(const Eigen::VectorXd& x) const;
   /// The multiplier a fold (+1) or period doubling (−1) curve holds.
-  double CriticalMultiplier() const { return type_ == SpecialPointType::kFold ? 1.0 : -1.0; }
   /// Grazing: the impact state that starts the flight holding the touch,
   /// and the stop that impact is at.
   struct FlightStart {

@@ -15,9 +15,14 @@ constexpr double kDoubleMultiplier = 1e-3;
 /// there; a sharp turn of the curve keeps it well above this.
 constexpr double kCuspTangent = 1e-3;
 
-double Fold(const CurvePoint& point, const CurvePoint&) { return point.test_values[0]; }
-double Flip(const CurvePoint& point, const CurvePoint&) { return point.test_values[1]; }
-double Torus(const CurvePoint& point, const CurvePoint&) { return point.test_values[2]; }
+/// The value of the test function of `type` at a curve point.
+template <SpecialPointType type>
+double TestValue(const CurvePoint& point, const CurvePoint&) {
+  return point.test_values[TestIndex(type)];
+}
+constexpr auto Fold = TestValue<SpecialPointType::kFold>;
+constexpr auto Flip = TestValue<SpecialPointType::kPeriodDoubling>;
+constexpr auto Torus = TestValue<SpecialPointType::kNeimarkSacker>;
 
 /// The critical pair's e^{iθ}: the multiplier with θ in (0, π) nearest the
 /// unit circle; none when every multiplier is real.
@@ -60,7 +65,8 @@ bool DoublePlusOne(const CurvePoint& point) { return MultipliersNear(point, 1.0)
 bool DoubleMinusOne(const CurvePoint& point) { return MultipliersNear(point, -1.0) >= 2; }
 bool OnUnitCircle(const CurvePoint& point) {
   const auto l = CriticalPair(point);
-  return l && BifurcationTests()[2].distance(*l) <= BifurcationTests()[2].max_distance;
+  const TestFunction& torus = *TestFunctionOf(SpecialPointType::kNeimarkSacker);
+  return l && torus.distance(*l) <= torus.max_distance;
 }
 bool Cusp(const CurvePoint& point) { return point.tangent.tail(2).norm() < kCuspTangent; }
 

@@ -158,8 +158,9 @@ std::optional<GrazingCorner> ReducedCorner(const CurveProblem& problem, double l
 
 std::optional<Codim2Point> GrazingCornerAhead(const CurveProblem& problem, SpecialPointType type,
                                               const CurvePoint& a, const CurvePoint& b) {
-  if ((type != SpecialPointType::kFold && type != SpecialPointType::kPeriodDoubling) ||
-      !(b.orbit.contacts.slowest_depth < kCornerDepth)) {
+  // Only a crossing of a real multiplier has the closed-form corner below.
+  const TestFunction* own = TestFunctionOf(type);
+  if (!own || !own->critical_multiplier || !(b.orbit.contacts.slowest_depth < kCornerDepth)) {
     return std::nullopt;
   }
   const std::optional<double> ma = PointMonitor(a, Monitor::kDepth);
@@ -169,7 +170,7 @@ std::optional<Codim2Point> GrazingCornerAhead(const CurveProblem& problem, Speci
   const double ahead = *mb / (*ma - *mb);
   const Eigen::Vector2d from(b.parameter, b.parameter2);
   const Eigen::Vector2d guess = from + ahead * (from - Eigen::Vector2d(a.parameter, a.parameter2));
-  const double lambda = type == SpecialPointType::kFold ? 1.0 : -1.0;
+  const double lambda = *own->critical_multiplier;
   const std::optional<GrazingCorner> corner = b.orbit.p == 1
                                                   ? ResponseCorner(problem, lambda, guess)
                                                   : ReducedCorner(problem, lambda, b, guess);

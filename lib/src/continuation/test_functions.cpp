@@ -38,12 +38,12 @@ constexpr double kRealCrossing = 1e-7;
 
 constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
     {SpecialPointType::kFold, FoldTest, [](std::complex<double> l) { return std::abs(l - 1.0); },
-     kRealCrossing},
+     kRealCrossing, 1.0, false},
     {SpecialPointType::kPeriodDoubling, PeriodDoublingTest,
-     [](std::complex<double> l) { return std::abs(l + 1.0); }, kRealCrossing},
+     [](std::complex<double> l) { return std::abs(l + 1.0); }, kRealCrossing, -1.0, true},
     {SpecialPointType::kNeimarkSacker, NeimarkSackerTest,
-     [](std::complex<double> l) { return l.imag() > 0 ? std::abs(std::abs(l) - 1.0) : kAny; },
-     1e-4},
+     [](std::complex<double> l) { return l.imag() > 0 ? std::abs(std::abs(l) - 1.0) : kAny; }, 1e-4,
+     std::nullopt, false},
 }};
 
 constexpr std::array<std::pair<SpecialPointType, std::string_view>, 9> kNames = {{
@@ -75,6 +75,18 @@ std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name) 
 }
 
 const std::array<TestFunction, kBifurcationTestCount>& BifurcationTests() { return kTests; }
+
+int TestIndex(SpecialPointType type) {
+  for (std::size_t i = 0; i < kTests.size(); ++i) {
+    if (kTests[i].type == type) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+const TestFunction* TestFunctionOf(SpecialPointType type) {
+  const int index = TestIndex(type);
+  return index < 0 ? nullptr : &kTests[index];
+}
 
 std::array<double, kBifurcationTestCount> EvaluateBifurcationTests(
     const Eigen::MatrixXd& jacobian, const Eigen::VectorXcd& multipliers) {

@@ -63,12 +63,27 @@ struct TestFunction {
   /// product 1, a neutral saddle; det(D P ∓ I) changes sign where a
   /// multiplier passes through infinity).
   double max_distance;
+  /// The real multiplier λ it is the crossing of (+1, −1), if it is one:
+  /// then its point is solved directly and its two-parameter curve defined
+  /// by σ(D P − λ I) (critical_point.hpp, curve_problem.hpp); otherwise by
+  /// the test function itself.
+  std::optional<double> critical_multiplier;
+  /// Its special point keeps the real eigenvector of the critical
+  /// multiplier: the direction of the branch born there (a period
+  /// doubling's doubled branch, branch switching).
+  bool keeps_eigenvector = false;
 };
 
 inline constexpr std::size_t kBifurcationTestCount = 3;
 
 /// Fold, period doubling and Neimark–Sacker, in that order.
 const std::array<TestFunction, kBifurcationTestCount>& BifurcationTests();
+
+/// The test function of `type`, and its index in BifurcationTests() (and
+/// in a point's test values); null and -1 for a type no test function
+/// locates (grazing, sticking, ...).
+const TestFunction* TestFunctionOf(SpecialPointType type);
+int TestIndex(SpecialPointType type);
 
 /// Every test function's value at one fixed point, in BifurcationTests() order.
 std::array<double, kBifurcationTestCount> EvaluateBifurcationTests(
