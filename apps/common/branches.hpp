@@ -3,7 +3,8 @@
 /// The branches of a diagram (impactkit/continuation/diagram.hpp) as the
 /// command line shows them: labelled, printed, written as CSV and JSON,
 /// drawn — shared by `impactkit continue`, `impactkit diagram` and
-/// `impactkit paper`. The tracing and switching are the library's.
+/// `impactkit paper`. The tracing, switching and the files' schema
+/// (io/branch_output.hpp) are the library's.
 
 #include <chrono>
 #include <nlohmann/json.hpp>
@@ -12,7 +13,7 @@
 
 #include "common/plot.hpp"
 #include "impactkit/continuation/diagram.hpp"
-#include "impactkit/io/csv.hpp"
+#include "impactkit/io/branch_output.hpp"
 
 namespace impactkit::cli {
 
@@ -49,16 +50,11 @@ struct TracedBranch {
 /// point).
 std::vector<TracedBranch> LabelBranches(const Diagram& diagram);
 
-/// The CSV columns of `branch` (docs/cli.md, `impactkit continue`).
-std::vector<std::string> BranchColumns(const Branch& branch);
-
-/// One row per point of `branch`, in the columns of BranchColumns.
-void WriteBranchRows(CsvWriter& csv, const Branch& branch);
-
 /// FILE.csv for the main branch, FILE.<label>.csv for the others.
 std::string BranchPath(const std::string& path, const std::string& label);
 
-/// label, origin, p, q, points, end_reason (begin_reason), param_range, special_points.
+/// The library's JSON object of the branch (io/branch_output.hpp), under
+/// its label and origin.
 nlohmann::json BranchJson(const TracedBranch& traced);
 
 /// The key entry of a special-point type, with the marker (shape and

@@ -2,13 +2,16 @@
 // continuation/continuation.hpp.
 #include "impactkit/continuation/continuation.hpp"
 
+#include <fmt/format.h>
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <string>
 
 #include "bindings.hpp"
+#include "impactkit/io/branch_output.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -204,6 +207,23 @@ void BindContinuation(py::module_& module) {
       .def_readonly("begin_message", &Branch::begin_message,
                     "With direction='both': the beginning in words.")
       .def_readonly("seconds", &Branch::seconds, "Wall time.")
+      .def(
+          "to_json", [](const Branch& b) { return BranchJson(b, "main", "continue_branch"); },
+          "The branch as JSON text: the object `impactkit continue --json` writes for each "
+          "branch (io/branch_output.hpp; label 'main').")
+      .def(
+          "write_csv",
+          [](const Branch& b, const std::filesystem::path& path) {
+            CsvWriter csv(path,
+                          fmt::format("impactkit {} (Python): continue_branch in {}",
+                                      IMPACTKIT_VERSION, b.parameter),
+                          BranchColumns(b));
+            WriteBranchRows(csv, b);
+            csv.Commit();
+          },
+          py::arg("path"),
+          "Writes the branch as `impactkit continue --out` does: one row per point, the same "
+          "columns (docs/cli.md), the provenance as comment lines after the header.")
       .def("__len__", [](const Branch& b) { return b.points.size(); })
       .def("__repr__", [](const Branch& b) {
         return "impactkit.Branch(" + FamilyName(b) + " in " + b.parameter + ", " +

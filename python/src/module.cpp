@@ -2,10 +2,12 @@
 //
 // Errors: the library's InvalidInput is a std::invalid_argument, which
 // pybind11 raises as ValueError with the same message; numerical failures
-// (no convergence) raise impactkit.NumericalError, a RuntimeError.
+// (no convergence) raise impactkit.NumericalError, a RuntimeError; a file
+// that cannot be written (OutputError) raises OSError.
 #include <Python.h>
 
 #include "bindings.hpp"
+#include "impactkit/io/output_file.hpp"
 
 namespace impactkit::python {
 
@@ -42,6 +44,15 @@ PYBIND11_MODULE(impactkit, module) {
       "multi-degree-of-freedom impact oscillators (Python interface to the C++ library).";
   module.attr("__version__") = IMPACTKIT_VERSION;
   module.attr("NumericalError") = NumericalErrorType();
+  // A file that cannot be written (no such directory, no permission, a full
+  // disk) is the operating system's error, as Python's own open() says.
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const impactkit::OutputError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+  });
   BindSystem(module);
   BindSimulate(module);
   BindOrbit(module);

@@ -121,3 +121,35 @@ def test_sticking_family_period_doubles_onto_the_simulations_period_two_sticking
     assert (seeded.releases, seeded.q) == (2, 2)
     np.testing.assert_allclose(np.sort(seeded.stick_phases),
                                np.sort(doubled.orbits[i].stick_phases), rtol=0, atol=1e-8)
+
+
+def test_a_branch_with_its_defaults_equals_the_command_line(tmp_path):
+    # No step flag on either side: both take the library's defaults, and
+    # write the library's schema (io/branch_output.hpp), row for row and
+    # field for field.
+    import json
+    import os
+    import subprocess
+
+    def data_lines(path):
+        with open(path) as f:
+            return [line for line in f if not line.startswith("#")]
+
+    cli_csv, cli_json = tmp_path / "cli.csv", tmp_path / "cli.json"
+    subprocess.run([os.environ["IMPACTKIT_CLI"], "continue", "--p", "1",
+                    "--q", "1", "--from", "1.65", "--to", "1.8", "--out", str(cli_csv),
+                    "--json", str(cli_json)], check=True, capture_output=True)
+    system = impactkit.System.paper(1.65)
+    branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       lower=1.65, upper=1.8)
+    py_csv = tmp_path / "py.csv"
+    branch.write_csv(py_csv)
+    assert data_lines(py_csv) == data_lines(cli_csv)
+    with open(cli_json) as f:
+        cli = json.load(f)
+    mine = json.loads(branch.to_json())
+    for key in ("section", "p", "q", "points", "end_reason", "end_message", "param_range",
+                "special_points"):
+        assert mine[key] == cli[key], key
+    with pytest.raises(OSError):
+        branch.write_csv(tmp_path / "missing" / "x.csv")
