@@ -295,7 +295,9 @@ void RunCurve(const CurveRequest& request) {
   const std::vector<impactkit::Curve> curves = {curve};
   if (out) WriteCurveRows(outputs.AddCsv(*out, provenance.Text(), CurveColumns(curve)), curve);
   if (json) {
-    json->Write(CurvesJson(curves, provenance.Json(), SystemToJson(system)).dump(2) + "\n");
+    nlohmann::json document = nlohmann::json::parse(CurvesJson(curves, SystemToJson(system)));
+    document["provenance"] = provenance.Json();
+    json->Write(document.dump(2) + "\n");
   }
   if (plot) WriteChart(*plot, CurveChart(curves));
   outputs.Commit();

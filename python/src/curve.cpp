@@ -1,14 +1,17 @@
 // impactkit.continue_curve, Curve and Codim2Point: continuation/curve.hpp.
 #include "impactkit/continuation/curve.hpp"
 
+#include <fmt/format.h>
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <string>
 #include <vector>
 
 #include "bindings.hpp"
+#include "impactkit/io/curve_output.hpp"
 #include "impactkit/model/parameters.hpp"
 
 namespace impactkit::python {
@@ -102,6 +105,23 @@ void BindCurveClass(py::module_& module) {
       .def_readonly("begin_message", &Curve::begin_message, "The beginning in words.")
       .def_readonly("end_message", &Curve::end_message, "The end in words.")
       .def_readonly("seconds", &Curve::seconds, "Wall time.")
+      .def(
+          "to_json", [](const Curve& c) { return CurvesJson({c}); },
+          "The curve as a curves file (docs/curves-json.md, without the system), as text: what "
+          "`impactkit curve --json` writes, and `impactkit map --curves` reads.")
+      .def(
+          "write_csv",
+          [](const Curve& c, const std::filesystem::path& path) {
+            CsvWriter csv(path,
+                          fmt::format("impactkit {} (Python): continue_curve in ({}, {})",
+                                      IMPACTKIT_VERSION, c.parameter, c.parameter2),
+                          CurveColumns(c));
+            WriteCurveRows(csv, c);
+            csv.Commit();
+          },
+          py::arg("path"),
+          "Writes the curve as `impactkit curve --out` does: one row per point, the same "
+          "columns (docs/cli.md), the provenance as comment lines after the header.")
       .def("__len__", [](const Curve& c) { return c.points.size(); })
       .def("__repr__", [](const Curve& c) {
         return "impactkit.Curve(" + ToString(c.type) + " of P(" + std::to_string(c.p) + "," +
