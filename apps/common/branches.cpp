@@ -37,16 +37,7 @@ std::vector<TracedBranch> LabelBranches(const Diagram& diagram) {
   std::vector<TracedBranch> labelled;
   for (std::size_t k = 0; k < diagram.branches.size(); ++k) {
     const DiagramBranch& b = diagram.branches[k];
-    std::string label = k == 0 ? "main" : fmt::format("seed{}", k + 1);
-    if (b.parent >= 0) {
-      const SpecialPointType at = diagram.nodes[b.parent].special;
-      const char* kind = at == SpecialPointType::kPeriodDoubling ? "pd"
-                         : at == SpecialPointType::kBranchPoint  ? "bp"
-                         : at == SpecialPointType::kPitchfork    ? "pf"
-                                                                 : "graze";
-      label = fmt::format("{}{}", kind, k);
-    }
-    labelled.push_back({label, b.origin, b.branch});
+    labelled.push_back({BranchLabel(diagram, k), b.origin, b.branch});
   }
   return labelled;
 }

@@ -14,6 +14,7 @@
 #include "common/plot.hpp"
 #include "impactkit/continuation/diagram.hpp"
 #include "impactkit/io/branch_output.hpp"
+#include "impactkit/io/diagram_output.hpp"
 
 namespace impactkit::cli {
 

@@ -150,7 +150,7 @@ void RunDiagram(const DiagramRequest& request) {
   PrintDiagram(swept.diagram);
   std::vector<std::string> written;
   if (json) {
-    nlohmann::json j = DiagramJson(swept.diagram);
+    nlohmann::json j = nlohmann::json::parse(DiagramJson(swept.diagram));
     j["provenance"] =
         MakeProvenance(request.system, system,
                        fmt::format("diagram --param {} --from {} --to {} --max-depth {} "

@@ -16,8 +16,6 @@
 namespace impactkit::cli {
 namespace {
 
-std::vector<double> Complex(std::complex<double> z) { return {z.real(), z.imag()}; }
-
 /// The indices of `items` sorted by `parameter(item)`.
 template <class T, class F>
 std::vector<std::size_t> ByParameter(const std::vector<T>& items, F parameter) {
@@ -27,49 +25,6 @@ std::vector<std::size_t> ByParameter(const std::vector<T>& items, F parameter) {
     return parameter(items[a]) < parameter(items[b]);
   });
   return order;
-}
-
-nlohmann::json NodeJson(const DiagramNode& node, std::size_t id) {
-  nlohmann::json multipliers = nlohmann::json::array();
-  for (const std::complex<double>& m : node.multipliers) multipliers.push_back(Complex(m));
-  const Eigen::VectorXd& eta = node.point.orbit.eta;
-  nlohmann::json j = {{"id", id},
-                      {"type", node.Name()},
-                      {"param", node.parameter},
-                      {"p", node.p},
-                      {"q", node.q},
-                      {"branch", node.branch},
-                      {"multiplier", Complex(node.multiplier)},
-                      {"multipliers", multipliers},
-                      {"monitor", node.monitor},
-                      {"eta", std::vector<double>(eta.data(), eta.data() + eta.size())}};
-  if (node.special == SpecialPointType::kGrazing || node.special == SpecialPointType::kSticking) {
-    j["vanishing_impact"] = node.vanishing_impact < 0 ? nlohmann::json(nullptr)
-                                                      : nlohmann::json(node.vanishing_impact + 1);
-  }
-  return j;
-}
-
-nlohmann::json EdgeJson(const Diagram& diagram, const DiagramEdge& edge) {
-  const Branch& branch = diagram.branches[edge.branch].branch;
-  nlohmann::json points = nlohmann::json::array();
-  for (std::size_t i = edge.first; i <= edge.last; ++i) {
-    const PeriodicOrbit& orbit = branch.points[i].orbit;
-    std::vector<double> v;
-    for (const OrbitImpact& impact : LeadingImpacts(orbit)) v.push_back(impact.velocity);
-    points.push_back({{"param", branch.points[i].parameter},
-                      {"stable", orbit.stable},
-                      {"v", v},
-                      {"range_xN", orbit.contacts.Range()}});
-  }
-  return {{"from", edge.from},
-          {"to", edge.to},
-          {"branch", edge.branch},
-          {"section", ToString(branch.section)},
-          {"p", branch.p},
-          {"q", branch.q},
-          {"releases", branch.releases},
-          {"points", points}};
 }
 
 /// The chart's y values of one orbit.
@@ -288,19 +243,6 @@ void PrintDiagram(const Diagram& diagram) {
     }
     fmt::print("  {}\n", what);
   }
-}
-
-nlohmann::json DiagramJson(const Diagram& diagram) {
-  nlohmann::json j = {{"parameter", diagram.parameter},     {"complete", diagram.complete},
-                      {"message", diagram.message},         {"seconds", diagram.seconds},
-                      {"nodes", nlohmann::json::array()},   {"edges", nlohmann::json::array()},
-                      {"branches", nlohmann::json::array()}};
-  for (std::size_t k = 0; k < diagram.nodes.size(); ++k) {
-    j["nodes"].push_back(NodeJson(diagram.nodes[k], k));
-  }
-  for (const DiagramEdge& edge : diagram.edges) j["edges"].push_back(EdgeJson(diagram, edge));
-  for (const TracedBranch& b : LabelBranches(diagram)) j["branches"].push_back(BranchJson(b));
-  return j;
 }
 
 std::vector<LineChart> DiagramFigure(const SweptDiagram& swept, DiagramAxis axis) {

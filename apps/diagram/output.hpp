@@ -4,7 +4,6 @@
 /// diagram` shows it: branches and special points in parameter order on
 /// stdout, the graph as JSON, the picture over the brute-force points.
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -22,11 +21,6 @@ enum class DiagramAxis {
 /// Every branch (P(p,q), range, stability) and every node, each list in
 /// parameter order.
 void PrintDiagram(const Diagram& diagram);
-
-/// {parameter, nodes: [{id, type, param, p, q, multiplier, multipliers,
-/// monitor, eta}], edges: [{from, to, branch, p, q, points: [{param,
-/// stable, v, range_xN}]}], branches: [{label, origin, p, q, ...}]}.
-nlohmann::json DiagramJson(const Diagram& diagram);
 
 /// The diagram's figure: the whole range, the branches coloured by family
 /// (period; the 24 shortest periods, the others grey), stable stretches solid and unstable dashed,

@@ -217,7 +217,8 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
     WriteBranchRows(AddTable(folder, csv, "branch " + b.label, BranchColumns(b.branch)), b.branch);
     folder.branch_tables.push_back(csv);
   }
-  WriteFile(folder, "diagram.json", DiagramJson(swept.diagram).dump(2) + "\n");
+  WriteFile(folder, "diagram.json",
+            nlohmann::json::parse(DiagramJson(swept.diagram)).dump(2) + "\n");
   WriteFile(folder, "diagram.png",
             RenderDiagram(DiagramFigure(swept, DiagramAxis::kImpactVelocity), ImageFormat::kPng));
   return j;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "impactkit/io/diagram_output.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -132,6 +133,10 @@ void BindGraph(py::module_& module) {
                     "Every start was followed (no depth or branch bound cut the network short).")
       .def_readonly("message", &Diagram::message, "Which bound cut it short, if one did.")
       .def_readonly("seconds", &Diagram::seconds, "Wall time.")
+      .def(
+          "to_json", [](const Diagram& d) { return DiagramJson(d); },
+          "The diagram as JSON text: the document `impactkit diagram --json` writes, without "
+          "its provenance, system and regimes (io/diagram_output.hpp).")
       .def("brief_report", &Diagram::BriefReport,
            "'7 branches, 15 nodes, 16 edges in 3.2 s (...)'.")
       .def("__repr__",
