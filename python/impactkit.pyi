@@ -188,7 +188,7 @@ def find_orbit(
 
 SpecialPointType = Literal[
     "fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point",
-    "pitchfork", "no_sticking", "early_release"
+    "pitchfork", "no_sticking", "early_release", "user_test"
 ]
 BranchEnd = Literal[
     "parameter_bound", "grazing", "sticking", "branch_point", "max_points", "corrector_failed",

@@ -88,7 +88,7 @@ namespace {
 
 /// The title and gnuplot pointtype of a special point type's marks: 4
 /// square, 6 circle, 8 triangle, 10 down triangle, 12 diamond, 3 star, 14
-/// pentagon, 2 cross, 1 plus. A switch with no default, so that a type
+/// pentagon, 2 cross, 1 plus, 13 filled diamond. A switch with no default, so that a type
 /// added to the library without a mark here is a compiler warning (-Wswitch).
 std::pair<const char*, int> MarkStyle(SpecialPointType type) {
   switch (type) {
@@ -110,6 +110,8 @@ std::pair<const char*, int> MarkStyle(SpecialPointType type) {
       return {"no sticking", 2};
     case SpecialPointType::kEarlyRelease:
       return {"early release", 1};
+    case SpecialPointType::kUserTest:
+      return {"user test", 13};
   }
   return {"special point", 7};  // not reached: every type has its case
 }

@@ -26,6 +26,20 @@ std::optional<std::string> StepControlProblem(double min_step, double initial_st
   return std::nullopt;
 }
 
+std::optional<std::string> UserTestProblem(const std::vector<UserTest>& tests) {
+  for (std::size_t k = 0; k < tests.size(); ++k) {
+    if (tests[k].name.empty() || !tests[k].value) {
+      return fmt::format("user test {} needs a name and a value function", k + 1);
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      if (tests[j].name == tests[k].name) {
+        return fmt::format("two user tests are named '{}'", tests[k].name);
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<Eigen::VectorXd> ArclengthTangent(const Eigen::MatrixXd& j,
                                                 const Eigen::VectorXd& previous) {
   const Eigen::Index size = j.cols();

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "impactkit/continuation/continuation.hpp"
 #include "impactkit/solvers/nonlinear_solve.hpp"
 
 namespace impactkit {
@@ -31,6 +32,10 @@ std::optional<Eigen::VectorXd> CorrectBordered(const Residual& residual, const J
                                                const Eigen::VectorXd& guess,
                                                const Eigen::VectorXd& c, double value,
                                                const NewtonOptions& newton, int* iterations);
+
+/// What is wrong with the user's test functions (continuation.hpp), or
+/// nothing: each needs a name and a value function, and names are unique.
+std::optional<std::string> UserTestProblem(const std::vector<UserTest>& tests);
 
 /// The unit tangent of {x : F(x) = 0} at a point where F's Jacobian `j`
 /// (n x (n + 1)) has full rank: with `previous` (a tangent, size n + 1) the

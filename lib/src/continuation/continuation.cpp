@@ -133,7 +133,7 @@ class BranchTracer {
         EndOnBound(from, *next, &half);
         return half;
       }
-      if (options_.locate_bifurcations) LocateBifurcations(from, *next, &half);
+      LocateSpecialPoints(from, *next, &half);
       Accept(*next, &half);
       if (!sticks_ && half.points.size() >= 2 &&
           detail::ZeroAhead(half.points.end()[-2], half.points.back(), step, PointMonitor) &&
@@ -232,7 +232,7 @@ class BranchTracer {
 
   /// Ends the branch at `on`, the point on a bound after `from`.
   void EndOnBound(const BranchPoint& from, const BranchPoint& on, HalfBranch* half) const {
-    if (options_.locate_bifurcations) LocateBifurcations(from, on, half);
+    LocateSpecialPoints(from, on, half);
     Accept(on, half);
     half->end = BranchEnd::kParameterBound;
     half->end_message = fmt::format("reached {} = {:.10g}", problem_.Parameter(), on.parameter);
@@ -245,13 +245,19 @@ class BranchTracer {
   }
 
   /// Locates each test function's sign change between consecutive points
+  /// (the bifurcations' if options.locate_bifurcations, the user's always)
   /// and inserts the located points before `b`.
-  void LocateBifurcations(const BranchPoint& a, const BranchPoint& b, HalfBranch* half) const {
+  void LocateSpecialPoints(const BranchPoint& a, const BranchPoint& b, HalfBranch* half) const {
     std::vector<SpecialPoint> found;
     for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
+      if (!options_.locate_bifurcations) break;
       if ((a.test_values[test] > 0) == (b.test_values[test] > 0)) continue;
       std::optional<SpecialPoint> special = LocateZero(a, b, test);
       if (special) found.push_back(*special);
+    }
+    for (const UserTest& test : options_.user_tests) {
+      if ((test.value(a.orbit) > 0) == (test.value(b.orbit) > 0)) continue;
+      found.push_back(LocateUserTest(a, b, test));
     }
     std::sort(found.begin(), found.end(), [](const SpecialPoint& x, const SpecialPoint& y) {
       return x.point.arclength < y.point.arclength;
@@ -281,6 +287,19 @@ class BranchTracer {
       special->type = SpecialPointType::kPitchfork;
       special->eigenvector = RealEigenvector(special->point.orbit.jacobian, 1.0);
     }
+    return special;
+  }
+
+  /// The zero of the user's test between a and b, where it changes sign.
+  SpecialPoint LocateUserTest(const BranchPoint& a, const BranchPoint& b,
+                              const UserTest& test) const {
+    SpecialPoint special;
+    special.type = SpecialPointType::kUserTest;
+    special.user_test = test.name;
+    special.point =
+        LocateZero(a, b, [&test](const BranchPoint& point) { return test.value(point.orbit); });
+    special.parameter = special.point.parameter;
+    special.monitor = test.value(special.point.orbit);
     return special;
   }
 
@@ -479,7 +498,7 @@ class BranchTracer {
     // before the grazing lies between its points.
     BranchPoint previous = half.points.back();
     for (const BranchPoint& point : best_path) {
-      if (options_.locate_bifurcations) LocateBifurcations(previous, point, &half);
+      LocateSpecialPoints(previous, point, &half);
       Accept(point, &half);
       previous = point;
     }
@@ -637,6 +656,10 @@ std::string SpecialPoint::Describe(const std::string& parameter_name) const {
   if (type == SpecialPointType::kBranchPoint) {
     return fmt::format("{} (repeat gap {:.1e})", where, monitor);
   }
+  if (type == SpecialPointType::kUserTest) {
+    return fmt::format("{} '{}' at {} = {:.10g} (value {:.1e})", name, user_test, parameter_name,
+                       parameter, monitor);
+  }
   if (point.orbit.Sticks()) return fmt::format("{} ({})", where, DescribeSticking(*this));
   if (type == SpecialPointType::kGrazing || type == SpecialPointType::kSticking) {
     return vanishing_impact < 0
@@ -665,6 +688,7 @@ bool ContinuationOptions::IsValid(std::string* error) const {
   }
   if (!(end_tolerance > 0))
     return fail(fmt::format("end_tolerance must be > 0, got {}", end_tolerance));
+  if (const auto problem = UserTestProblem(user_tests)) return fail(*problem);
   return orbit.IsValid(error);
 }
 

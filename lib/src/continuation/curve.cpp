@@ -43,6 +43,9 @@ struct HalfCurve {
   std::string message;
 };
 
+/// False on the non-impacting response's grazing curve: no orbit there.
+bool HasOrbit(const CurvePoint& point) { return point.orbit.multipliers.size() > 0; }
+
 /// Traces one direction of a curve from an oriented start point.
 class CurveTracer {
  public:
@@ -219,7 +222,16 @@ class CurveTracer {
           !test.accept(located)) {
         continue;
       }
-      found.push_back({test.type, located, located.defining.cwiseAbs().maxCoeff(), residual});
+      found.push_back({test.type, located, located.defining.cwiseAbs().maxCoeff(), residual, ""});
+    }
+    for (const UserTest& test : options_.user_tests) {
+      if (!HasOrbit(a) || !HasOrbit(b) || (test.value(a.orbit) > 0) == (test.value(b.orbit) > 0)) {
+        continue;
+      }
+      const CurvePoint located =
+          LocateZero(a, b, [&test](const CurvePoint& p) { return test.value(p.orbit); });
+      found.push_back({Codim2Type::kUserTest, located, located.defining.cwiseAbs().maxCoeff(),
+                       std::abs(test.value(located.orbit)), test.name});
     }
     std::sort(found.begin(), found.end(), [](const Codim2Point& x, const Codim2Point& y) {
       return x.point.arclength < y.point.arclength;
@@ -437,6 +449,8 @@ std::string ToString(Codim2Type type) {
       return "double_grazing";
     case Codim2Type::kStickingOnset:
       return "sticking_onset";
+    case Codim2Type::kUserTest:
+      return "user_test";
   }
   return "unknown";
 }
@@ -460,9 +474,10 @@ std::string ToString(CurveEnd end) {
 }
 
 std::string Codim2Point::Describe(const std::string& name1, const std::string& name2) const {
-  return fmt::format("{} at {} = {:.10g}, {} = {:.10g} (residuals {:.1e}, {:.1e})", ToString(type),
-                     name1, point.parameter, name2, point.parameter2, defining_residual,
-                     second_residual);
+  const std::string what =
+      type == Codim2Type::kUserTest ? fmt::format("user_test '{}'", user_test) : ToString(type);
+  return fmt::format("{} at {} = {:.10g}, {} = {:.10g} (residuals {:.1e}, {:.1e})", what, name1,
+                     point.parameter, name2, point.parameter2, defining_residual, second_residual);
 }
 
 bool CurveOptions::IsValid(std::string* error) const {
@@ -487,6 +502,7 @@ bool CurveOptions::IsValid(std::string* error) const {
                                               corrector_iterations, max_correction)) {
     return fail(*problem);
   }
+  if (const auto problem = UserTestProblem(user_tests)) return fail(*problem);
   return orbit.IsValid(error);
 }
 

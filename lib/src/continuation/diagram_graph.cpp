@@ -97,6 +97,7 @@ int DiagramBuilder::SpecialNode(int index, const SpecialPoint& s) {
   node.multipliers = s.point.orbit.multipliers;
   node.monitor = s.monitor;
   node.vanishing_impact = s.vanishing_impact;
+  node.user_test = s.user_test;
   node.p = branch.p;
   node.q = branch.q;
   node.branch = index;

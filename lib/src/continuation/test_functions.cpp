@@ -46,7 +46,7 @@ constexpr std::array<TestFunction, kBifurcationTestCount> kTests = {{
      std::nullopt, false},
 }};
 
-constexpr std::array<std::pair<SpecialPointType, std::string_view>, 9> kNames = {{
+constexpr std::array<std::pair<SpecialPointType, std::string_view>, 10> kNames = {{
     {SpecialPointType::kFold, "fold"},
     {SpecialPointType::kPeriodDoubling, "period_doubling"},
     {SpecialPointType::kNeimarkSacker, "neimark_sacker"},
@@ -56,6 +56,7 @@ constexpr std::array<std::pair<SpecialPointType, std::string_view>, 9> kNames = 
     {SpecialPointType::kPitchfork, "pitchfork"},
     {SpecialPointType::kNoSticking, "no_sticking"},
     {SpecialPointType::kEarlyRelease, "early_release"},
+    {SpecialPointType::kUserTest, "user_test"},
 }};
 
 }  // namespace

@@ -46,6 +46,8 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
   if (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking) {
     j["vanishing_impact"] =
         s.vanishing_impact < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.vanishing_impact + 1);
+  } else if (s.type == SpecialPointType::kUserTest) {
+    j["user_test"] = s.user_test;
   } else if (s.type != SpecialPointType::kNoSticking && s.type != SpecialPointType::kEarlyRelease) {
     j["multiplier"] = {s.multiplier.real(), s.multiplier.imag()};
   }

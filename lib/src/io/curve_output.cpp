@@ -54,13 +54,15 @@ std::string CurvesJson(const std::vector<Curve>& curves, const std::string& syst
     for (const CurvePoint& point : c.points) curve["points"].push_back(PointJson(c, point));
     j["curves"].push_back(std::move(curve));
     for (const Codim2Point& s : c.codim2_points) {
-      j["codim2_points"].push_back({{"type", ToString(s.type)},
-                                    {"curve", k},
-                                    {c.parameter, s.point.parameter},
-                                    {c.parameter2, s.point.parameter2},
-                                    {"defining_residual", s.defining_residual},
-                                    {"second_residual", s.second_residual},
-                                    {"description", s.Describe(c.parameter, c.parameter2)}});
+      nlohmann::json point = {{"type", ToString(s.type)},
+                              {"curve", k},
+                              {c.parameter, s.point.parameter},
+                              {c.parameter2, s.point.parameter2},
+                              {"defining_residual", s.defining_residual},
+                              {"second_residual", s.second_residual},
+                              {"description", s.Describe(c.parameter, c.parameter2)}};
+      if (s.type == Codim2Type::kUserTest) point["user_test"] = s.user_test;
+      j["codim2_points"].push_back(std::move(point));
     }
   }
   if (!system_json.empty()) j["system"] = nlohmann::json::parse(system_json);

@@ -26,6 +26,7 @@ nlohmann::json NodeJson(const DiagramNode& node, std::size_t id) {
                       {"multipliers", multipliers},
                       {"monitor", node.monitor},
                       {"eta", std::vector<double>(eta.data(), eta.data() + eta.size())}};
+  if (node.special == SpecialPointType::kUserTest) j["user_test"] = node.user_test;
   if (node.special == SpecialPointType::kGrazing || node.special == SpecialPointType::kSticking) {
     j["vanishing_impact"] = node.vanishing_impact < 0 ? nlohmann::json(nullptr)
                                                       : nlohmann::json(node.vanishing_impact + 1);

@@ -55,6 +55,17 @@ namespace impactkit {
 
 enum class ContinuationDirection { kIncreasing, kDecreasing, kBoth };
 
+/// A test function of the user's: a scalar of the orbit (the greatest x_c
+/// minus a level, an impact's phase minus a value, ...) whose sign changes
+/// along a branch are located like a bifurcation's, by the same Illinois
+/// method on arclength, and reported as special points of type kUserTest
+/// named `name`. It must be continuous along a branch (a quantity of the
+/// orbit, not of its numbering) and is called from the tracing threads.
+struct UserTest {
+  std::string name;
+  std::function<double(const PeriodicOrbit& orbit)> value;
+};
+
 struct ContinuationOptions {
   std::string parameter = "omega";
   /// The branch stays within [lower, upper] (it ends on reaching a bound).
@@ -82,6 +93,10 @@ struct ContinuationOptions {
   OrbitOptions orbit;
   /// A sticking family's end is located by bisection in μ to this.
   double end_tolerance = 1e-9;
+  /// The user's test functions, watched and located along every branch
+  /// (and so along every branch of a diagram), whatever
+  /// locate_bifurcations says.
+  std::vector<UserTest> user_tests;
   bool IsValid(std::string* error) const;
 };
 
@@ -103,6 +118,8 @@ struct SpecialPoint {
   double monitor = 0.0;
   /// Grazing/sticking: which impact vanishes (-1 for a new contact).
   int vanishing_impact = -1;
+  /// A user test's zero: the test's name (UserTest::name).
+  std::string user_test;
   /// One line: "period doubling at omega = 1.6123 (multiplier -1.000000)".
   std::string Describe(const std::string& parameter_name) const;
 };

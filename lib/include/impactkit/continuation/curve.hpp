@@ -61,11 +61,12 @@ enum class Codim2Type {
   kNeimarkSackerGrazing,
   kDoubleGrazing,  ///< a grazing curve meets another grazing: a second contact
   kStickingOnset,  ///< an impact of the curve's orbit starts to chatter
+  kUserTest,       ///< a user test's zero (CurveOptions::user_tests)
 };
 
 /// "fold_flip", "cusp", "resonance_1_1", …, "fold_grazing",
 /// "period_doubling_grazing", "neimark_sacker_grazing", "double_grazing",
-/// "sticking_onset": the name outputs use.
+/// "sticking_onset", "user_test": the name outputs use.
 std::string ToString(Codim2Type type);
 
 struct CurveOptions {
@@ -89,6 +90,10 @@ struct CurveOptions {
   bool locate_codim2 = true;
   /// p, q, tolerances and the map's options.
   OrbitOptions orbit;
+  /// The user's test functions (continuation.hpp), located along the
+  /// curve as codimension-two points of type kUserTest where the curve's
+  /// orbit has them (not on the non-impacting response's grazing curve).
+  std::vector<UserTest> user_tests;
   bool IsValid(std::string* error) const;
 };
 
@@ -114,6 +119,7 @@ struct Codim2Point {
   /// (a grazing monitor is a length: clearance or depth).
   double defining_residual = 0.0;
   double second_residual = 0.0;
+  std::string user_test;  ///< a user test's zero: the test's name
   /// One line: "fold_flip at omega = 1.61, r = 0.83 (residuals 1e-12, 3e-10)".
   std::string Describe(const std::string& name1, const std::string& name2) const;
 };

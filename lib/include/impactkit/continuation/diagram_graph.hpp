@@ -40,6 +40,7 @@ struct DiagramNode {
   /// The test function or grazing monitor at the located point (0 at ends).
   double monitor = 0.0;
   int vanishing_impact = -1;  ///< grazing/sticking: the impact that vanishes (-1: a new contact)
+  std::string user_test;      ///< a user test's zero: the test's name
   int p = 0, q = 0;   ///< of the branch the node was first located on (p = 0: sticking, P(inf,q))
   int branch = 0;     ///< that branch (index into Diagram::branches)
   BranchPoint point;  ///< the located point on that branch

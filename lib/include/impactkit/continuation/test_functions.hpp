@@ -41,11 +41,14 @@ enum class SpecialPointType {
   /// On a family of sticking orbits: Fs touches 0 inside a stuck phase,
   /// beyond which the mass leaves the stop there (one more sticking phase).
   kEarlyRelease,
+  /// A zero of a test function of the user's (ContinuationOptions::
+  /// user_tests): a quantity of the orbit crossing a level.
+  kUserTest,
 };
 
 /// "fold", "period_doubling", "neimark_sacker", "grazing", "sticking",
-/// "branch_point", "pitchfork", "no_sticking", "early_release": the name
-/// that outputs (CSV, JSON) use for the type.
+/// "branch_point", "pitchfork", "no_sticking", "early_release",
+/// "user_test": the name that outputs (CSV, JSON) use for the type.
 std::string ToString(SpecialPointType type);
 /// The type of a name of ToString; empty for any other name.
 std::optional<SpecialPointType> SpecialPointTypeFromName(std::string_view name);
