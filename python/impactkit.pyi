@@ -1,7 +1,7 @@
 """Type stubs of the impactkit module (python/src/*.cpp); docstrings there."""
 
 from os import PathLike
-from typing import Any, Literal, Optional, TypedDict, overload
+from typing import Any, Callable, Literal, Optional, TypedDict, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -199,6 +199,8 @@ class SpecialPoint:
     @property
     def type(self) -> SpecialPointType: ...
     @property
+    def user_test(self) -> str: ...
+    @property
     def parameter(self) -> float: ...
     @property
     def multiplier(self) -> complex: ...
@@ -285,6 +287,7 @@ def continue_branch(
     max_step: float = 0.02,
     max_points: int = 10000,
     locate_bifurcations: bool = True,
+    user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
 ) -> Branch: ...
 @overload
 def continue_branch(
@@ -299,6 +302,7 @@ def continue_branch(
     max_step: float = 0.02,
     max_points: int = 10000,
     locate_bifurcations: bool = True,
+    user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
 ) -> Branch: ...
 def doubled_branch_start(
     system: System, branch: Branch, period_doubling: SpecialPoint, *, offset: float = 1e-3
@@ -477,6 +481,8 @@ class Codim2Point:
     @property
     def type(self) -> str: ...
     @property
+    def user_test(self) -> str: ...
+    @property
     def parameter(self) -> float: ...
     @property
     def parameter2(self) -> float: ...
@@ -534,4 +540,5 @@ def continue_curve(
     max_step: float = 0.02,
     max_points: int = 2000,
     locate_codim2: bool = True,
+    user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
 ) -> Curve: ...

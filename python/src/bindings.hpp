@@ -11,8 +11,11 @@
 #include <cstddef>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
+
+#include "impactkit/continuation/continuation.hpp"
 
 namespace impactkit::python {
 
@@ -52,6 +55,12 @@ auto WithoutGil(Call&& call) {
     throw py::error_already_set();
   }
 }
+
+/// The user's test functions from {name: callable(Orbit) -> float}. The
+/// library calls them without the GIL (and a diagram from its threads):
+/// each call takes it, and the last copy of a callable lets it go holding
+/// it. An exception the callable raises ends the library call with it.
+std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests);
 
 /// The values of `data` as a numpy array of the given shape, without a
 /// copy: the vector moves to the heap and the array's base owns it.

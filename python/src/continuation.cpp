@@ -41,10 +41,11 @@ ContinuationOptions MakeOptions(const std::string& parameter, double lower, doub
 
 Branch ContinueFromStart(const BranchStart& start, const std::string& parameter, double lower,
                          double upper, const std::string& direction, double initial_step,
-                         double min_step, double max_step, int max_points,
-                         bool locate_bifurcations) {
+                         double min_step, double max_step, int max_points, bool locate_bifurcations,
+                         const std::optional<py::dict>& user_tests) {
   ContinuationOptions options = MakeOptions(parameter, lower, upper, direction, initial_step,
                                             min_step, max_step, max_points, locate_bifurcations);
+  options.user_tests = UserTestsFrom(user_tests);
   if (!start.orbit.Sticks()) {  // a sticking family is its start's
     options.orbit.p = start.orbit.p;
     options.orbit.q = start.orbit.q;
@@ -56,9 +57,10 @@ Branch ContinueFromStart(const BranchStart& start, const std::string& parameter,
 Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,
                          const std::string& parameter, double lower, double upper,
                          const std::string& direction, double initial_step, double min_step,
-                         double max_step, int max_points, bool locate_bifurcations) {
+                         double max_step, int max_points, bool locate_bifurcations,
+                         const std::optional<py::dict>& user_tests) {
   return ContinueFromStart({system, orbit, {}}, parameter, lower, upper, direction, initial_step,
-                           min_step, max_step, max_points, locate_bifurcations);
+                           min_step, max_step, max_points, locate_bifurcations, user_tests);
 }
 
 /// The library's switching functions need only the orbit and corrector
@@ -99,8 +101,10 @@ void BindContinuation(py::module_& module) {
       .def_property_readonly(
           "type", [](const SpecialPoint& s) { return ToString(s.type); },
           "'fold', 'period_doubling', 'neimark_sacker', 'grazing', 'sticking', "
-          "'branch_point', 'pitchfork', or of a sticking family 'no_sticking' or "
+          "'branch_point', 'pitchfork', 'user_test', or of a sticking family 'no_sticking' or "
           "'early_release'.")
+      .def_readonly("user_test", &SpecialPoint::user_test,
+                    "A user test's zero: the test's name (its key in user_tests).")
       .def_readonly("parameter", &SpecialPoint::parameter, "The parameter value there.")
       .def_readonly("multiplier", &SpecialPoint::multiplier,
                     "The critical multiplier (fold, period doubling, Neimark-Sacker).")
@@ -260,21 +264,26 @@ locating folds, period doublings, Neimark-Sacker points, and ending at
 grazing or sticking.
 
 direction: 'increasing', 'decreasing' or 'both' (a BranchStart's own
-direction, when it has one, takes precedence). Returns a Branch. Raises
-ValueError for bad input. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
+direction, when it has one, takes precedence). user_tests: {name:
+function(Orbit) -> float}, test functions of your own whose zeros are
+located like the bifurcations' (special points 'user_test' with that name).
+Returns a Branch. Raises ValueError for bad input, and what a user test
+raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
   const ContinuationOptions kBranch;  // the defaults are the library's, as the command line's are
   module.def("continue_branch", &ContinueFromOrbit, py::arg("system"), py::arg("orbit"),
              py::kw_only(), py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
              py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
              py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
              py::arg("max_points") = kBranch.max_points,
-             py::arg("locate_bifurcations") = kBranch.locate_bifurcations, continue_doc);
+             py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
+             py::arg("user_tests") = py::none(), continue_doc);
   module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
              py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
              py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
              py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
              py::arg("max_points") = kBranch.max_points,
-             py::arg("locate_bifurcations") = kBranch.locate_bifurcations, continue_doc);
+             py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
+             py::arg("user_tests") = py::none(), continue_doc);
   module.def("doubled_branch_start", &DoubledStart, py::arg("system"), py::arg("branch"),
              py::arg("period_doubling"), py::kw_only(), py::arg("offset") = 1e-3,
              R"(A first point on the P(2p, 2q) branch born at a period doubling of

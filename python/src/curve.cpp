@@ -20,8 +20,10 @@ namespace {
 Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialPoint& special,
                       const std::string& parameter2, double lower, double upper, double lower2,
                       double upper2, double initial_step, double min_step, double max_step,
-                      int max_points, bool locate_codim2) {
+                      int max_points, bool locate_codim2,
+                      const std::optional<py::dict>& user_tests) {
   CurveOptions options;
+  options.user_tests = UserTestsFrom(user_tests);
   options.parameter = branch.parameter;
   options.parameter2 = parameter2;
   options.lower = lower;
@@ -50,7 +52,9 @@ void BindCodim2(py::module_& module) {
           "type", [](const Codim2Point& c) { return ToString(c.type); },
           "'fold_flip', 'cusp', 'resonance_1_1' … 'resonance_1_4', 'fold_grazing', "
           "'period_doubling_grazing', 'neimark_sacker_grazing', 'double_grazing', "
-          "'sticking_onset'.")
+          "'sticking_onset', 'user_test'.")
+      .def_readonly("user_test", &Codim2Point::user_test,
+                    "A user test's zero: the test's name (its key in user_tests).")
       .def_property_readonly(
           "parameter", [](const Codim2Point& c) { return c.point.parameter; }, "mu1 there.")
       .def_property_readonly(
@@ -141,11 +145,13 @@ void BindCurve(py::module_& module) {
              py::arg("upper"), py::arg("lower2"), py::arg("upper2"),
              py::arg("initial_step") = kCurve.initial_step, py::arg("min_step") = kCurve.min_step,
              py::arg("max_step") = kCurve.max_step, py::arg("max_points") = kCurve.max_points,
-             py::arg("locate_codim2") = kCurve.locate_codim2,
+             py::arg("locate_codim2") = kCurve.locate_codim2, py::arg("user_tests") = py::none(),
              R"(Follows a fold, period doubling, Neimark-Sacker or grazing point of
 `branch` (continued for `system`) as the branch's parameter (mu1, within
 [lower, upper]) and `parameter2` (mu2, within [lower2, upper2]) move, both
-ways, locating codimension-two points (`impactkit curve`). Returns a Curve.
+ways, locating codimension-two points (`impactkit curve`), and the zeros
+of user_tests ({name: function(Orbit) -> float}) as 'user_test' points.
+Returns a Curve.
 Raises ValueError for bad input or a point the curve cannot start from.
 Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
 }

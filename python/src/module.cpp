@@ -35,6 +35,27 @@ void CheckInterrupt() {
   if (PyErr_CheckSignals() != 0) throw Interrupted();
 }
 
+std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests) {
+  std::vector<UserTest> converted;
+  if (!tests) return converted;
+  for (const auto& [key, value] : *tests) {
+    Require(PyCallable_Check(value.ptr()) != 0,
+            "user_tests: the value of '" + std::string(py::str(key)) + "' is not callable");
+    // Shared, so that the library's copies of the test never touch the
+    // callable's reference count without the GIL.
+    const std::shared_ptr<py::function> function(
+        new py::function(py::reinterpret_borrow<py::function>(value)), [](py::function* f) {
+          py::gil_scoped_acquire gil;
+          delete f;
+        });
+    converted.push_back({std::string(py::str(key)), [function](const PeriodicOrbit& orbit) {
+                           py::gil_scoped_acquire gil;
+                           return (*function)(orbit).cast<double>();
+                         }});
+  }
+  return converted;
+}
+
 }  // namespace impactkit::python
 
 PYBIND11_MODULE(impactkit, module) {

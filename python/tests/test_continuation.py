@@ -1,6 +1,8 @@
 """impactkit.continue_branch: each point re-solved by Newton on its own, and
 the special points' multipliers at their critical values."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -153,3 +155,31 @@ def test_a_branch_with_its_defaults_equals_the_command_line(tmp_path):
         assert mine[key] == cli[key], key
     with pytest.raises(OSError):
         branch.write_csv(tmp_path / "missing" / "x.csv")
+
+
+
+def test_a_user_test_of_python_is_located_along_the_branch(branch):
+    # The impact speed crossing a level between its values at the branch's
+    # ends: located like a bifurcation, and the orbit solved afresh at the
+    # located omega has that speed (1e-9).
+    level = 0.5 * (branch.orbits[0].impact_velocities[0] + branch.orbits[-1].impact_velocities[0])
+    system = impactkit.System.paper(1.65)
+    start = impactkit.find_orbit(system, p=1, q=1)
+    tests = {"speed": lambda orbit: orbit.impact_velocities[0] - level}
+    mine = impactkit.continue_branch(system, start, lower=1.5, upper=1.8, direction="both",
+                                     user_tests=tests)
+    found = [s for s in mine.special_points if s.type == "user_test"]
+    assert found and all(s.user_test == "speed" for s in found)
+    for s in found:
+        again = impactkit.find_orbit(impactkit.System.paper(s.parameter), p=1, q=1, seed=s.orbit.eta)
+        assert abs(again.impact_velocities[0] - level) < 1e-9
+    assert "user_test" in [p["type"] for p in json.loads(mine.to_json())["special_points"]]
+    with pytest.raises(ValueError, match="not callable"):
+        impactkit.continue_branch(system, start, lower=1.5, upper=1.8, user_tests={"x": 1})
+
+    def broken(orbit):
+        raise ZeroDivisionError("from the user's test")
+
+    with pytest.raises(ZeroDivisionError, match="from the user's test"):
+        impactkit.continue_branch(system, start, lower=1.5, upper=1.8,
+                                  user_tests={"broken": broken})
