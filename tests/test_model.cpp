@@ -246,3 +246,31 @@ TEST_CASE("the forcing phase is fmod's exact remainder, at every scale of t", "[
     }
   }
 }
+
+TEST_CASE("a parameter resolved once gets and sets what its name does", "[model]") {
+  // Every name of a three-mass chain with a second stop: the resolved
+  // parameter reads the value GetParameter reads, and setting it changes
+  // exactly what SetParameter would.
+  System system = UniformChain({3, 1.0, 1.0, 0.1}, Eigen::Vector3d(0.5, 0.0, 0.25), 1.2, 0.1, 0.7);
+  system.stops.push_back({0, StopSide::kLower, -0.3, 0.6});
+  const auto same = [](const System& a, const System& b) {
+    return a.mass == b.mass && a.damping == b.damping && a.stiffness == b.stiffness &&
+           a.forcing == b.forcing && a.omega == b.omega && a.stops == b.stops;
+  };
+  for (const std::string& name : ParameterNames(system)) {
+    INFO(name);
+    const NamedParameter parameter(system, name);
+    CHECK(parameter.Name() == name);
+    CHECK(parameter.Get(system) == GetParameter(system, name));
+    const double value = name == "n" ? 2.0 : GetParameter(system, name) * 0.75 + 0.0625;
+    System by_name = system, resolved = system;
+    SetParameter(by_name, name, value);
+    parameter.Set(resolved, value);
+    CHECK(same(by_name, resolved));
+  }
+  CHECK_THROWS_WITH(NamedParameter(system, "A4"), Contains("unknown parameter 'A4'"));
+  // Resolved while the chain had three masses: A3 is gone once n is 2.
+  const NamedParameter a3(system, "A3");
+  SetParameter(system, "n", 2);
+  CHECK_THROWS_WITH(a3.Set(system, 1.0), Contains("A3: the system has 2 masses"));
+}

@@ -17,6 +17,8 @@ CurveProblem::CurveProblem(const System& base, const CurveOptions& options, Spec
                            int grazing_flight, int grazing_stop, bool response)
     : base_(base),
       options_(options),
+      mu1_(base_, options_.parameter),
+      mu2_(base_, options_.parameter2),
       type_(type),
       grazing_flight_(grazing_flight),
       response_(response),
@@ -29,8 +31,6 @@ CurveProblem::CurveProblem(const System& base, const CurveOptions& options, Spec
             fmt::format("{} must be one of the system's {} stops (0 to {}), got {}", what,
                         base_.StopCount(), base_.StopCount() - 1, stop));
   }
-  GetParameter(base_, options_.parameter);  // throws for an unknown name
-  GetParameter(base_, options_.parameter2);
 }
 
 Eigen::VectorXd CurveProblem::Join(const Eigen::VectorXd& eta, double contact_time, double mu1,
@@ -45,30 +45,30 @@ Eigen::VectorXd CurveProblem::Join(const Eigen::VectorXd& eta, double contact_ti
 
 System CurveProblem::SystemAt(double mu1, double mu2) const {
   System system = base_;
-  SetParameter(system, options_.parameter2, mu2);
-  SetParameter(system, options_.parameter, mu1);
+  mu2_.Set(system, mu2);
+  mu1_.Set(system, mu1);
   ValidateParameters(system);
   return system;
 }
 
-const BranchProblem& CurveProblem::Along(const std::string& fixed, double value,
-                                         const std::string& free, CachedBranch* cache) const {
+const BranchProblem& CurveProblem::Along(const NamedParameter& fixed, double value,
+                                         const NamedParameter& free, CachedBranch* cache) const {
   if (!cache->problem || cache->fixed_at != value) {
     System at = base_;
-    SetParameter(at, fixed, value);
-    cache->problem = std::make_unique<BranchProblem>(at, free, options_.orbit.p, options_.orbit.q,
-                                                     options_.orbit.map);
+    fixed.Set(at, value);
+    cache->problem = std::make_unique<BranchProblem>(at, free.Name(), options_.orbit.p,
+                                                     options_.orbit.q, options_.orbit.map);
     cache->fixed_at = value;
   }
   return *cache->problem;
 }
 
 const BranchProblem& CurveProblem::Along1(double mu2) const {
-  return Along(options_.parameter2, mu2, options_.parameter, &along1_);
+  return Along(mu2_, mu2, mu1_, &along1_);
 }
 
 const BranchProblem& CurveProblem::Along2(double mu1) const {
-  return Along(options_.parameter, mu1, options_.parameter2, &along2_);
+  return Along(mu1_, mu1, mu2_, &along2_);
 }
 
 bool CurveProblem::Defining(const Eigen::VectorXd& x, Eigen::VectorXd* g,

@@ -111,6 +111,7 @@ class CurveProblem {
 
   System base_;
   CurveOptions options_;
+  NamedParameter mu1_, mu2_;  ///< options_.parameter and parameter2, resolved
   SpecialPointType type_;
   int grazing_flight_;
   bool response_;
@@ -124,7 +125,7 @@ class CurveProblem {
     double fixed_at = 0.0;
   };
   /// U in (η, `free`) with `fixed` at `value`, from *cache when it is there.
-  const BranchProblem& Along(const std::string& fixed, double value, const std::string& free,
+  const BranchProblem& Along(const NamedParameter& fixed, double value, const NamedParameter& free,
                              CachedBranch* cache) const;
   mutable CachedBranch along1_, along2_;
 };

@@ -16,13 +16,11 @@ constexpr std::size_t kCachedMaps = 4;
 SectionCurve::SectionCurve(const System& base, std::string parameter, int k, int q, int state_size,
                            MapMaker make_map)
     : base_(base),
-      parameter_(std::move(parameter)),
+      parameter_(base_, parameter),
       k_(k),
       q_(q),
       size_(state_size + 1),
-      make_map_(std::move(make_map)) {
-  GetParameter(base_, parameter_);  // throws for an unknown name
-}
+      make_map_(std::move(make_map)) {}
 
 Eigen::VectorXd SectionCurve::Join(const Eigen::VectorXd& state, double mu) {
   Eigen::VectorXd x(state.size() + 1);
@@ -32,7 +30,7 @@ Eigen::VectorXd SectionCurve::Join(const Eigen::VectorXd& state, double mu) {
 
 System SectionCurve::SystemAt(double mu) const {
   System system = base_;
-  SetParameter(system, parameter_, mu);
+  parameter_.Set(system, mu);
   // The map built at μ decomposes the flows and rejects a resonance there.
   ValidateParameters(system);
   return system;

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/section_map.hpp"
 #include "impactkit/solvers/nonlinear_solve.hpp"
 
@@ -38,7 +39,7 @@ class SectionCurve {
   int Size() const { return size_; }  ///< the section's size + 1
   int Events() const { return k_; }
   int q() const { return q_; }
-  const std::string& Parameter() const { return parameter_; }
+  const std::string& Parameter() const { return parameter_.Name(); }
 
   static Eigen::VectorXd Join(const Eigen::VectorXd& state, double mu);
   static double Mu(const Eigen::VectorXd& x) { return x(x.size() - 1); }
@@ -77,7 +78,7 @@ class SectionCurve {
 
  private:
   System base_;
-  std::string parameter_;
+  NamedParameter parameter_;
   int k_, q_, size_;
   MapMaker make_map_;
   mutable std::vector<std::pair<double, std::unique_ptr<SectionMap>>> maps_;  // newest last

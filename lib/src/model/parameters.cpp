@@ -132,23 +132,42 @@ std::vector<std::string> ParameterNames(const System& s) {
   return names;
 }
 
+NamedParameter::NamedParameter(const System& s, std::string_view name)
+    : name_(name), spec_(FindParameter(s, name)) {
+  if (!spec_) UnknownParameter(s, name);
+  if (spec_->stop) {
+    index_ = StopIndex(name, spec_->name, s);
+  } else if (!spec_->get) {
+    index_ = ForcingIndex(name, s.Dof());
+  }
+}
+
+double NamedParameter::Get(const System& s) const {
+  if (spec_->get) return spec_->get(s);
+  if (spec_->stop) return s.stops.at(index_).*spec_->stop->member;
+  Require(index_ < s.Dof(), fmt::format("{}: the system has {} masses", name_, s.Dof()));
+  return s.forcing(index_);
+}
+
+void NamedParameter::Set(System& s, double value) const {
+  if (spec_->set) {
+    spec_->set(s, value);
+  } else if (spec_->stop) {
+    Require(index_ < s.StopCount(),
+            fmt::format("{}: the system has {} stops", name_, s.StopCount()));
+    s.stops[index_].*spec_->stop->member = value;
+  } else {
+    Require(index_ < s.Dof(), fmt::format("{}: the system has {} masses", name_, s.Dof()));
+    s.forcing(index_) = value;
+  }
+}
+
 double GetParameter(const System& s, std::string_view name) {
-  const ParameterSpec* spec = FindParameter(s, name);
-  if (!spec) UnknownParameter(s, name);
-  if (spec->stop) return s.stops[StopIndex(name, spec->name, s)].*spec->stop->member;
-  return spec->get ? spec->get(s) : s.forcing(ForcingIndex(name, s.Dof()));
+  return NamedParameter(s, name).Get(s);
 }
 
 void SetParameter(System& s, std::string_view name, double value) {
-  const ParameterSpec* spec = FindParameter(s, name);
-  if (!spec) UnknownParameter(s, name);
-  if (spec->stop) {
-    s.stops[StopIndex(name, spec->name, s)].*spec->stop->member = value;
-  } else if (spec->set) {
-    spec->set(s, value);
-  } else {
-    s.forcing(ForcingIndex(name, s.Dof())) = value;
-  }
+  NamedParameter(s, name).Set(s, value);
 }
 
 }  // namespace impactkit

@@ -43,6 +43,27 @@ const ParameterSpec* FindParameter(const System& system, std::string_view name);
 /// A1..AN, and for chains m, k, c, n.
 std::vector<std::string> ParameterNames(const System& system);
 
+/// A named parameter resolved once against a system: its table entry and,
+/// for A<i> or a stop's parameter, which mass or stop. Get and Set then
+/// parse nothing, so a driver that sets its parameter at every step
+/// (continuation, sweeps, maps) resolves the name when it starts.
+class NamedParameter {
+ public:
+  /// Throws InvalidInput for a name `system` lacks (as GetParameter).
+  NamedParameter(const System& system, std::string_view name);
+
+  const std::string& Name() const { return name_; }
+  double Get(const System& system) const;
+  /// As SetParameter. Throws InvalidInput where `system` no longer has the
+  /// mass or stop the name was resolved to (n changed under A<i>).
+  void Set(System& system, double value) const;
+
+ private:
+  std::string name_;
+  const ParameterSpec* spec_;
+  int index_ = -1;  ///< the mass of A<i> or the stop of a stop parameter; -1 for the others
+};
+
 /// Value of a named scalar parameter; throws InvalidInput for unknown names.
 double GetParameter(const System& system, std::string_view name);
 
