@@ -186,9 +186,9 @@ class BranchTracer {
   /// twice as far as the monitor's extrapolated zero (sticking_end.hpp).
   /// The bisection's Newton solves get the orbit solver's iterations: a
   /// solve next to a vanishing impact may bounce off the map's non-smooth
-  /// boundary before it converges. The march's own last point lies up to min_step
-  /// short of the end, where the stuck duration still varies as a
-  /// fractional power of the distance to it (theory.md §5a).
+  /// boundary before it converges. The march's own last point lies up to
+  /// min_step short of the end, where the stuck duration still varies as
+  /// a fractional power of the distance to it (theory.md §5a).
   bool EndOfSticking(HalfBranch& half) const {
     std::optional<StickingEnd> end = refused_.end;
     double beyond = refused_.beyond;
