@@ -367,6 +367,8 @@ class DiagramNode:
     @property
     def type(self) -> str: ...
     @property
+    def user_test(self) -> str: ...
+    @property
     def parameter(self) -> float: ...
     @property
     def multiplier(self) -> complex: ...
@@ -441,6 +443,7 @@ def trace_diagram(
     switch_grazing: bool = True,
     switch_branch_points: bool = True,
     switch_pitchforks: bool = True,
+    user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
 ) -> Diagram: ...
 
 def parameter_map(

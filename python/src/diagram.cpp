@@ -45,15 +45,16 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
               const std::string& parameter, double lower, double upper, double initial_step,
               double max_step, int max_points, int max_depth, int max_branches, int threads,
               bool switch_period_doubling, bool switch_grazing, bool switch_branch_points,
-              bool switch_pitchforks) {
+              bool switch_pitchforks, const std::optional<py::dict>& user_tests) {
   std::vector<DiagramSeed> seeds;
   for (std::size_t i = 0; i < starts.size(); ++i) {
     seeds.push_back({starts[i].first, starts[i].second, "seed " + std::to_string(i + 1),
                      ContinuationDirection::kBoth});
   }
-  const DiagramOptions options = MakeOptions(
-      {parameter, lower, upper, initial_step, max_step, max_points, max_depth, max_branches,
-       threads, switch_period_doubling, switch_grazing, switch_branch_points, switch_pitchforks});
+  DiagramOptions options = MakeOptions({parameter, lower, upper, initial_step, max_step, max_points,
+                                        max_depth, max_branches, threads, switch_period_doubling,
+                                        switch_grazing, switch_branch_points, switch_pitchforks});
+  options.continuation.user_tests = UserTestsFrom(user_tests);
   return WithoutGil([&] {
     return TraceDiagram(seeds, options, [](int, const BranchPoint&) { CheckInterrupt(); });
   });
@@ -65,8 +66,10 @@ void BindNode(py::module_& module) {
                           "another reason, or a seed followed one way.")
       .def_property_readonly("type", &DiagramNode::Name,
                              "'fold', 'period_doubling', 'neimark_sacker', 'grazing', "
-                             "'sticking', 'branch_point', or 'parameter_bound', 'max_points', "
-                             "'corrector_failed', 'start'.")
+                             "'sticking', 'branch_point', 'user_test', or 'parameter_bound', "
+                             "'max_points', 'corrector_failed', 'start'.")
+      .def_readonly("user_test", &DiagramNode::user_test,
+                    "A user test's zero: the test's name (its key in user_tests).")
       .def_readonly("parameter", &DiagramNode::parameter, "The parameter value there.")
       .def_readonly("multiplier", &DiagramNode::multiplier,
                     "The critical multiplier (fold, period doubling, Neimark-Sacker; else 0).")
@@ -152,23 +155,25 @@ void BindDiagram(py::module_& module) {
   // The defaults are the library's, as the command line's are.
   const ContinuationOptions kBranch;
   const DiagramOptions kNetwork;
-  module.def("trace_diagram", &Trace, py::arg("seeds"), py::kw_only(),
-             py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
-             py::arg("initial_step") = kBranch.initial_step, py::arg("max_step") = kBranch.max_step,
-             py::arg("max_points") = kBranch.max_points, py::arg("max_depth") = kNetwork.max_depth,
-             py::arg("max_branches") = kNetwork.max_branches, py::arg("threads") = 1,
-             py::arg("switch_period_doubling") = kNetwork.switch_period_doubling,
-             py::arg("switch_grazing") = kNetwork.switch_grazing,
-             py::arg("switch_branch_points") = kNetwork.switch_branch_points,
-             py::arg("switch_pitchforks") = kNetwork.switch_pitchforks,
-             R"(Traces the connected bifurcation diagram through `seeds`, a list of
+  module.def(
+      "trace_diagram", &Trace, py::arg("seeds"), py::kw_only(), py::arg("parameter") = "omega",
+      py::arg("lower"), py::arg("upper"), py::arg("initial_step") = kBranch.initial_step,
+      py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
+      py::arg("max_depth") = kNetwork.max_depth, py::arg("max_branches") = kNetwork.max_branches,
+      py::arg("threads") = 1, py::arg("switch_period_doubling") = kNetwork.switch_period_doubling,
+      py::arg("switch_grazing") = kNetwork.switch_grazing,
+      py::arg("switch_branch_points") = kNetwork.switch_branch_points,
+      py::arg("switch_pitchforks") = kNetwork.switch_pitchforks, py::arg("user_tests") = py::none(),
+      R"(Traces the connected bifurcation diagram through `seeds`, a list of
 (system, orbit) pairs: each seed's branch is followed both ways in the named
 parameter within [lower, upper], and at every period doubling, grazing,
 branch point and pitchfork the branch that starts there, each branch once (the library's
 TraceDiagram, as `impactkit diagram --start` does). Returns a Diagram.
 threads: branches of one generation traced at once; the result does not
-depend on it. Raises ValueError for bad input. Releases the GIL; Ctrl-C
-raises KeyboardInterrupt.)");
+depend on it. user_tests: {name: function(Orbit) -> float}, located on
+every branch as nodes 'user_test' (called from the tracing threads, each
+call taking the GIL). Raises ValueError for bad input, and what a user test
+raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
 }
 
 }  // namespace impactkit::python

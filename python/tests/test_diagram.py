@@ -100,3 +100,24 @@ def test_sticking_family_beside_the_chatter_orbits_that_accumulate_on_it():
     impacting = [b.branch for b in diagram.branches if b.branch.section == "impact"]
     assert {b.p for b in impacting} >= {9, 10}
     assert all(min(b.values) > end for b in impacting)
+
+
+def test_a_user_test_reaches_every_branch_of_the_diagram(paper_orbit):
+    # The impact speed of P(1,1) crossing a level between its values at the
+    # main branch's ends, located in the network traced on two threads: each
+    # node's orbit, solved afresh at its omega, has that speed (1e-9).
+    system, orbit = paper_orbit
+    main = impactkit.continue_branch(system, orbit, lower=1.5, upper=1.8, direction="both")
+    level = 0.5 * (main.orbits[0].impact_velocities[0] + main.orbits[-1].impact_velocities[0])
+    network = impactkit.trace_diagram(
+        [(system, orbit)], lower=1.5, upper=1.8, max_depth=1, threads=2,
+        user_tests={"speed": lambda o: o.impact_velocities[0] - level})
+    nodes = [n for n in network.nodes if n.type == "user_test"]
+    assert all(n.user_test == "speed" for n in nodes)
+    assert any(n.p == 1 for n in nodes)
+    for node in nodes:
+        if node.p != 1:
+            continue
+        again = impactkit.find_orbit(impactkit.System.paper(node.parameter), p=1, q=1,
+                                     seed=node.eta)
+        assert abs(again.impact_velocities[0] - level) < 1e-9
