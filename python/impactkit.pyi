@@ -13,6 +13,13 @@ ComplexArray = npt.NDArray[np.complex128]
 BoolArray = npt.NDArray[np.bool_]
 IntArray = npt.NDArray[np.int64]
 
+Termination = Literal[
+    "converged", "no_convergence", "failure", "completed", "stopped", "event_limit", "work_limit",
+    "stalled", "no_impact", "grazing", "sticking", "other_stop", "not_released", "no_chatter",
+    "no_sticking", "no_release", "met_while_held", "early_release", "parameter_bound",
+    "branch_point", "max_points", "corrector_failed", "closed"
+]
+
 class NumericalError(RuntimeError): ...
 
 class StopDict(TypedDict, total=False):
@@ -105,7 +112,7 @@ class Simulation(TypedDict):
     impacts: Impacts
     strobe: Samples
     sticking: FloatArray
-    status: str
+    termination: Termination
     chatter_jumps: int
     landings: int
     stuck_time: float
@@ -190,10 +197,6 @@ SpecialPointType = Literal[
     "fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "branch_point",
     "pitchfork", "no_sticking", "early_release", "user_test"
 ]
-BranchEnd = Literal[
-    "parameter_bound", "grazing", "sticking", "branch_point", "max_points", "corrector_failed",
-    "no_sticking", "early_release"
-]
 
 class SpecialPoint:
     @property
@@ -242,11 +245,11 @@ class Branch:
     @property
     def special_points(self) -> list[SpecialPoint]: ...
     @property
-    def end(self) -> BranchEnd: ...
+    def end(self) -> Termination: ...
     @property
     def end_message(self) -> str: ...
     @property
-    def begin(self) -> Optional[BranchEnd]: ...
+    def begin(self) -> Optional[Termination]: ...
     @property
     def begin_message(self) -> str: ...
     @property
@@ -515,9 +518,9 @@ class Curve:
     @property
     def codim2_points(self) -> list[Codim2Point]: ...
     @property
-    def begin(self) -> str: ...
+    def begin(self) -> Termination: ...
     @property
-    def end(self) -> str: ...
+    def end(self) -> Termination: ...
     @property
     def begin_message(self) -> str: ...
     @property

@@ -76,7 +76,7 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   options.lower = 0.44;
   options.upper = 0.47;
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kNoSticking);
+  REQUIRE(branch.end == Termination::kNoSticking);
   CHECK_THAT(branch.points.back().parameter, WithinAbs(kEnd, 1e-8));
   CHECK(branch.special_points.back().point.parameter == branch.points.back().parameter);
   // A tolerance below the rounding of Ω ends the bisection there.

@@ -76,7 +76,7 @@ TEST_CASE("elastic chatter (r = 1) of a damped mass ends as contact and releases
     HybridState state = RestState(s);
     Releases releases;
     const SimulationSummary summary = Simulate(s, options, state, 4 * s.ForcingPeriod(), releases);
-    CHECK(summary.status == SimulationStatus::kReachedEnd);
+    CHECK(summary.termination == Termination::kCompleted);
     CHECK(summary.chatter_jumps >= 3);
     // The bounces decay as 1/k (damping takes ~u³ per bounce), so their
     // number grows as the rule's bounce speed falls: ~2800 per period here.
@@ -94,7 +94,7 @@ TEST_CASE("the issue's elastic 3-mass chatter runs in bounded work, to the same 
   const double t_end = 2 * s.ForcingPeriod();
   HybridState state = RestState(s);
   const SimulationSummary summary = Simulator(s).Run(state, t_end);
-  CHECK(summary.status == SimulationStatus::kReachedEnd);
+  CHECK(summary.termination == Termination::kCompleted);
   CHECK(summary.impacts < 100000);
   CHECK(state.Stuck());
   // A 100 times finer cut (ended at a bounce height of 1e-12 of the gap's
@@ -105,7 +105,7 @@ TEST_CASE("the issue's elastic 3-mass chatter runs in bounded work, to the same 
   finer.bounce_height_resolution = 1e-12;
   HybridState reference = RestState(s);
   const SimulationSummary fine = Simulate(s, finer, reference, t_end);
-  CHECK(fine.status == SimulationStatus::kReachedEnd);
+  CHECK(fine.termination == Termination::kCompleted);
   CHECK((state.x - reference.x).lpNorm<Eigen::Infinity>() < 1e-4);
   CHECK((state.v - reference.v).lpNorm<Eigen::Infinity>() < 1e-4);
 }
@@ -121,7 +121,7 @@ TEST_CASE("the paper's threshold rule with a tiny threshold ends its chatter in 
   threshold.chatter_threshold = 1e-8;
   HybridState state = RestState(s);
   const SimulationSummary summary = Simulate(s, threshold, state, 10 * s.ForcingPeriod());
-  CHECK(summary.status == SimulationStatus::kReachedEnd);
+  CHECK(summary.termination == Termination::kCompleted);
   CHECK(summary.impacts < 40 * 10);
   CHECK(summary.releases >= 9);
   // The same sticking as the default rule's (Budd & Dux), per period.
@@ -162,7 +162,7 @@ TEST_CASE("a mass at rest on the stop lands: no impact at zero speed (closed for
   observers.Add(releases);
   observers.Add(landings);
   const SimulationSummary summary = Simulator(s).Run(state, 20 * s.ForcingPeriod(), observers);
-  CHECK(summary.status == SimulationStatus::kReachedEnd);
+  CHECK(summary.termination == Termination::kCompleted);
   CHECK(summary.landings >= 1);
   // The observer hears each landing, with its stop: the mass at rest on
   // the stop (x = 0) and pushed into it lands at once, at t = 0 to the
@@ -197,7 +197,7 @@ TEST_CASE("the issue's zero-speed impacts are landings: every impact has a resol
     ImpactRecorder impacts;
     const SimulationSummary summary =
         Simulator(s).Run(state, k.periods * s.ForcingPeriod(), impacts);
-    CHECK(summary.status == SimulationStatus::kReachedEnd);
+    CHECK(summary.termination == Termination::kCompleted);
     CHECK(summary.impacts < 100L * k.periods);
     for (const ImpactView impact : impacts.Impacts()) CHECK(impact.velocity > 1e-8);
   }
@@ -210,7 +210,7 @@ TEST_CASE("the work bound ends a run that needs too many events per period", "[s
   HybridState state = RestState(s);
   const double t_end = 2 * s.ForcingPeriod();
   const SimulationSummary summary = Simulate(s, options, state, t_end);
-  CHECK(summary.status == SimulationStatus::kWorkLimit);
+  CHECK(summary.termination == Termination::kWorkLimit);
   CHECK(state.t < t_end);
   CHECK(summary.impacts + summary.landings + summary.releases + summary.chatter_jumps <= 51 + 1);
 
@@ -242,7 +242,7 @@ TEST_CASE("the paper's chain undamped with the stop on mass 1 at xs = 0 runs in 
     }
   } gap;
   const SimulationSummary summary = Simulator(s).Run(state, 220 * s.ForcingPeriod(), gap);
-  CHECK(summary.status == SimulationStatus::kReachedEnd);
+  CHECK(summary.termination == Termination::kCompleted);
   CHECK(summary.impacts + summary.landings + summary.releases < 1000L * 220);
   CHECK(gap.worst <= 1e-12);
 }

@@ -98,7 +98,7 @@ TEST_CASE(
   REQUIRE(fold.has_value());
   const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold},
                                     testing::Plane("xs", -0.4, -0.05, 1, 1));
-  REQUIRE(curve.end == CurveEnd::kGrazing);
+  REQUIRE(curve.end == Termination::kGrazing);
   REQUIRE(!curve.codim2_points.empty());
   const Codim2Point& corner = curve.codim2_points.back();
   CheckFoldGrazing(corner);
@@ -193,7 +193,7 @@ TEST_CASE(
   // The tangent's parameter part once jumped sign here, where the σ row was
   // differenced across the new contact: that was reported as a cusp.
   for (const Codim2Point& c : curve.codim2_points) CHECK(c.type != Codim2Type::kCusp);
-  REQUIRE(curve.begin == CurveEnd::kGrazing);
+  REQUIRE(curve.begin == Termination::kGrazing);
   const Codim2Point& corner = curve.codim2_points.front();
   CheckFoldGrazing(corner);
   const double omega_c = corner.point.parameter, a1_c = corner.point.parameter2;
@@ -231,7 +231,7 @@ TEST_CASE(
   REQUIRE(FindOrbit(system, Eigen::Vector4d(0.35183, 19.7822, 0.11437, 0.24441), orbit, &seed)
               .termination == Termination::kConverged);
   const Curve curve = FoldCurve(system, seed, 8, 1, "xs", 0.0, 0.3, 0.2, 0.6);
-  REQUIRE(curve.end == CurveEnd::kGrazing);
+  REQUIRE(curve.end == Termination::kGrazing);
   const Codim2Point& corner = curve.codim2_points.back();
   CheckFoldGrazing(corner);
   const double omega_c = corner.point.parameter, xs_c = corner.point.parameter2;

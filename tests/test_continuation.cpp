@@ -132,8 +132,8 @@ TEST_CASE(
   const System system = PaperSystem(1.0);
   const ContinuationOptions options = Options(0.5, 2.0, 1, 1);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
-  REQUIRE(branch.begin == BranchEnd::kGrazing);
-  REQUIRE(branch.end == BranchEnd::kGrazing);
+  REQUIRE(branch.begin == Termination::kGrazing);
+  REQUIRE(branch.end == Termination::kGrazing);
   CheckNoJumps(branch, options);
 
   const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, 1.60, 1.62);
@@ -156,7 +156,7 @@ TEST_CASE(
   const System system = PaperSystem(2.0);
   const ContinuationOptions options = Options(1.0, 3.0, 1, 2);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 2), {}}, options);
-  REQUIRE(branch.end == BranchEnd::kGrazing);
+  REQUIRE(branch.end == Termination::kGrazing);
   const SpecialPoint& end = branch.special_points.back();
   REQUIRE(end.vanishing_impact == 0);
   // The fold where the impacting motion disappears (the paper: Ω ≈ 2.19).
@@ -326,7 +326,7 @@ TEST_CASE("continuation: a period doubling on the approach to a vanishing impact
   // With the default steps the branch sees the grazing ahead before the
   // period doubling and approaches it in secant steps.
   const Branch coarse = ContinueBranch(P42Start(system), Options(0.8, 0.9, 4, 2));
-  CHECK(coarse.end == BranchEnd::kGrazing);
+  CHECK(coarse.end == Termination::kGrazing);
   const SpecialPoint* found = Find(coarse, SpecialPointType::kPeriodDoubling, 0.8323, 0.8327);
   REQUIRE(found != nullptr);
   CHECK(std::abs(found->parameter - second->parameter) < 1e-8);
@@ -343,7 +343,7 @@ TEST_CASE(
   const Branch p42 = ContinueBranch(P42Start(system), Options(0.8, 0.9, 4, 2));
   const ContinuationOptions options = Options(0.8, 0.9, 8, 4);
   const Branch p84 = ContinueBranch(DoubledStartIn(system, p42, 0.8323, 0.8327, options), options);
-  CHECK(p84.end == BranchEnd::kGrazing);
+  CHECK(p84.end == Termination::kGrazing);
   REQUIRE(!p84.special_points.empty());
   const SpecialPoint& end = p84.special_points.back();
   REQUIRE(end.type == SpecialPointType::kGrazing);
@@ -374,7 +374,7 @@ TEST_CASE(
   ContinuationOptions options = Options(0.1, 0.5, 2, 1);
   options.parameter = "xs";
   const Branch p21 = ContinueBranch({system, Orbit(system, 2, 1), {}}, options);
-  REQUIRE(p21.end == BranchEnd::kGrazing);
+  REQUIRE(p21.end == Termination::kGrazing);
   const SpecialPoint& end = p21.special_points.back();
   // Near this vanishing impact the corrector stalls at a depth of 1e-10 to
   // 1e-8, depending on the last bits of the flow's rounding (5.8e-9 with
@@ -431,7 +431,7 @@ TEST_CASE(
         Options(GetParameter(system, name), to, 1, 1, ContinuationDirection::kIncreasing);
     options.parameter = name;
     const Branch branch = ContinueBranch({system, start, {}}, options);
-    REQUIRE(branch.end == BranchEnd::kParameterBound);
+    REQUIRE(branch.end == Termination::kParameterBound);
     const BranchPoint& end = branch.points.back();
     CHECK(end.parameter == to);
     // An independent solve at the bound from the start orbit's seed.
@@ -489,7 +489,7 @@ TEST_CASE(
       Eigen::MatrixXd::Constant(1, 1, 3.0), Eigen::VectorXd::Constant(1, 1.2), 1.5, 0.05, 0.75);
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}},
                                        Options(1.5, 6.0, 1, 1, ContinuationDirection::kIncreasing));
-  REQUIRE(branch.end == BranchEnd::kGrazing);
+  REQUIRE(branch.end == Termination::kGrazing);
   const SpecialPoint& end = branch.special_points.back();
   REQUIRE(end.vanishing_impact == 0);
   auto excess = [](double w) {  // amplitude − xs, closed form
@@ -511,7 +511,7 @@ TEST_CASE("continuation: a doubled branch ends where it meets the orbit it doubl
   const System system = PaperSystem(1.7);
   const Branch p22 = ContinueBranch({system, Orbit(system, 2, 2), {}},
                                     Options(1.6, 1.7, 2, 2, ContinuationDirection::kDecreasing));
-  REQUIRE(p22.end == BranchEnd::kBranchPoint);
+  REQUIRE(p22.end == Termination::kBranchPoint);
   const SpecialPoint& meet = p22.special_points.back();
   CHECK(meet.type == SpecialPointType::kBranchPoint);
   int doublings = 0;
@@ -549,7 +549,7 @@ TEST_CASE("continuation: a bound at the end of the parameter's range (r = 1) is 
   ContinuationOptions options = Options(0.7, 1.0, 1, 1, ContinuationDirection::kIncreasing);
   options.parameter = "r";
   const Branch branch = ContinueBranch({system, Orbit(system, 1, 1), {}}, options);
-  CHECK(branch.end == BranchEnd::kParameterBound);
+  CHECK(branch.end == Termination::kParameterBound);
   CHECK(branch.points.back().parameter == 1.0);
   // The end point is an orbit at r = 1 (a fresh solve converges to it).
   PeriodicOrbit fresh;

@@ -80,8 +80,8 @@ TEST_CASE(
     const System system = PaperSystem(omega);
     const CurveStart start = Start(system, type, p, q);
     const Curve curve = ContinueCurve(start, Plane("r", 0.3, 0.95, p, q));
-    CHECK(curve.begin == CurveEnd::kParameterBound);
-    CHECK(curve.end == CurveEnd::kParameterBound);
+    CHECK(curve.begin == Termination::kParameterBound);
+    CHECK(curve.end == Termination::kParameterBound);
     CHECK(curve.points.front().parameter2 == Approx(0.3).margin(1e-12));
     CHECK(curve.points.back().parameter2 == Approx(0.95).margin(1e-12));
     for (const CurvePoint* point : Spread(curve)) {
@@ -142,8 +142,8 @@ TEST_CASE(
   const System system = At(PaperSystem(1.2), "A2", -0.5);
   const Curve curve =
       ContinueCurve(Start(system, SpecialPointType::kFold, 1, 1), Plane("A2", -1.5, 0.5, 1, 1));
-  REQUIRE(curve.end == CurveEnd::kClosed);
-  CHECK(curve.begin == CurveEnd::kClosed);
+  REQUIRE(curve.end == Termination::kClosed);
+  CHECK(curve.begin == Termination::kClosed);
   REQUIRE(curve.points.size() > 20);
   const CurvePoint& start = curve.points.front();
   CHECK(curve.points.back().x == start.x);
@@ -177,8 +177,8 @@ TEST_CASE("curves: P(2,1)'s vanishing impact is followed as P(1,1)'s grazing, th
   const Curve direct = ContinueCurve(Start(PaperSystem(1.0), SpecialPointType::kGrazing, 1, 1),
                                      Plane("r", 0.3, 0.95, 1, 1));
   for (const Curve* curve : {&from_p21, &direct}) {
-    REQUIRE(curve->begin == CurveEnd::kParameterBound);
-    REQUIRE(curve->end == CurveEnd::kParameterBound);
+    REQUIRE(curve->begin == Termination::kParameterBound);
+    REQUIRE(curve->end == Termination::kParameterBound);
   }
   CHECK(std::abs(from_p21.points.front().parameter - direct.points.front().parameter) < 1e-8);
   CHECK(std::abs(from_p21.points.back().parameter - direct.points.back().parameter) < 1e-8);
@@ -338,7 +338,7 @@ TEST_CASE(
   REQUIRE(!curve.codim2_points.empty());
   const Codim2Point& corner = curve.codim2_points.back();
   REQUIRE(corner.type == Codim2Type::kDoubleGrazing);
-  CHECK(curve.end == CurveEnd::kGrazing);
+  CHECK(curve.end == Termination::kGrazing);
   CHECK(corner.point.parameter == Approx(0.47956).margin(1e-4));
   CHECK(corner.point.parameter2 == Approx(0.31957).margin(1e-4));
   // Recomputed: a fresh orbit at the corner, and CVODE over its one flight
@@ -407,7 +407,7 @@ TEST_CASE("curves: a bound at the end of the parameter's range (r = 1) is reache
       UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
   const Curve curve =
       ContinueCurve(Start(system, SpecialPointType::kFold, 1, 1), Plane("r", 0.05, 1.0, 1, 1));
-  CHECK(curve.end == CurveEnd::kParameterBound);
+  CHECK(curve.end == Termination::kParameterBound);
   CHECK(curve.points.back().parameter2 == 1.0);
 }
 

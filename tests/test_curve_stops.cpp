@@ -104,8 +104,8 @@ TEST_CASE(
   INFO("curve: begins " << ToString(curve.begin) << " (" << curve.begin_message << "), ends "
                         << ToString(curve.end) << " (" << curve.end_message << ")");
   REQUIRE(curve.points.size() > 10);
-  CHECK(curve.begin == CurveEnd::kParameterBound);
-  CHECK(curve.end == CurveEnd::kParameterBound);
+  CHECK(curve.begin == Termination::kParameterBound);
+  CHECK(curve.end == Termination::kParameterBound);
   CHECK(curve.points.front().parameter2 == 0.8);
   CHECK(curve.points.back().parameter2 == 1.15);
 
@@ -153,7 +153,7 @@ TEST_CASE("a grazing curve of a two-stop system starts from either stop's sectio
     return section;
   }());
   const MapResult path = map.Apply(graze.point.orbit.eta, 1, false);
-  REQUIRE(path.status == MapStatus::kOtherStop);  // the next impact is at the other stop
+  REQUIRE(path.termination == Termination::kOtherStop);  // the next impact is at the other stop
   REQUIRE(!path.path.empty());
   OrbitOptions orbit;
   orbit.p = 2;
@@ -164,8 +164,8 @@ TEST_CASE("a grazing curve of a two-stop system starts from either stop's sectio
   REQUIRE(other.point.orbit.stop != graze.point.orbit.stop);
   const Curve a = ContinueCurve({at, graze}, options);
   const Curve b = ContinueCurve({at, other}, options);
-  REQUIRE(a.end == CurveEnd::kParameterBound);
-  REQUIRE(b.end == CurveEnd::kParameterBound);
+  REQUIRE(a.end == Termination::kParameterBound);
+  REQUIRE(b.end == Termination::kParameterBound);
   CHECK(a.points.back().parameter2 == 1.1);
   CHECK(b.points.back().parameter2 == 1.1);
   CHECK_THAT(b.points.back().parameter, WithinAbs(a.points.back().parameter, 1e-9));

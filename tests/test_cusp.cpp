@@ -166,7 +166,7 @@ TEST_CASE(
   const std::optional<Branch> above =
       BranchInOmega(r_c + 2e-4, beyond.parameter, beyond.orbit.eta, omega_c);
   REQUIRE(above.has_value());
-  CHECK(above->begin == BranchEnd::kParameterBound);
-  CHECK(above->end == BranchEnd::kParameterBound);
+  CHECK(above->begin == Termination::kParameterBound);
+  CHECK(above->end == Termination::kParameterBound);
   for (const double f : Folds(above)) CHECK(std::abs(f - omega_c) > 1e-4);
 }

@@ -78,7 +78,7 @@ void CheckFoldRecomputed(const System& system, const Diagram& diagram, const Dia
 double CvodeClearance(const System& system, const Eigen::VectorXd& eta, int p) {
   const ImpactMap map(system);
   const MapResult image = map.Apply(eta, p, false);
-  REQUIRE(image.status == MapStatus::kOk);
+  REQUIRE(image.termination == Termination::kCompleted);
   const int c = system.stops[0].dof, tau = map.TimeIndex();
   double clearance = 1e300;
   for (int k = 0; k < p; ++k) {
@@ -103,7 +103,7 @@ std::pair<double, double> CvodeShallowestArrival(const System& system, const Eig
                                                  int p) {
   const ImpactMap map(system);
   const MapResult image = map.Apply(eta, p, false);
-  REQUIRE(image.status == MapStatus::kOk);
+  REQUIRE(image.termination == Termination::kCompleted);
   const int c = system.stops[0].dof, tau = map.TimeIndex();
   std::pair<double, double> shallowest{1e300, 0.0};
   for (int k = 0; k < p; ++k) {

@@ -122,9 +122,9 @@ TEST_CASE("600 random systems, r = 1 and near 1 included: bounded work, invarian
     InvariantChecker checker(s);
     const SimulationSummary summary = simulator->Run(state, kPeriods * s.ForcingPeriod(), checker);
     events += summary.impacts + summary.landings + summary.releases + summary.chatter_jumps;
-    REQUIRE((summary.status == SimulationStatus::kReachedEnd ||
-             summary.status == SimulationStatus::kWorkLimit));
-    work_limited += summary.status == SimulationStatus::kWorkLimit;
+    REQUIRE((summary.termination == Termination::kCompleted ||
+             summary.termination == Termination::kWorkLimit));
+    work_limited += summary.termination == Termination::kWorkLimit;
     REQUIRE(checker.finite_);
     REQUIRE(state.x.allFinite());
     REQUIRE(state.v.allFinite());

@@ -37,9 +37,9 @@ const Codim2Point& Corner(const Curve& curve, Codim2Type type) {
                                [&](const Codim2Point& c) { return c.type == type; });
   REQUIRE(it != curve.codim2_points.end());
   const bool at_begin =
-      curve.begin == CurveEnd::kGrazing && curve.points.front().parameter == it->point.parameter;
+      curve.begin == Termination::kGrazing && curve.points.front().parameter == it->point.parameter;
   const bool at_end =
-      curve.end == CurveEnd::kGrazing && curve.points.back().parameter == it->point.parameter;
+      curve.end == Termination::kGrazing && curve.points.back().parameter == it->point.parameter;
   CHECK((at_begin || at_end));
   return *it;
 }
@@ -202,8 +202,8 @@ double LimitMultiplierGap(const Branch& branch, const System& system, double gra
 
 /// The curve's point next to its corner (the last with an orbit).
 const CurvePoint& NextToCorner(const Curve& curve) {
-  return curve.begin == CurveEnd::kGrazing ? curve.points[1]
-                                           : curve.points[curve.points.size() - 2];
+  return curve.begin == Termination::kGrazing ? curve.points[1]
+                                              : curve.points[curve.points.size() - 2];
 }
 
 }  // namespace
@@ -219,7 +219,7 @@ TEST_CASE(
     const PeriodicOrbit orbit = testing::SeededOrbit(system, p, q);
     const ImpactMap map(system);
     const MapResult path = map.Apply(orbit.eta, p, false);
-    REQUIRE(path.status == MapStatus::kOk);
+    REQUIRE(path.termination == Termination::kCompleted);
     // The orbit's impacts from η on, split at each in turn.
     for (int split = 0; split < p; ++split) {
       std::vector<StopContact> contacts;

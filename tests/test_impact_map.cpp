@@ -74,7 +74,7 @@ TEST_CASE("the map's fixed points are the simulated orbits", "[impact_map]") {
     const SteadyOrbit o = Steady(c.omega);
     const ImpactMap map(o.system);
     const MapResult image = map.Apply(o.eta, c.p, false);
-    REQUIRE(image.status == MapStatus::kOk);
+    REQUIRE(image.termination == Termination::kCompleted);
     Eigen::VectorXd shift = Eigen::VectorXd::Zero(o.eta.size());
     shift(map.TimeIndex()) = c.q * o.system.ForcingPeriod();
     CHECK((image.eta - o.eta - shift).cwiseAbs().maxCoeff() < 1e-9);
@@ -92,7 +92,7 @@ TEST_CASE("analytic and finite-difference Jacobians agree, and match the strobos
     const SteadyOrbit o = Steady(c.omega);
     const ImpactMap map(o.system);
     const MapResult image = map.Apply(o.eta, c.p, true);
-    REQUIRE(image.status == MapStatus::kOk);
+    REQUIRE(image.termination == Termination::kCompleted);
     const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, o.eta, c.p);
     REQUIRE(fd.size() > 0);
     CHECK((image.jacobian - fd).norm() <= 1e-6 * fd.norm());
@@ -116,7 +116,7 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     Eigen::VectorXd eta(4);
     eta << 0.0, 0.0, 0.0, 0.01;
     const MapResult r = map.Apply(eta, 1, true);
-    CHECK(r.status == MapStatus::kNoImpact);
+    CHECK(r.termination == Termination::kNoImpact);
     CHECK(r.jacobian.size() == 0);
   }
   SECTION("a chatter sequence: impacts accumulate at the stop") {
@@ -132,7 +132,7 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     const ImpactView first = impacts.Impacts().front();
     const ImpactMap map(s);
     const MapResult r = map.Apply(map.ToEta(first.t, first.x, first.v), 200, true);
-    CHECK(r.status == MapStatus::kChatter);
+    CHECK(r.termination == Termination::kSticking);
     CHECK(r.impacts_done > 20);
     CHECK(r.jacobian.size() == 0);
   }
@@ -165,7 +165,7 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     const ImpactMap map(s, options);
     const ImpactView first = simulated.front();
     const MapResult r = map.Apply(map.ToEta(first.t, first.x, first.v), 200, false);
-    CHECK(r.status == MapStatus::kChatter);
+    CHECK(r.termination == Termination::kSticking);
     REQUIRE(r.impacts_done == static_cast<int>(simulated.size()) - 1);
     for (int k = 0; k < r.impacts_done; ++k) {
       CHECK_THAT(r.path[k](map.TimeIndex()), Catch::Matchers::WithinAbs(simulated[k + 1].t, 1e-9));

@@ -112,12 +112,13 @@ TEST_CASE("N = 1: the P(1,1) orbit and its multipliers match the closed form", "
           if (LargestGapInside(s, o) > 1e-9) {
             // Not a true orbit: it would pass through the stop. The map must
             // find the earlier contact instead of returning after T.
-            CHECK((image.status != MapStatus::kOk || image.eta(0) < o.tau + s.Period() - 1e-6));
+            CHECK((image.termination != Termination::kCompleted ||
+                   image.eta(0) < o.tau + s.Period() - 1e-6));
             ++checked_rejections;
             continue;
           }
           ++valid;
-          REQUIRE(image.status == MapStatus::kOk);
+          REQUIRE(image.termination == Termination::kCompleted);
           CHECK((image.eta - eta - Eigen::Vector2d(s.Period(), 0)).cwiseAbs().maxCoeff() < 1e-10);
           const Eigen::Matrix2d expected = ClosedFormJacobian(s, o);
           CHECK((image.jacobian - expected).norm() <= 1e-8 * expected.norm());

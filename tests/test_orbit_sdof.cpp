@@ -132,7 +132,7 @@ TEST_CASE("N = 1: closed-form P(1,1) orbits are fixed points of the impact map w
       (std::abs(lambda[0]) < 1.0 ? stable : unstable) += 1;
 
       const MapResult image = map.Apply(Eta(o), 1, true);
-      REQUIRE(image.status == MapStatus::kOk);
+      REQUIRE(image.termination == Termination::kCompleted);
       REQUIRE(image.impacts_done == 1);
       // (a) fixed point: P(η) = η + (T, 0).
       CHECK((image.eta - Eta(o) - Eigen::Vector2d(p.Period(), 0.0)).cwiseAbs().maxCoeff() < 1e-10);
@@ -167,7 +167,7 @@ TEST_CASE("N = 1: a P(1,1) solution that passes through the stop is not an orbit
       ++rejected;
       const MapResult image = map.Apply(Eta(o), 1, false);
       // (d) The map stops at the earlier contact, not at τ + T.
-      REQUIRE(image.status == MapStatus::kOk);
+      REQUIRE(image.termination == Termination::kCompleted);
       const double t_next = image.eta(0);
       CHECK(t_next > o.tau);
       CHECK(t_next < o.tau + p.Period() - 1e-3);

@@ -488,7 +488,7 @@ TEST_CASE("impact map with two stops: the analytic Jacobian against finite diffe
     const ImpactMap map(s, section);
     const Eigen::VectorXd eta = map.ToEta(last.t, last.x, last.v);
     const MapResult image = map.Follow(eta, last.stop, 6, true);
-    REQUIRE(image.status == MapStatus::kOk);
+    REQUIRE(image.termination == Termination::kCompleted);
     CHECK(std::find(image.stops.begin(), image.stops.end(), 1 - last.stop) != image.stops.end());
     Eigen::MatrixXd fd(eta.size(), eta.size());
     for (Eigen::Index j = 0; j < eta.size(); ++j) {
@@ -498,8 +498,8 @@ TEST_CASE("impact map with two stops: the analytic Jacobian against finite diffe
       minus(j) -= h;
       const MapResult a = map.Follow(plus, last.stop, 6, false),
                       b = map.Follow(minus, last.stop, 6, false);
-      REQUIRE(a.status == MapStatus::kOk);
-      REQUIRE(b.status == MapStatus::kOk);
+      REQUIRE(a.termination == Termination::kCompleted);
+      REQUIRE(b.termination == Termination::kCompleted);
       REQUIRE(a.stops == image.stops);
       fd.col(j) = (a.eta - b.eta) / (2 * h);
     }
@@ -542,7 +542,7 @@ TEST_CASE(
     section.stop = orbit.stop;
     const ImpactMap map(at, section);
     const MapResult path = map.Apply(orbit.eta, 2, false);
-    REQUIRE(path.status == MapStatus::kOk);
+    REQUIRE(path.termination == Termination::kCompleted);
     const int k = contacts.clearance_flight;
     const Eigen::VectorXd& from = k == 0 ? orbit.eta : path.path[k - 1];
     const int from_stop = k == 0 ? orbit.stop : path.stops[k - 1];

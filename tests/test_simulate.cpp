@@ -102,7 +102,7 @@ TEST_CASE("impact law, stop never crossed, no NaN, across regimes", "[simulate]"
     ImpactLawChecker checker(s);
     HybridState state = RestState(s);
     const SimulationSummary summary = Simulator(s).Run(state, 60 * s.ForcingPeriod(), checker);
-    CHECK(summary.status == SimulationStatus::kReachedEnd);
+    CHECK(summary.termination == Termination::kCompleted);
     CHECK(summary.impacts > 0);
     CHECK(checker.worst_rebound_error_ <= 1e-12);
     CHECK(checker.max_gap_ <= 1e-12);
@@ -153,7 +153,7 @@ TEST_CASE("a single mass against the stop (N = 1) sticks and releases", "[simula
   } releases;
   HybridState state = RestState(s);
   const SimulationSummary summary = Simulator(s).Run(state, 30 * s.ForcingPeriod(), releases);
-  CHECK(summary.status == SimulationStatus::kReachedEnd);
+  CHECK(summary.termination == Termination::kCompleted);
   REQUIRE(releases.times.size() >= 20);
   for (double t : releases.times) CHECK_THAT(0.5 * std::cos(0.3 * t) - 0.1, WithinAbs(0.0, 1e-12));
 }
@@ -170,7 +170,7 @@ TEST_CASE("Zeno cases end in bounded work", "[simulate]") {
     SetParameter(s, "r", c.r);
     HybridState state = RestState(s);
     const SimulationSummary summary = Simulator(s).Run(state, c.periods * s.ForcingPeriod());
-    CHECK(summary.status == SimulationStatus::kReachedEnd);
+    CHECK(summary.termination == Termination::kCompleted);
     // A bounded number of impacts per period, and sticking every period
     // where chatter completes (r = 0.95 chatter stays incomplete: see docs).
     CHECK(summary.impacts <= 400L * c.periods);

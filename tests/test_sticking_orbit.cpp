@@ -144,7 +144,7 @@ TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sti
     for (const Eigen::VectorXd& s : {orbit.eta, off}) {
       for (int k : {1, 2}) {
         const StickingMapResult image = map.Apply(s, k, true);
-        REQUIRE(image.status == StickingMapStatus::kOk);
+        REQUIRE(image.termination == Termination::kCompleted);
         const Eigen::MatrixXd fd = FiniteDifferenceJacobian(map, s, k);
         REQUIRE(fd.size() == image.jacobian.size());
         // Map rounding ~1e-12 over steps of 1e-6: ~1e-6 absolute at most.
@@ -257,7 +257,7 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   options.lower = 0.1;
   options.upper = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kNoSticking);
+  REQUIRE(branch.end == Termination::kNoSticking);
   REQUIRE(!branch.special_points.empty());
   const SpecialPoint& end = branch.special_points.back();
   CHECK(end.type == SpecialPointType::kNoSticking);
@@ -296,7 +296,7 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
     o.direction = ContinuationDirection::kDecreasing;
     return ContinueBranch({system, start, {}}, o);
   }();
-  CHECK(down.end == BranchEnd::kParameterBound);
+  CHECK(down.end == Termination::kParameterBound);
   CHECK_THAT(down.points.back().parameter, WithinAbs(0.1, 1e-12));
   // Every point of the branches is a sticking orbit of its system.
   for (const BranchPoint& p : branch.points) CHECK(p.orbit.residual < 1e-9);
@@ -311,7 +311,7 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   options.lower = 0.0;
   options.upper = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kEarlyRelease);
+  REQUIRE(branch.end == Termination::kEarlyRelease);
   const BranchPoint& end = branch.special_points.back().point;
   // Recomputed at the located xs: an orbit whose stuck phase only just
   // holds (Fs's interior minimum small beside its Fs(t*) ~ 0.09) ...
@@ -389,7 +389,7 @@ TEST_CASE(
   options.lower = 0.5;
   options.upper = 3.0;
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kGrazing);  // a new impact
+  REQUIRE(branch.end == Termination::kGrazing);  // a new impact
   REQUIRE(branch.special_points.back().vanishing_impact < 0);
   const BranchPoint& end = branch.special_points.back().point;
   CHECK(end.orbit.contacts.contact_margin > 0.3);  // the chatter still ends firmly in sticking
@@ -422,7 +422,7 @@ TEST_CASE(
   ContinuationOptions back = options;
   back.direction = ContinuationDirection::kDecreasing;
   const Branch other = ContinueBranch({beyond, past, {}}, back);
-  REQUIRE(other.end == BranchEnd::kGrazing);  // a vanishing impact: the first after the release
+  REQUIRE(other.end == Termination::kGrazing);  // a vanishing impact: the first after the release
   REQUIRE(other.special_points.back().vanishing_impact == 0);
   const BranchPoint& other_end = other.special_points.back().point;
   CHECK_THAT(other_end.parameter, WithinAbs(end.parameter, 1e-5));
@@ -459,7 +459,7 @@ TEST_CASE(
   // period the chatter amplifies any difference by ~1/r per impact).
   const ImpactMap map(system);
   const MapResult image = map.Apply(orbit.eta, 64, false);
-  REQUIRE(image.status == MapStatus::kOk);
+  REQUIRE(image.termination == Termination::kCompleted);
   reference::CvodeOptions one_flight;
   one_flight.max_impacts = 1;
   for (int k = 0; k < 64; ++k) {
@@ -484,9 +484,9 @@ TEST_CASE(
   continuation.direction = ContinuationDirection::kBoth;
   continuation.orbit = options;
   const Branch p64 = ContinueBranch({system, orbit, {}}, continuation);
-  CHECK(p64.begin == BranchEnd::kGrazing);
+  CHECK(p64.begin == Termination::kGrazing);
   CHECK(p64.special_points.front().vanishing_impact == -1);
-  REQUIRE(p64.end == BranchEnd::kGrazing);
+  REQUIRE(p64.end == Termination::kGrazing);
   CHECK(p64.special_points.back().vanishing_impact >= 0);
   System above = system;
   above.omega = p64.special_points.back().parameter + 1e-6;
@@ -499,7 +499,7 @@ TEST_CASE(
   PeriodicOrbit orbit63;
   REQUIRE(FindOrbit(above, seed63->eta, options, &orbit63).termination == Termination::kConverged);
   const Branch p63 = ContinueBranch({above, orbit63, {}}, continuation);
-  REQUIRE(p63.end == BranchEnd::kGrazing);
+  REQUIRE(p63.end == Termination::kGrazing);
   CHECK(p63.special_points.back().vanishing_impact == -1);
   CHECK_THAT(p63.special_points.back().parameter,
              WithinAbs(p64.special_points.back().parameter, 1e-9));

@@ -127,7 +127,7 @@ TEST_CASE("a sticking family at the second stop ends where simulation stops stic
   options.lower = 0.1;
   options.upper = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kNoSticking);
+  REQUIRE(branch.end == Termination::kNoSticking);
   for (const BranchPoint& point : branch.points) {
     CHECK(point.orbit.stop == 1);
     CHECK(point.orbit.residual < 1e-9);
@@ -222,7 +222,7 @@ TEST_CASE("a mass that sticks at both stops of a clearance: one orbit of two rel
           1e-6 * orbit.jacobian.cwiseAbs().maxCoeff());
     // One release on, the mass leaves the other stop: P_R alone is no map
     // of this stop's section, as an impact map's impact at another stop.
-    CHECK(map.Apply(orbit.eta, 1, false).status == StickingMapStatus::kOtherStop);
+    CHECK(map.Apply(orbit.eta, 1, false).termination == Termination::kOtherStop);
   }
 }
 
@@ -263,7 +263,7 @@ TEST_CASE(
   options.lower = 0.15;
   options.upper = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kNoSticking);
+  REQUIRE(branch.end == Termination::kNoSticking);
   for (const BranchPoint& point : branch.points) {
     REQUIRE(point.orbit.stuck.size() == 2);
     CHECK(point.orbit.stuck[0].stop != point.orbit.stuck[1].stop);
@@ -292,7 +292,7 @@ TEST_CASE(
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   const ContinuationOptions options = StickingRegion(ContinuationDirection::kDecreasing);
   const Branch branch = ContinueBranch({system, start, {}}, options);
-  REQUIRE(branch.end == BranchEnd::kGrazing);
+  REQUIRE(branch.end == Termination::kGrazing);
   const SpecialPoint& graze = branch.special_points.back();
   REQUIRE(graze.type == SpecialPointType::kGrazing);
   CHECK(graze.monitor < 1e-9);  // the new impact's clearance
@@ -329,7 +329,7 @@ TEST_CASE(
   ContinuationOptions back = options;
   back.direction = ContinuationDirection::kIncreasing;
   const Branch returning = ContinueBranch({below.system, past, {}}, back);
-  REQUIRE(returning.end == BranchEnd::kGrazing);
+  REQUIRE(returning.end == Termination::kGrazing);
   const SpecialPoint& vanishing = returning.special_points.back();
   REQUIRE(vanishing.vanishing_impact >= 0);
   const auto which = static_cast<std::size_t>(vanishing.vanishing_impact);
@@ -350,8 +350,8 @@ TEST_CASE("a sticking family between two grazings has one period doubling, liste
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   const Branch branch =
       ContinueBranch({system, start, {}}, StickingRegion(ContinuationDirection::kBoth));
-  CHECK(branch.begin == BranchEnd::kGrazing);
-  CHECK(branch.end == BranchEnd::kGrazing);
+  CHECK(branch.begin == Termination::kGrazing);
+  CHECK(branch.end == Termination::kGrazing);
   const auto doublings = std::count_if(
       branch.special_points.begin(), branch.special_points.end(),
       [](const SpecialPoint& s) { return s.type == SpecialPointType::kPeriodDoubling; });

@@ -151,7 +151,7 @@ void RunReturnMap(const ReturnMapRequest& request) {
   // (and the JSON with its termination) that say how it ended.
   if (fit && fit->termination != Termination::kConverged) {
     throw std::runtime_error(fmt::format("the Eq. 18 fit did not converge ({}): {}",
-                                         ToString(fit->termination), fit->message));
+                                         Describe(fit->termination), fit->message));
   }
 }
 

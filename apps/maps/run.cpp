@@ -47,7 +47,7 @@ RecordedRun RecordImpacts(const System& system, const RunOptions& run) {
   observers.Add(progress);
   RecordedRun result;
   result.summary = simulator.Run(state, state.t + run.periods * period, observers);
-  if (result.summary.status != SimulationStatus::kReachedEnd) {
+  if (result.summary.termination != Termination::kCompleted) {
     throw std::runtime_error(
         fmt::format("the simulation stopped early: {}", result.summary.BriefReport()));
   }

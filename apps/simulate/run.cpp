@@ -107,9 +107,9 @@ SimulationSummary Advance(const Simulator& simulator, HybridState& state, double
   observers.Add(progress);
   if (recorders != nullptr) observers.Add(*recorders);
   const SimulationSummary summary = simulator.Run(state, t_end, observers);
-  if (summary.status != SimulationStatus::kReachedEnd) {
+  if (summary.termination != Termination::kCompleted) {
     throw std::runtime_error(fmt::format("the {} stopped at t = {:.6g}, before t = {:.6g}: {}",
-                                         stage, state.t, t_end, ToString(summary.status)));
+                                         stage, state.t, t_end, Describe(summary.termination)));
   }
   return summary;
 }

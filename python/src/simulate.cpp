@@ -162,7 +162,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   result["impacts"] = impact_arrays;
   result["strobe"] = SampleArrays(strobe.Points(), dof);
   result["sticking"] = MoveToArray<double, 2>(std::move(intervals), {k, 2});
-  result["status"] = ToString(summary.status);
+  result["termination"] = ToString(summary.termination);
   result["chatter_jumps"] = summary.chatter_jumps;
   result["landings"] = summary.landings;
   result["chatter_cuts"] = summary.chatter_cuts;
@@ -197,7 +197,7 @@ Nothing is recorded before record_from. Returns a dict of numpy arrays:
              v (m, N) just before impact}
   strobe    the state at every t = k T (forcing phase 0), as samples
   sticking  (k, 2) [begin, end] of each interval held at the stop
-and status ('reached end', 'event limit reached', 'work bound reached: ...', ...),
+and termination ('completed', 'event_limit', 'work_limit', 'stalled', 'stopped'),
 chatter_jumps, chatter_cuts (elastic chatter cut at a short bounce), landings (arrivals
 at the stop too low to be impacts), stuck_time,
 seconds, final_state. bounce_height_resolution (the rounding, by default) and max_events_per_period are

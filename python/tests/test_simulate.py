@@ -41,7 +41,7 @@ def test_arrays_shapes_dtypes_and_impact_law():
     # Stroboscopic points at whole forcing periods inside the window.
     k = r["strobe"]["t"] / period
     np.testing.assert_allclose(k, np.round(k), rtol=0, atol=1e-12)
-    assert r["status"] == "reached end"
+    assert r["termination"] == "completed"
 
 
 def test_impact_arrays_are_not_copies():
@@ -85,17 +85,17 @@ def test_sticking_intervals_match_the_stuck_time_and_the_samples():
 
 
 def test_work_bound_and_landings_are_reachable():
-    """The work bound of docs/theory.md §4 ends a run with its status; a mass
+    """The work bound of docs/theory.md §4 ends a run with its termination; a mass
     resting on the stop lands instead of impacting at zero speed."""
     system = impactkit.System.paper(1.3)
     system["xs"] = 0.0
     system["c"] = 0.0
     system["r"] = 1.0
     run = impactkit.simulate(system, 20 * 2 * np.pi / 1.3)
-    assert run["status"] == "reached end" and run["landings"] >= 1
+    assert run["termination"] == "completed" and run["landings"] >= 1
     assert np.all(run["impacts"]["velocity"] > 1e-8)
     bounded = impactkit.simulate(impactkit.System.paper(0.2), 100.0, max_events_per_period=5)
-    assert bounded["status"].startswith("work bound reached")
+    assert bounded["termination"] == "work_limit"
 
 
 def test_events_are_samples_of_their_own_in_time_order():

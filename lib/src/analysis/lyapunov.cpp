@@ -47,7 +47,7 @@ LyapunovResult ImpactMapLyapunov(const System& system, const Eigen::VectorXd& et
     result.exponents.clear();
     result.message = fmt::format("the impact map failed at impact {} ({}): {}", impact,
                                  impact < options.transient_impacts ? "transient" : "counted",
-                                 ToString(image.status));
+                                 Describe(image.termination));
     return result;
   };
 
@@ -68,7 +68,7 @@ LyapunovResult ImpactMapLyapunov(const System& system, const Eigen::VectorXd& et
       log_sums.setZero();
     }
     const MapResult image = map.Follow(current, stop, 1, true);
-    if (image.status != MapStatus::kOk) return fail(image, j);
+    if (image.termination != Termination::kCompleted) return fail(image, j);
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(image.jacobian * q);
     const Eigen::VectorXd diagonal = qr.matrixQR().diagonal();
     if (!diagonal.allFinite() || (diagonal.array() == 0.0).any()) {

@@ -98,7 +98,7 @@ std::string MapFitSummary::BriefReport() const {
   return fmt::format(
       "{}: s = {:.6g} ± {:.2g}, d = {:.6g} ± {:.2g}, lambda = {:.6g} ± {:.2g}; "
       "rms residual {:.3g} over {} points ({} on the root branch)",
-      ToString(termination), parameters.s, standard_error.s, parameters.d, standard_error.d,
+      Describe(termination), parameters.s, standard_error.s, parameters.d, standard_error.d,
       parameters.lambda, standard_error.lambda, rms_residual, points, points_on_root_branch);
 }
 

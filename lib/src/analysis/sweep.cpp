@@ -87,19 +87,19 @@ class ValueRun {
     const SimulationSummary summary =
         observer ? simulator_.Run(state, t_end, *observer) : simulator_.Run(state, t_end);
     events_ += summary.impacts + summary.chatter_jumps + summary.releases;
-    status_ = summary.status;
-    return status_ == SimulationStatus::kReachedEnd;
+    status_ = summary.termination;
+    return status_ == Termination::kCompleted;
   }
 
   double Period() const { return period_; }
   std::int64_t Events() const { return events_; }
-  SimulationStatus Status() const { return status_; }
+  Termination Status() const { return status_; }
 
  private:
   Simulator simulator_;
   double period_;
   std::int64_t events_ = 0;
-  SimulationStatus status_ = SimulationStatus::kReachedEnd;
+  Termination status_ = Termination::kCompleted;
 };
 
 /// Per-period max - min of x_i.
@@ -129,7 +129,7 @@ bool RunValue(const System& system, const SweepOptions& options, HybridState& st
 
   const bool reached = run.RunTo(state, first_classified, nullptr) &&
                        run.RunTo(state, transient, &steady) && run.RunTo(state, end, &recorded);
-  point->status = run.Status();
+  point->termination = run.Status();
   point->events = run.Events();
   const double t_record = static_cast<double>(transient) * run.Period();
   for (const ImpactView i : steady.Impacts()) {
@@ -230,7 +230,7 @@ std::string SweepResult::BriefReport() const {
   for (const SweepPoint& p : points) {
     ++counts[p.classification.kind];
     restarted += p.restarted;
-    stopped += p.status != SimulationStatus::kReachedEnd;
+    stopped += p.termination != Termination::kCompleted;
   }
   std::string kinds;
   for (const auto& [kind, count] : counts) {

@@ -38,7 +38,7 @@ constexpr double kCriticalSolved = 1e-9;
 struct HalfBranch {
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special_points;
-  BranchEnd end = BranchEnd::kMaxPoints;
+  Termination end = Termination::kMaxPoints;
   std::string end_message;
 };
 
@@ -75,7 +75,7 @@ class BranchTracer {
     double step = options_.initial_step;
     while (true) {
       if (static_cast<int>(half.points.size()) >= options_.max_points) {
-        half.end = BranchEnd::kMaxPoints;
+        half.end = Termination::kMaxPoints;
         half.end_message = fmt::format("{} points reached", options_.max_points);
         return half;
       }
@@ -99,7 +99,7 @@ class BranchTracer {
           continue;
         }
         if (sticks_ ? EndOfSticking(half) : EndAtGrazing(half, /*last_resort=*/true)) return half;
-        half.end = BranchEnd::kCorrectorFailed;
+        half.end = Termination::kCorrectorFailed;
         half.end_message = fmt::format(
             "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}",
             options_.min_step, problem_.Parameter(), from.parameter, NearContact(from));
@@ -114,7 +114,7 @@ class BranchTracer {
           continue;
         }
         if (!next) {
-          half.end = BranchEnd::kCorrectorFailed;
+          half.end = Termination::kCorrectorFailed;
           half.end_message = fmt::format(
               "no orbit found on the bound {} = {:.10g} next to {:.10g}, even with the smallest "
               "step",
@@ -207,7 +207,7 @@ class BranchTracer {
     }
     const SpecialPoint special = detail::EndPoint(half.points.back(), *end);
     half.special_points.push_back(special);
-    half.end = detail::BranchEndOf(*end);
+    half.end = detail::TerminationOf(*end);
     half.end_message = special.Describe(problem_.Parameter());
     return true;
   }
@@ -234,7 +234,7 @@ class BranchTracer {
   void EndOnBound(const BranchPoint& from, const BranchPoint& on, HalfBranch* half) const {
     LocateSpecialPoints(from, on, half);
     Accept(on, half);
-    half->end = BranchEnd::kParameterBound;
+    half->end = Termination::kParameterBound;
     half->end_message = fmt::format("reached {} = {:.10g}", problem_.Parameter(), on.parameter);
   }
 
@@ -425,7 +425,7 @@ class BranchTracer {
     special.parameter = located.parameter;
     special.monitor = located.repeat_gap.cwiseAbs().maxCoeff();
     half->special_points.push_back(special);
-    half->end = BranchEnd::kBranchPoint;
+    half->end = Termination::kBranchPoint;
     half->end_message = special.Describe(problem_.Parameter()) +
                         fmt::format(": the orbit is {} traversed {} times", ShorterName(),
                                     problem_.RepeatDivisor());
@@ -504,7 +504,7 @@ class BranchTracer {
     }
     half.special_points.push_back(*best);
     const bool sticking = best->type == SpecialPointType::kSticking;
-    half.end = sticking ? BranchEnd::kSticking : BranchEnd::kGrazing;
+    half.end = sticking ? Termination::kSticking : Termination::kGrazing;
     half.end_message = best->Describe(problem_.Parameter());
     return true;
   }
@@ -620,28 +620,6 @@ BranchPoint StartPoint(const BranchProblem& problem, const BranchStart& start,
 }
 
 }  // namespace
-
-std::string ToString(BranchEnd end) {
-  switch (end) {
-    case BranchEnd::kParameterBound:
-      return "parameter_bound";
-    case BranchEnd::kGrazing:
-      return "grazing";
-    case BranchEnd::kSticking:
-      return "sticking";
-    case BranchEnd::kBranchPoint:
-      return "branch_point";
-    case BranchEnd::kMaxPoints:
-      return "max_points";
-    case BranchEnd::kCorrectorFailed:
-      return "corrector_failed";
-    case BranchEnd::kNoSticking:
-      return "no_sticking";
-    case BranchEnd::kEarlyRelease:
-      return "early_release";
-  }
-  return "unknown";
-}
 
 std::string FamilyName(const Branch& branch) {
   if (branch.section == OrbitSection::kImpact) return fmt::format("P({},{})", branch.p, branch.q);

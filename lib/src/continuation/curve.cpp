@@ -39,7 +39,7 @@ std::string NearLimit(const CurvePoint& point) {
 struct HalfCurve {
   std::vector<CurvePoint> points;
   std::vector<Codim2Point> codim2;
-  CurveEnd end = CurveEnd::kMaxPoints;
+  Termination end = Termination::kMaxPoints;
   std::string message;
 };
 
@@ -65,7 +65,7 @@ class CurveTracer {
     corner_tried_depth_ = std::numeric_limits<double>::infinity();
     Accept(start, &half);
     if (Leaving(start)) {
-      half.end = CurveEnd::kParameterBound;
+      half.end = Termination::kParameterBound;
       half.message =
           fmt::format("starts on a bound: {} = {:.10g}, {} = {:.10g}", options_.parameter,
                       start.parameter, options_.parameter2, start.parameter2);
@@ -86,7 +86,7 @@ class CurveTracer {
         if (next) {
           if (options_.locate_codim2) LocateCodim2(from, *next, &half);
           Accept(*next, &half);
-          half.end = CurveEnd::kParameterBound;
+          half.end = Termination::kParameterBound;
           half.message = fmt::format("reached {} = {:.10g}, {} = {:.10g}", options_.parameter,
                                      next->parameter, options_.parameter2, next->parameter2);
           return half;
@@ -98,7 +98,7 @@ class CurveTracer {
           continue;
         }
         if (EndAtExistenceLimit(half) || EndAtCorner(half)) return half;
-        half.end = CurveEnd::kCorrectorFailed;
+        half.end = Termination::kCorrectorFailed;
         half.message = fmt::format(
             "the corrector did not converge with the smallest step {:g} at {} = {:.10g}, {} = "
             "{:.10g}{}",
@@ -112,7 +112,7 @@ class CurveTracer {
         CurvePoint again = start;
         again.arclength = next->arclength + std::copysign((start.x - next->x).norm(), step);
         Accept(again, &half);
-        half.end = CurveEnd::kClosed;
+        half.end = Termination::kClosed;
         half.message =
             fmt::format("the curve closes on itself (arclength {:.6g})", std::abs(again.arclength));
         return half;
@@ -124,7 +124,7 @@ class CurveTracer {
       if (EndAtCorner(half)) return half;
       step = NextStep(step, iterations, options_.min_step, options_.max_step);
     }
-    half.end = CurveEnd::kMaxPoints;
+    half.end = Termination::kMaxPoints;
     // Near a vanishing impact the corrector may creep on by tiny steps to
     // the cap: say so.
     half.message =
@@ -272,7 +272,8 @@ class CurveTracer {
     if (!best) return false;
     for (const CurvePoint& point : best_path) Accept(point, &half);
     half.codim2.push_back(*best);
-    half.end = best->type == Codim2Type::kStickingOnset ? CurveEnd::kSticking : CurveEnd::kGrazing;
+    half.end =
+        best->type == Codim2Type::kStickingOnset ? Termination::kSticking : Termination::kGrazing;
     half.message = best->Describe(options_.parameter, options_.parameter2);
     return true;
   }
@@ -291,7 +292,7 @@ class CurveTracer {
     if (!corner || Beyond(corner->point.parameter, corner->point.parameter2)) return false;
     half.points.push_back(corner->point);
     half.codim2.push_back(*corner);
-    half.end = CurveEnd::kGrazing;
+    half.end = Termination::kGrazing;
     half.message = corner->Describe(options_.parameter, options_.parameter2);
     return true;
   }
@@ -389,7 +390,7 @@ CurveSetup SetUp(const CurveStart& start, const CurveOptions& options) {
   System at = start.system;
   SetParameter(at, options.parameter, special.point.parameter);
   const MapResult path = ImpactMap(at, setup.options.orbit.map).Apply(orbit.eta, orbit.p, false);
-  if (path.status != MapStatus::kOk) return setup;
+  if (path.termination != Termination::kCompleted) return setup;
   const auto before = static_cast<std::size_t>(setup.flight - 1);
   setup.eta = path.path[before];
   setup.options.orbit.map.stop = path.stops[before];
@@ -455,24 +456,6 @@ std::string ToString(Codim2Type type) {
   return "unknown";
 }
 
-std::string ToString(CurveEnd end) {
-  switch (end) {
-    case CurveEnd::kParameterBound:
-      return "parameter_bound";
-    case CurveEnd::kGrazing:
-      return "grazing";
-    case CurveEnd::kSticking:
-      return "sticking";
-    case CurveEnd::kMaxPoints:
-      return "max_points";
-    case CurveEnd::kCorrectorFailed:
-      return "corrector_failed";
-    case CurveEnd::kClosed:
-      return "closed";
-  }
-  return "unknown";
-}
-
 std::string Codim2Point::Describe(const std::string& name1, const std::string& name2) const {
   const std::string what =
       type == Codim2Type::kUserTest ? fmt::format("user_test '{}'", user_test) : ToString(type);
@@ -527,7 +510,7 @@ Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
   CurveTracer tracer(problem, special.type, own, progress);
   HalfCurve forward = tracer.Trace(first);
   HalfCurve backward{{first}, {}, forward.end, forward.message};
-  if (forward.end != CurveEnd::kClosed) {  // a loop is whole in one direction
+  if (forward.end != Termination::kClosed) {  // a loop is whole in one direction
     CurvePoint reversed = first;
     reversed.tangent = -first.tangent;
     problem.UpdateBorders(first.x);
@@ -586,7 +569,7 @@ std::optional<CurveStart> ReducedGrazingStart(const System& system, const Branch
   SetParameter(last, branch.parameter, graze.point.parameter);
   const MapResult path =
       ImpactMap(last, options.orbit.map).Apply(graze.point.orbit.eta, branch.p, false);
-  if (path.status != MapStatus::kOk) return std::nullopt;
+  if (path.termination != Termination::kCompleted) return std::nullopt;
   OrbitOptions reduced = options.orbit;
   reduced.p = branch.p - 1;
   reduced.q = branch.q;

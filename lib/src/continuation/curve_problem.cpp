@@ -124,7 +124,7 @@ std::optional<CurveProblem::FlightStart> CurveProblem::GrazingFlightStart(
   if (grazing_flight_ == 0) return FlightStart{eta, map.SectionStop()};
   // The impacts before the flight may be at any stops.
   const MapResult before = map.Follow(eta, map.SectionStop(), grazing_flight_, false);
-  if (before.status != MapStatus::kOk) return std::nullopt;
+  if (before.termination != Termination::kCompleted) return std::nullopt;
   return FlightStart{before.eta, before.stops.back()};
 }
 
@@ -136,7 +136,7 @@ bool CurveProblem::TouchInsideFlight(const Eigen::VectorXd& x) const {
   const MapResult next = map->Follow(start->eta, start->stop, 1, false);
   const double t = x(eta_size_);
   const int time = map->TimeIndex();
-  return next.status == MapStatus::kOk && t > start->eta(time) && t < next.eta(time);
+  return next.termination == Termination::kCompleted && t > start->eta(time) && t < next.eta(time);
 }
 
 bool CurveProblem::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* f) const {
@@ -241,7 +241,7 @@ std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
   if (response_) return point;  // no orbit: the response has no impacts
   const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
   const Eigen::VectorXd eta = Eta(x);
-  if (!map || map->Apply(eta, options_.orbit.p, false).status != MapStatus::kOk) {
+  if (!map || map->Apply(eta, options_.orbit.p, false).termination != Termination::kCompleted) {
     return std::nullopt;
   }
   point.orbit = DescribeOrbit(*map, eta, options_.orbit.p, options_.orbit.q);

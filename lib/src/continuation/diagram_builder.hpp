@@ -30,7 +30,7 @@ class DiagramBuilder {
   int SpecialNode(int index, const SpecialPoint& s);
   /// A new node where branch `index` stops for the reason `end`, or (none)
   /// where a branch followed one way starts.
-  int EndNode(int index, std::optional<BranchEnd> end, const BranchPoint& point);
+  int EndNode(int index, std::optional<Termination> end, const BranchPoint& point);
   bool SameNode(const DiagramNode& node, SpecialPointType type, double parameter,
                 double range) const;
 

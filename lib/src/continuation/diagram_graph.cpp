@@ -64,10 +64,10 @@ std::size_t PointIndex(const Branch& branch, double arclength) {
   return best;
 }
 
-bool EndsAtSpecialPoint(BranchEnd end) {
-  return end == BranchEnd::kGrazing || end == BranchEnd::kSticking ||
-         end == BranchEnd::kBranchPoint || end == BranchEnd::kNoSticking ||
-         end == BranchEnd::kEarlyRelease;
+bool EndsAtSpecialPoint(Termination end) {
+  return end == Termination::kGrazing || end == Termination::kSticking ||
+         end == Termination::kBranchPoint || end == Termination::kNoSticking ||
+         end == Termination::kEarlyRelease;
 }
 
 }  // namespace
@@ -106,11 +106,11 @@ int DiagramBuilder::SpecialNode(int index, const SpecialPoint& s) {
   return static_cast<int>(diagram_->nodes.size()) - 1;
 }
 
-int DiagramBuilder::EndNode(int index, std::optional<BranchEnd> end, const BranchPoint& point) {
+int DiagramBuilder::EndNode(int index, std::optional<Termination> end, const BranchPoint& point) {
   const Branch& branch = diagram_->branches[index].branch;
   DiagramNode node;
   node.kind = end ? DiagramNodeKind::kBranchEnd : DiagramNodeKind::kStart;
-  node.end = end.value_or(BranchEnd::kParameterBound);
+  node.end = end.value_or(Termination::kParameterBound);
   node.parameter = point.parameter;
   node.multipliers = point.orbit.multipliers;
   node.p = branch.p;

@@ -85,7 +85,7 @@ std::optional<std::pair<PeriodicOrbit, Eigen::Vector2d>> ReducedOrbitBeyond(
   const OrbitOptions& options = problem.Options().orbit;
   const MapResult path = ImpactMap(problem.SystemAt(b.parameter, b.parameter2), options.map)
                              .Apply(b.orbit.eta, options.p, false);
-  if (path.status != MapStatus::kOk) return std::nullopt;
+  if (path.termination != Termination::kCompleted) return std::nullopt;
   OrbitOptions reduced = options;
   reduced.p = options.p - 1;
   // Its section is the stop of the impact after the vanishing one.

@@ -166,14 +166,14 @@ SpecialPoint EndPoint(const BranchPoint& point, StickingEnd end) {
   return special;
 }
 
-BranchEnd BranchEndOf(StickingEnd end) {
+Termination TerminationOf(StickingEnd end) {
   switch (end) {
     case StickingEnd::kNoSticking:
-      return BranchEnd::kNoSticking;
+      return Termination::kNoSticking;
     case StickingEnd::kEarlyRelease:
-      return BranchEnd::kEarlyRelease;
+      return Termination::kEarlyRelease;
     default:
-      return BranchEnd::kGrazing;
+      return Termination::kGrazing;
   }
 }
 

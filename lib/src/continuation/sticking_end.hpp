@@ -76,6 +76,6 @@ std::optional<BranchPoint> LocateStickingEnd(const BranchProblem& problem, const
 /// impact); its monitor is the one that reached 0.
 SpecialPoint EndPoint(const BranchPoint& point, StickingEnd end);
 /// The branch's end there.
-BranchEnd BranchEndOf(StickingEnd end);
+Termination TerminationOf(StickingEnd end);
 
 }  // namespace impactkit::detail

@@ -92,7 +92,7 @@ std::optional<VanishingImpactPoint> LocateVanishingImpact(const BranchProblem& p
   const ImpactMap* map = problem.ImpactMapAt(b.parameter);
   if (!map) return std::nullopt;
   const MapResult path = map->Apply(b.orbit.eta, problem.Events(), false);
-  if (path.status != MapStatus::kOk) return std::nullopt;
+  if (path.termination != Termination::kCompleted) return std::nullopt;
 
   OrbitOptions reduced = orbit_options;
   reduced.p = problem.Events() - 1;

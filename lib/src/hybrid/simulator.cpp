@@ -17,22 +17,6 @@ std::string ToString(ChatterMethod method) {
   return method == ChatterMethod::kAccumulation ? "accumulation" : "threshold";
 }
 
-std::string ToString(SimulationStatus status) {
-  switch (status) {
-    case SimulationStatus::kReachedEnd:
-      return "reached end";
-    case SimulationStatus::kEventLimit:
-      return "event limit reached";
-    case SimulationStatus::kStopped:
-      return "stopped by observer";
-    case SimulationStatus::kStalled:
-      return "stalled: events repeat at one instant";
-    case SimulationStatus::kWorkLimit:
-      return "work bound reached: too many events in one forcing period";
-  }
-  return "unknown";
-}
-
 bool SimulationOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& message) {
     if (error) *error = message;
@@ -66,7 +50,7 @@ std::string SimulationSummary::BriefReport() const {
   return fmt::format(
       "{}: {} impacts, {} landings, {} chatter sequences ended{}, {} releases, stuck {:.6g} "
       "time units, {:.3g} s",
-      ToString(status), impacts, landings, chatter_jumps, cuts, releases, stuck_time,
+      Describe(termination), impacts, landings, chatter_jumps, cuts, releases, stuck_time,
       elapsed_seconds);
 }
 
@@ -144,11 +128,11 @@ SimulationSummary HybridRun::Execute() {
   window_begin_ = state_.t;
   while (state_.t < t_end_) {
     if (Events() >= options_.max_events) {
-      summary_.status = SimulationStatus::kEventLimit;
+      summary_.termination = Termination::kEventLimit;
       break;
     }
     if (OverWorkBound()) {
-      summary_.status = SimulationStatus::kWorkLimit;
+      summary_.termination = Termination::kWorkLimit;
       break;
     }
     const double before = state_.t;
@@ -156,11 +140,11 @@ SimulationSummary HybridRun::Execute() {
     // Events at one instant, over and over, would loop forever.
     stalled_phases_ = state_.t > before ? 0 : stalled_phases_ + 1;
     if (stalled_phases_ > kMaxStalledPhases) {
-      summary_.status = SimulationStatus::kStalled;
+      summary_.termination = Termination::kStalled;
       break;
     }
     if (observer_.ShouldStop()) {
-      summary_.status = SimulationStatus::kStopped;
+      summary_.termination = Termination::kStopped;
       break;
     }
   }

@@ -64,7 +64,7 @@ FixedPointSolve SolveFixedPoint(const FixedPointProblem& problem, const Eigen::V
 
 std::string SolveReport(Termination termination, double residual, int iterations) {
   const std::string norm = std::isfinite(residual) ? fmt::format(" residual {:.2e}", residual) : "";
-  return fmt::format("{}:{} after {} iterations", ToString(termination), norm, iterations);
+  return fmt::format("{}:{} after {} iterations", Describe(termination), norm, iterations);
 }
 
 }  // namespace impactkit

@@ -106,7 +106,7 @@ SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q, int stop
 std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
                                                   int p, int q, int flight, double t, int stop) {
   const MapResult path = map.Apply(eta, p, false);
-  if (path.status != MapStatus::kOk) return std::nullopt;
+  if (path.termination != Termination::kCompleted) return std::nullopt;
   // The impact that starts the flight, and its stop.
   const auto k0 = static_cast<std::size_t>(flight - 1);
   const Eigen::VectorXd& start = flight == 0 ? eta : path.path[k0];

@@ -10,22 +10,6 @@
 
 namespace impactkit {
 
-std::string ToString(MapStatus status) {
-  switch (status) {
-    case MapStatus::kOk:
-      return "ok";
-    case MapStatus::kNoImpact:
-      return "lost impact (no further impact)";
-    case MapStatus::kGrazing:
-      return "grazing impact (speed ~ 0)";
-    case MapStatus::kChatter:
-      return "chatter (impacts accumulate at the stop)";
-    case MapStatus::kOtherStop:
-      return "the last impact is at another stop than the first";
-  }
-  return "unknown";
-}
-
 bool ImpactMapOptions::IsValid(std::string* error) const {
   if (!(max_flight_periods > 0 && std::isfinite(max_flight_periods))) {
     if (error)
@@ -174,17 +158,17 @@ std::optional<ImpactMap::FlightEnd> ImpactMap::FirstArrival(const Eigen::VectorX
 }
 
 bool ImpactMap::Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
-                     Eigen::MatrixXd* jacobian, MapStatus* status) const {
+                     Eigen::MatrixXd* jacobian, Termination* status) const {
   const System& system = GetSystem();
   const double t = eta(TimeIndex());
   const std::optional<FlightEnd> end =
       FirstArrival(eta, stop, t + options_.max_flight_periods * system.ForcingPeriod());
   if (!end) {
-    *status = MapStatus::kNoImpact;
+    *status = Termination::kNoImpact;
     return false;
   }
   if (!end->impact) {
-    *status = end->pressed ? MapStatus::kChatter : MapStatus::kGrazing;
+    *status = end->pressed ? Termination::kSticking : Termination::kGrazing;
     return false;
   }
   *next_stop = end->stop;
@@ -212,8 +196,8 @@ Eigen::MatrixXd ImpactMap::ArrivalJacobian(const Eigen::MatrixXd& g, int stop,
 
 MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian) const {
   MapResult result = Follow(eta, SectionStop(), p, with_jacobian);
-  if (result.status == MapStatus::kOk && result.stops.back() != SectionStop()) {
-    result.status = MapStatus::kOtherStop;
+  if (result.termination == Termination::kCompleted && result.stops.back() != SectionStop()) {
+    result.termination = Termination::kOtherStop;
     result.jacobian.resize(0, 0);
   }
   return result;
@@ -234,7 +218,7 @@ MapResult ImpactMap::Follow(const Eigen::VectorXd& eta, int stop, int p, bool wi
   for (int k = 0, at = stop; k < p; ++k) {
     int next_stop = at;
     if (!Step(result.eta, at, &next, &next_stop, with_jacobian ? &step_jacobian : nullptr,
-              &result.status)) {
+              &result.termination)) {
       result.jacobian.resize(0, 0);
       return result;
     }
@@ -257,7 +241,7 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
   int stop = SectionStop();
   for (int k = 0; k < p; ++k) {
     const MapResult step = Follow(at, stop, 1, true);
-    if (step.status != MapStatus::kOk) return {};
+    if (step.termination != Termination::kCompleted) return {};
     const int next_stop = step.stops.back(), c = hybrid_->GetStop(next_stop).Dof();
     const double stop_rate = (above.hybrid_->GetStop(next_stop).Position() -
                               below.hybrid_->GetStop(next_stop).Position()) /
@@ -294,9 +278,9 @@ SectionImage ImpactMap::Iterate(const Eigen::VectorXd& eta, int p, bool with_jac
     return image;
   }
   MapResult result = Apply(eta, p, with_jacobian);
-  if (result.status != MapStatus::kOk) {
-    image.failure =
-        fmt::format("after {} of {} impacts, {}", result.impacts_done, p, ToString(result.status));
+  if (result.termination != Termination::kCompleted) {
+    image.failure = fmt::format("after {} of {} impacts, {}", result.impacts_done, p,
+                                Describe(result.termination));
     return image;
   }
   image.state = std::move(result.eta);

@@ -18,9 +18,9 @@ namespace impactkit {
 OrbitPeriod PrimitivePeriod(const ImpactMap& map, const Eigen::VectorXd& eta, int p, int q,
                             double tolerance) {
   const MapResult image = map.Apply(eta, p, false);
-  if (image.status != MapStatus::kOk) {
+  if (image.termination != Termination::kCompleted) {
     throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
-                                   image.impacts_done, p, ToString(image.status)));
+                                   image.impacts_done, p, Describe(image.termination)));
   }
   const double scale = 1.0 + eta.cwiseAbs().maxCoeff();
   const double period = map.GetSystem().ForcingPeriod();
@@ -50,9 +50,9 @@ Eigen::MatrixXd FiniteDifferenceJacobianOrThrow(const ImpactMap& map, const Eige
 
 MapResult ApplyOrThrow(const ImpactMap& map, const Eigen::VectorXd& eta, int p) {
   MapResult image = map.Apply(eta, p, true);
-  if (image.status != MapStatus::kOk) {
+  if (image.termination != Termination::kCompleted) {
     throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
-                                   image.impacts_done, p, ToString(image.status)));
+                                   image.impacts_done, p, Describe(image.termination)));
   }
   return image;
 }
@@ -329,7 +329,7 @@ std::optional<std::vector<Eigen::VectorXd>> ImpactsFrom(const ImpactMap& map,
   *stops = {map.SectionStop()};
   if (p == 1) return etas;
   const MapResult image = map.Apply(guess, p, false);
-  if (image.status != MapStatus::kOk) return std::nullopt;
+  if (image.termination != Termination::kCompleted) return std::nullopt;
   for (int k = 0; k + 1 < p; ++k) {
     etas.push_back(image.path[k]);
     stops->push_back(image.stops[k]);
@@ -394,9 +394,9 @@ void AcceptShooting(const ShootingProblem& problem, const ImpactMap& map,
     summary->residual = summary->shooting_residual;
   } else {
     const MapResult image = map.Apply(etas[0], options.p, false);
-    if (image.status != MapStatus::kOk) {
+    if (image.termination != Termination::kCompleted) {
       return reject(fmt::format("the map from it fails after {} of {} impacts: {}",
-                                image.impacts_done, options.p, ToString(image.status)));
+                                image.impacts_done, options.p, Describe(image.termination)));
     }
     summary->residual = FixedPointResidual(map, etas[0], options.q, image);
     if (summary->residual > summary->residual_floor) {

@@ -59,9 +59,9 @@ void MeasureFlight(const ImpactMap& map, const Eigen::VectorXd& from, int from_s
 
 OrbitContacts MeasureOrbitContacts(const ImpactMap& map, const Eigen::VectorXd& eta, int p) {
   const MapResult image = map.Apply(eta, p, false);
-  if (image.status != MapStatus::kOk) {
+  if (image.termination != Termination::kCompleted) {
     throw InvalidInput(fmt::format("no orbit through this impact state: after {} of {} impacts, {}",
-                                   image.impacts_done, p, ToString(image.status)));
+                                   image.impacts_done, p, Describe(image.termination)));
   }
   std::vector<Eigen::VectorXd> path{eta};
   path.insert(path.end(), image.path.begin(), image.path.end());

@@ -15,29 +15,6 @@
 
 namespace impactkit {
 
-std::string ToString(StickingMapStatus status) {
-  switch (status) {
-    case StickingMapStatus::kOk:
-      return "ok";
-    case StickingMapStatus::kNotReleased:
-      return "not a release (the stop still pushes on the mass: Fs > 0)";
-    case StickingMapStatus::kNoImpact:
-      return "no impact after the release";
-    case StickingMapStatus::kNoChatter:
-      return "impacts without a chatter sequence accumulating";
-    case StickingMapStatus::kNoSticking:
-      return "the chatter ends with Fs <= 0: the mass is not held (no sticking)";
-    case StickingMapStatus::kNoRelease:
-      return "no release: the mass stays stuck";
-    case StickingMapStatus::kOtherStop:
-      return "the last release is from another stop than the section's";
-    case StickingMapStatus::kMetWhileHeld:
-      return "a mass reaches its stop while another stop holds a mass (the release map follows "
-             "one held stop at a time)";
-  }
-  return "unknown";
-}
-
 bool StickingMapOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& message) {
     if (error) *error = message;
@@ -87,15 +64,15 @@ class StickingMap::Cycle {
   /// Follows a release from stop `from` (s its section state: without that
   /// stop's DOF) to the next release, from whichever stop the chatter
   /// sticks at (cycle->stop); that release's section state in *next.
-  StickingMapStatus Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
-                        Eigen::MatrixXd* jacobian, StickingCycle* cycle);
+  Termination Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
+                  Eigen::MatrixXd* jacobian, StickingCycle* cycle);
 
  private:
   using Arrival = PhaseEvents::Event;
   /// The free flight to the first arrival at any stop (PhaseEvents), the
   /// first of a cycle from a release at stop `released`.
   std::optional<Arrival> NextArrival(std::optional<int> released, StickingCycle* cycle,
-                                     StickingMapStatus* status);
+                                     Termination* status);
   /// Takes into `cycle` the interior turns (the zeros of a velocity) on the
   /// flight [begin, end]: the least distance from its stop of each stop's
   /// mass at a turn towards that stop (its clearance), and the section
@@ -114,7 +91,7 @@ class StickingMap::Cycle {
   bool HeldMeetsOtherStop(int stop, const LinearFlow& flow, double te, const Eigen::VectorXd& z0,
                           double end) const;
   bool ArrivalEndsChatter(const Arrival& arrival, StickingCycle* cycle, double* t_star);
-  StickingMapStatus StickAndRelease(int stop, double te, double t_star, StickingCycle* cycle);
+  Termination StickAndRelease(int stop, double te, double t_star, StickingCycle* cycle);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
   /// at t1 with witness gradient l and slope ẇ(t1): G = Φ (dy0 − f0 dt0),
   /// dt1 = −l G / ẇ, dy1 = G + f1 dt1.
@@ -147,8 +124,8 @@ class StickingMap::Cycle {
   Eigen::RowVectorXd dt_;  ///< ∂t/∂s of the current time
 };
 
-StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
-                                          Eigen::MatrixXd* jacobian, StickingCycle* cycle) {
+Termination StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
+                                    Eigen::MatrixXd* jacobian, StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();
   const int held = n_ - 1, m = 2 * n_ - 1;
   const Stop& released = hybrid_.GetStop(from);
@@ -172,7 +149,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Ei
   cycle->contact_min = cycle->contact_max = x_(measured_);
   deadline_ = t_ + options_.max_free_periods * system.ForcingPeriod();
   std::fill(previous_.begin(), previous_.end(), -std::numeric_limits<double>::infinity());
-  StickingMapStatus status = StickingMapStatus::kOk;
+  Termination status = Termination::kCompleted;
   for (int i = 0; i < options_.max_impacts; ++i) {
     const std::optional<Arrival> arrival =
         NextArrival(i == 0 ? std::optional<int>(from) : std::nullopt, cycle, &status);
@@ -184,7 +161,7 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Ei
       continue;
     }
     status = StickAndRelease(arrival->stop, arrival->t, t_star, cycle);
-    if (status != StickingMapStatus::kOk) return status;
+    if (status != Termination::kCompleted) return status;
     const int dof = hybrid_.GetStop(arrival->stop).Dof();
     next->resize(m);
     *next << WithoutIndex(x_, dof), WithoutIndex(v_, dof), t_;
@@ -192,13 +169,13 @@ StickingMapStatus StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Ei
       jacobian->resize(m, m);
       *jacobian << HeldRows(dy_, dof), dt_;
     }
-    return StickingMapStatus::kOk;
+    return Termination::kCompleted;
   }
-  return StickingMapStatus::kNoChatter;
+  return Termination::kNoChatter;
 }
 
 std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
-    std::optional<int> released, StickingCycle* cycle, StickingMapStatus* status) {
+    std::optional<int> released, StickingCycle* cycle, Termination* status) {
   const bool from_release = released.has_value();
   const LinearFlow& flow = hybrid_.FreeFlow();
   HybridState from;
@@ -216,13 +193,13 @@ std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
   if (from_release) {
     late = {*released, t_ + kReleaseClearance * hybrid_.TimeScale()};
     if (phase_events_.Witness(*released).Value(late.begin) >= 0) {
-      *status = StickingMapStatus::kNotReleased;
+      *status = Termination::kNotReleased;
       return std::nullopt;
     }
   }
   const std::optional<Arrival> first = phase_events_.First(deadline_, last_stop_, late);
   if (!first) {
-    *status = from_release ? StickingMapStatus::kNoImpact : StickingMapStatus::kNoChatter;
+    *status = from_release ? Termination::kNoImpact : Termination::kNoChatter;
     return std::nullopt;
   }
   const double end = first->t, measured_from = from_release ? late.begin : t_;
@@ -338,8 +315,8 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
 
 /// From the impact at te that ends the chatter, the stuck flow: through
 /// the chatter's tail to its end t*, then stuck to the release.
-StickingMapStatus StickingMap::Cycle::StickAndRelease(int stop, double te, double t_star,
-                                                      StickingCycle* cycle) {
+Termination StickingMap::Cycle::StickAndRelease(int stop, double te, double t_star,
+                                                StickingCycle* cycle) {
   const System& system = hybrid_.GetSystem();
   const LinearFlow& flow = hybrid_.StuckFlow(stop);
   const Stop& holding = hybrid_.GetStop(stop);
@@ -351,12 +328,12 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(int stop, double te, doubl
   cycle->stop = stop;
   cycle->accumulation = t_star;
   cycle->contact_force = hybrid_.ContactForce(stop, t_star, x1, v1);
-  if (!Stop::Holds(cycle->contact_force)) return StickingMapStatus::kNoSticking;
+  if (!Stop::Holds(cycle->contact_force)) return Termination::kNoSticking;
   const Signal release = flow.Output(hybrid_.Release(stop), te, z0);
   const std::optional<double> tr = FirstUpcrossing(
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
-  if (!tr) return StickingMapStatus::kNoRelease;
-  if (HeldMeetsOtherStop(stop, flow, te, z0, *tr)) return StickingMapStatus::kMetWhileHeld;
+  if (!tr) return Termination::kNoRelease;
+  if (HeldMeetsOtherStop(stop, flow, te, z0, *tr)) return Termination::kMetWhileHeld;
   if (with_contacts_) {
     cycle->hold_margin = HoldMargin(release, t_star, *tr);
     if (c == measured_) {
@@ -379,7 +356,7 @@ StickingMapStatus StickingMap::Cycle::StickAndRelease(int stop, double te, doubl
   v_ = EmbedAtStop(v1, c, 0.0);
   t_ = *tr;
   cycle->next_release = *tr;
-  return StickingMapStatus::kOk;
+  return Termination::kCompleted;
 }
 
 void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0,
@@ -435,8 +412,8 @@ StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_
   int from = options_.stop;
   for (int i = 0; i < k; ++i) {
     StickingCycle record;
-    result.status = cycle.Run(result.state, from, &next, &step_jacobian, &record);
-    if (result.status != StickingMapStatus::kOk) {
+    result.termination = cycle.Run(result.state, from, &next, &step_jacobian, &record);
+    if (result.termination != Termination::kCompleted) {
       result.jacobian.resize(0, 0);
       return result;
     }
@@ -449,7 +426,7 @@ StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_
   // P_R^k is a map of the section only if its last release is the
   // section stop's (as an impact map's p-th impact).
   if (from != options_.stop) {
-    result.status = StickingMapStatus::kOtherStop;
+    result.termination = Termination::kOtherStop;
     result.jacobian.resize(0, 0);
   }
   return result;
@@ -465,11 +442,11 @@ SectionImage StickingMap::Iterate(const Eigen::VectorXd& s, int k, bool with_jac
   // Past a sticking family's end the chatter either accumulates where the
   // stop no longer pushes, or (the acceleration towards the stop vanishing)
   // no longer accumulates at all: both say it stops ending in sticking.
-  image.stops_sticking = result.status == StickingMapStatus::kNoSticking ||
-                         result.status == StickingMapStatus::kNoChatter;
-  if (result.status != StickingMapStatus::kOk) {
-    image.failure =
-        fmt::format("after {} of {} releases, {}", result.cycles_done, k, ToString(result.status));
+  image.stops_sticking = result.termination == Termination::kNoSticking ||
+                         result.termination == Termination::kNoChatter;
+  if (result.termination != Termination::kCompleted) {
+    image.failure = fmt::format("after {} of {} releases, {}", result.cycles_done, k,
+                                Describe(result.termination));
     return image;
   }
   image.state = std::move(result.state);

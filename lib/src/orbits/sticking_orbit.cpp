@@ -14,10 +14,10 @@ namespace {
 StickingMapResult ApplyOrThrow(const StickingMap& map, const Eigen::VectorXd& s, int k,
                                bool with_contacts = false) {
   StickingMapResult image = map.Apply(s, k, true, with_contacts);
-  if (image.status != StickingMapStatus::kOk) {
+  if (image.termination != Termination::kCompleted) {
     throw InvalidInput(
         fmt::format("no sticking orbit through this release state: after {} of {} releases, {}",
-                    image.cycles_done, k, ToString(image.status)));
+                    image.cycles_done, k, Describe(image.termination)));
   }
   return image;
 }
@@ -100,9 +100,9 @@ OrbitSummary FindStickingOrbit(const System& system, const Eigen::VectorXd& gues
   const Eigen::VectorXd seed = map.WithPhase(guess);
   // A state the stop still pushes on is no section state, as an impact
   // state moving away from its stop is none (ImpactMap::ValidateEta).
-  const StickingMapStatus first = map.Apply(seed, 1, false).status;
-  if (first == StickingMapStatus::kNotReleased) {
-    throw InvalidInput("the guess is " + ToString(first));
+  const Termination first = map.Apply(seed, 1, false).termination;
+  if (first == Termination::kNotReleased) {
+    throw InvalidInput("the guess is " + Describe(first));
   }
   const FixedPointProblem problem(map, options.releases, options.q,
                                   options.jacobian == JacobianMethod::kAnalytic);

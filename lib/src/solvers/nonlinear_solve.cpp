@@ -34,7 +34,7 @@ bool NewtonOptions::IsValid(std::string* error) const {
 std::string SolveSummary::BriefReport() const {
   return fmt::format(
       "{}: max|F| = {:.3g} after {} iterations ({} F, {} J evaluations, {:.3g} s){}{}",
-      ToString(termination), residual_norm, iterations, residual_evaluations, jacobian_evaluations,
+      Describe(termination), residual_norm, iterations, residual_evaluations, jacobian_evaluations,
       seconds, message.empty() ? "" : "; ", message);
 }
 

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "impactkit/analysis/classify.hpp"
+#include "impactkit/core/termination.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
 
@@ -102,9 +103,9 @@ struct SweepPoint {
   std::vector<double> range_contact;
   std::vector<double> range_first;
   Classification classification;
-  /// How the run ended (kReachedEnd unless the simulator stopped early; then
+  /// How the run ended (kCompleted unless the simulator stopped early; then
   /// the window is short and the classification kUnresolved).
-  SimulationStatus status = SimulationStatus::kReachedEnd;
+  Termination termination = Termination::kCompleted;
   bool restarted = false;   ///< started from the fixed state (see the file comment)
   std::int64_t events = 0;  ///< impacts, chatter jumps and releases simulated at this value
 };

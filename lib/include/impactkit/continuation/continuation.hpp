@@ -47,6 +47,7 @@
 
 #include "impactkit/continuation/branch_point.hpp"
 #include "impactkit/continuation/test_functions.hpp"
+#include "impactkit/core/termination.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/sticking_map.hpp"
@@ -124,21 +125,6 @@ struct SpecialPoint {
   std::string Describe(const std::string& parameter_name) const;
 };
 
-enum class BranchEnd {
-  kParameterBound,   ///< reached lower or upper
-  kGrazing,          ///< ended at a grazing point (special point)
-  kSticking,         ///< ended at sticking onset (special point)
-  kBranchPoint,      ///< met the branch of a shorter orbit traversed several times
-  kMaxPoints,        ///< max_points reached
-  kCorrectorFailed,  ///< no convergence even with the smallest step
-  kNoSticking,       ///< a sticking family: its chatter stops ending in sticking
-  kEarlyRelease,     ///< a sticking family: Fs touches 0 inside a stuck phase
-};
-
-/// "parameter_bound", "grazing", "sticking", "branch_point", "max_points",
-/// "corrector_failed", "no_sticking", "early_release".
-std::string ToString(BranchEnd end);
-
 struct Branch {
   std::string parameter;
   /// The section of its orbits: impacting P(p, q), or sticking with
@@ -154,11 +140,11 @@ struct Branch {
   /// In order along the branch; with kBoth, from the decreasing end to the
   /// increasing end.
   std::vector<BranchPoint> points;
-  std::vector<SpecialPoint> special_points;  ///< in order along the branch
-  BranchEnd end = BranchEnd::kMaxPoints;     ///< why the last point is the last
+  std::vector<SpecialPoint> special_points;   ///< in order along the branch
+  Termination end = Termination::kMaxPoints;  ///< why the last point is the last
   std::string end_message;
   /// With kBoth: why the first point is the first.
-  std::optional<BranchEnd> begin;
+  std::optional<Termination> begin;
   std::string begin_message;
   double seconds = 0.0;
 };

@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/core/termination.hpp"
 
 namespace impactkit {
 
@@ -124,19 +125,6 @@ struct Codim2Point {
   std::string Describe(const std::string& name1, const std::string& name2) const;
 };
 
-enum class CurveEnd {
-  kParameterBound,   ///< reached a bound of μ1 or μ2
-  kGrazing,          ///< the orbit stops existing at a grazing (codim-2 point)
-  kSticking,         ///< the orbit stops existing at sticking onset (codim-2 point)
-  kMaxPoints,        ///< max_points reached
-  kCorrectorFailed,  ///< no convergence even with the smallest step
-  kClosed,           ///< the curve came back to its start: a closed loop
-};
-
-/// "parameter_bound", "grazing", "sticking", "max_points", "corrector_failed",
-/// "closed".
-std::string ToString(CurveEnd end);
-
 struct Curve {
   SpecialPointType type = SpecialPointType::kFold;
   std::string parameter, parameter2;
@@ -146,7 +134,7 @@ struct Curve {
   /// from its start round to the start again (its last point).
   std::vector<CurvePoint> points;
   std::vector<Codim2Point> codim2_points;  ///< in order along the curve
-  CurveEnd begin = CurveEnd::kMaxPoints, end = CurveEnd::kMaxPoints;
+  Termination begin = Termination::kMaxPoints, end = Termination::kMaxPoints;
   std::string begin_message, end_message;
   double seconds = 0.0;
 };

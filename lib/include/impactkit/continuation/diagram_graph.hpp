@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/core/termination.hpp"
 
 namespace impactkit {
 
@@ -31,7 +32,7 @@ struct DiagramNode {
   DiagramNodeKind kind = DiagramNodeKind::kSpecialPoint;
   SpecialPointType special = SpecialPointType::kFold;  ///< kind == kSpecialPoint
   /// kind == kBranchEnd: kParameterBound, kMaxPoints or kCorrectorFailed.
-  BranchEnd end = BranchEnd::kParameterBound;
+  Termination end = Termination::kParameterBound;
   double parameter = 0.0;
   /// The critical multiplier (fold, period doubling, Neimark–Sacker; 0
   /// otherwise) and every multiplier of the orbit at the node.

@@ -50,6 +50,7 @@
 #include <memory>
 #include <string>
 
+#include "impactkit/core/termination.hpp"
 #include "impactkit/dynamics/flow.hpp"
 #include "impactkit/dynamics/segment.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
@@ -101,19 +102,12 @@ struct SimulationOptions {
   bool IsValid(std::string* error) const;
 };
 
-/// Why Simulate() returned.
-enum class SimulationStatus {
-  kReachedEnd,  ///< the state is at t_end
-  kEventLimit,  ///< max_events reached; the state is at the last event
-  kStopped,     ///< an observer asked to stop; the state is where it asked
-  kStalled,     ///< events kept repeating at one instant; the state is there
-  kWorkLimit,   ///< max_events_per_period reached; the state is at the last event
-};
-
-std::string ToString(SimulationStatus status);
-
 struct SimulationSummary {
-  SimulationStatus status = SimulationStatus::kReachedEnd;
+  /// Why Simulate() returned: kCompleted (the state is at t_end),
+  /// kEventLimit or kWorkLimit (the state is at the last event), kStopped
+  /// (an observer asked; the state is where it asked) or kStalled (events
+  /// kept repeating at one instant; the state is there).
+  Termination termination = Termination::kCompleted;
   std::int64_t impacts = 0;        ///< impacts with the stop
   std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
   /// Of those, the ones cut without accumulating (elastic chatter at a

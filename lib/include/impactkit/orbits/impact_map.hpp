@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "impactkit/core/termination.hpp"
 #include "impactkit/dynamics/flow.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/hybrid/simulator.hpp"
@@ -37,20 +38,6 @@
 #include "impactkit/orbits/section_map.hpp"
 
 namespace impactkit {
-
-/// What happened when the map was applied.
-enum class MapStatus {
-  kOk,        ///< p impacts followed, result valid
-  kNoImpact,  ///< no further impact within max_flight_periods: an impact was lost
-  /// an arrival too slow to be an impact (its height unresolved: the
-  /// simulator's rule), the mass moving away after it
-  kGrazing,
-  /// such an arrival with the mass pressed into the stop: chatter/sticking
-  kChatter,
-  kOtherStop,  ///< the p-th impact is at another stop than the section's
-};
-
-std::string ToString(MapStatus status);
 
 struct ImpactMapOptions {
   /// A flight longer than this many forcing periods counts as a lost impact.
@@ -68,7 +55,13 @@ struct ImpactMapOptions {
 
 /// The result of P_I^p(η).
 struct MapResult {
-  MapStatus status = MapStatus::kOk;
+  /// kCompleted (p impacts followed: the result is valid), kNoImpact (no
+  /// further impact within max_flight_periods), kGrazing (an arrival too
+  /// slow to be an impact, its height unresolved: the simulator's rule,
+  /// with the mass moving away after it), kSticking (such an arrival with
+  /// the mass pressed into the stop) or kOtherStop (the p-th impact is at
+  /// another stop than the section's).
+  Termination termination = Termination::kCompleted;
   int impacts_done = 0;               ///< impacts followed before the status
   Eigen::VectorXd eta;                ///< P_I^p(η) (valid when kOk)
   Eigen::MatrixXd jacobian;           ///< D(P_I^p)(η), when asked and kOk
@@ -187,7 +180,7 @@ class ImpactMap : public SectionMap {
   /// One impact at `stop` and the flight to the next impact, at *next_stop;
   /// false with `status` set when it fails.
   bool Step(const Eigen::VectorXd& eta, int stop, Eigen::VectorXd* next, int* next_stop,
-            Eigen::MatrixXd* jacobian, MapStatus* status) const;
+            Eigen::MatrixXd* jacobian, Termination* status) const;
   /// The flow's transient coordinates just after the impact η at `stop`.
   Eigen::VectorXd FlightTransient(const Eigen::VectorXd& eta, int stop) const;
 

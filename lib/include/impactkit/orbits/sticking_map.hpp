@@ -53,27 +53,13 @@
 #include <string>
 #include <vector>
 
+#include "impactkit/core/termination.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/section_map.hpp"
 
 namespace impactkit {
-
-/// What happened when the release map was applied.
-enum class StickingMapStatus {
-  kOk,            ///< every release followed: the result is valid
-  kNotReleased,   ///< the state is not a release: the contact force still presses the mass into the
-                  ///< stop
-  kNoImpact,      ///< no impact within max_free_periods of a release
-  kNoChatter,     ///< impacts for max_free_periods (or max_impacts of them) without sticking
-  kNoSticking,    ///< the chatter accumulated with Fs <= 0: the mass is not held
-  kNoRelease,     ///< held for max_stuck_periods without a release
-  kOtherStop,     ///< the k-th release is from another stop than the section's
-  kMetWhileHeld,  ///< a mass reaches its stop while another stop holds a mass
-};
-
-std::string ToString(StickingMapStatus status);
 
 struct StickingMapOptions {
   /// The stop whose releases are the section (an index into System::stops).
@@ -126,7 +112,11 @@ struct StickingCycle {
 
 /// The result of P_R^k(s).
 struct StickingMapResult {
-  StickingMapStatus status = StickingMapStatus::kOk;
+  /// kCompleted (every release followed: the result is valid),
+  /// kNotReleased, kNoImpact (within max_free_periods of a release),
+  /// kNoChatter, kNoSticking, kNoRelease (within max_stuck_periods),
+  /// kOtherStop or kMetWhileHeld.
+  Termination termination = Termination::kCompleted;
   int cycles_done = 0;                ///< releases followed before the status
   Eigen::VectorXd state;              ///< P_R^k(s) (valid when kOk)
   Eigen::MatrixXd jacobian;           ///< D(P_R^k)(s), when asked and kOk
