@@ -327,6 +327,7 @@ class Sweep(TypedDict):
     impact_t: FloatArray
     impact_phase: FloatArray
     impact_velocity: FloatArray
+    termination: Termination
     report: str
 
 def sweep(
@@ -422,7 +423,7 @@ class Diagram:
     @property
     def failed_starts(self) -> int: ...
     @property
-    def complete(self) -> bool: ...
+    def termination(self) -> Termination: ...
     @property
     def message(self) -> str: ...
     @property

@@ -297,7 +297,8 @@ TEST_CASE("diagram: the N = 1 oscillator's network from one P(1,1) seed matches 
     CHECK(doubled);
   }
   CHECK(diagram.branches.front().branch.p == 1);
-  CHECK_FALSE(diagram.complete);  // max_depth 1 stops below the doubled branches' own switches
+  CHECK(diagram.termination ==
+        Termination::kMaxPoints);  // max_depth 1 stops below the doubled branches' own switches
 
   // The same network on two threads: the same nodes, bit for bit.
   DiagramOptions two = options;

@@ -12,23 +12,6 @@
 namespace impactkit::cli {
 namespace {}  // namespace
 
-BranchProgress::BranchProgress(std::string parameter)
-    : enabled_(::isatty(STDERR_FILENO) == 1), parameter_(std::move(parameter)) {}
-
-BranchProgress::~BranchProgress() {
-  if (drawn_) fmt::print(stderr, "\r\033[K");
-}
-
-void BranchProgress::operator()(int branches, const BranchPoint& point) {
-  ++points_;
-  const auto now = std::chrono::steady_clock::now();
-  if (!enabled_ || now - last_ < std::chrono::milliseconds(100)) return;
-  last_ = now;
-  drawn_ = true;
-  fmt::print(stderr, "\r\033[Kcontinue: {} branches done, {} points, {} = {:.8g}", branches,
-             points_, parameter_, point.parameter);
-}
-
 nlohmann::json BranchJson(const TracedBranch& traced) {
   return nlohmann::json::parse(impactkit::BranchJson(traced.branch, traced.label, traced.origin));
 }

@@ -18,26 +18,6 @@
 
 namespace impactkit::cli {
 
-/// A progress line on stderr while a person watches (silent otherwise).
-class BranchProgress {
- public:
-  explicit BranchProgress(std::string parameter);
-  /// Erases the line.
-  ~BranchProgress();
-  BranchProgress(const BranchProgress&) = delete;
-  BranchProgress& operator=(const BranchProgress&) = delete;
-
-  /// One more point, with `branches` branches traced before it.
-  void operator()(int branches, const BranchPoint& point);
-
- private:
-  const bool enabled_;
-  const std::string parameter_;
-  int points_ = 0;
-  bool drawn_ = false;
-  std::chrono::steady_clock::time_point last_{};
-};
-
 /// A traced branch as the outputs name it.
 struct TracedBranch {
   std::string label;   ///< "main" (or "seed2", ...), "pd1", "graze2", "bp3"

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "impactkit/dynamics/segment.hpp"
@@ -37,22 +38,41 @@ void ProgressLine::OnSegment(const Segment& segment) {
   drawn_ = true;
 }
 
-StepProgress::StepProgress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
+RunProgress::RunProgress(std::string parameter, std::string parameter2)
+    : enabled_(::isatty(STDERR_FILENO) == 1),
+      parameter_(std::move(parameter)),
+      parameter2_(std::move(parameter2)),
+      control_([this](const Progress& progress) { Draw(progress); }) {}
 
-StepProgress::~StepProgress() {
+RunProgress::~RunProgress() {
   if (drawn_) fmt::print(stderr, "\r\033[K");
 }
 
-bool StepProgress::Due() {
-  if (!enabled_) return false;
+void RunProgress::Draw(const Progress& progress) {
+  if (!enabled_) return;
   const Clock::time_point now = Clock::now();
-  return now - start_ >= kQuietPeriod && now - last_drawn_ >= kRedrawInterval;
+  const bool last = progress.total > 0 && progress.done == progress.total;
+  if (now - start_ < kQuietPeriod || (now - last_drawn_ < kRedrawInterval && !last)) return;
+  fmt::print(stderr, "\r\033[Kimpactkit: {}", Text(progress));
+  last_drawn_ = now;
+  drawn_ = true;
 }
 
-void StepProgress::Draw(const std::string& text) {
-  fmt::print(stderr, "\r\033[Kimpactkit: {}", text);
-  last_drawn_ = Clock::now();
-  drawn_ = true;
+std::string RunProgress::Text(const Progress& progress) const {
+  std::string text =
+      progress.total > 0
+          ? fmt::format("{} of {} {:3.0f}% ({} of {} values)", progress.stage, parameter_,
+                        100.0 * static_cast<double>(progress.done) / progress.total, progress.done,
+                        progress.total)
+          : fmt::format("{}: {} {}", progress.stage, progress.done,
+                        progress.stage == "diagram" ? "branches done" : "points");
+  if (std::isfinite(progress.parameter)) {
+    text += fmt::format(", {} = {:.8g}", parameter_, progress.parameter);
+  }
+  if (std::isfinite(progress.parameter2)) {
+    text += fmt::format(", {} = {:.8g}", parameter2_, progress.parameter2);
+  }
+  return text;
 }
 
 }  // namespace impactkit::cli

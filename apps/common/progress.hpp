@@ -7,6 +7,7 @@
 #include <chrono>
 #include <string>
 
+#include "impactkit/core/run_control.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 
 namespace impactkit::cli {
@@ -36,31 +37,32 @@ class ProgressLine : public Observer {
   bool drawn_ = false;
 };
 
-/// The same line for work counted in steps of unknown number (points of a
-/// continued curve): the caller says what to show.
-class StepProgress {
+/// The same line for a library run (sweep, branch, curve, diagram): its
+/// RunControl reports here. "sweep of omega 35% (840 of 2401 values)",
+/// "branch: 314 points, omega = 1.2345", "diagram: 3 branches done, ...".
+class RunProgress {
  public:
-  StepProgress();
+  /// The names of the parameters the run's points carry.
+  explicit RunProgress(std::string parameter, std::string parameter2 = "");
   /// Erases the line.
-  ~StepProgress();
-  StepProgress(const StepProgress&) = delete;
-  StepProgress& operator=(const StepProgress&) = delete;
+  ~RunProgress();
+  RunProgress(const RunProgress&) = delete;
+  RunProgress& operator=(const RunProgress&) = delete;
 
-  /// One more step; `text` (made only when drawn) is shown after "impactkit: ".
-  template <typename Text>
-  void Step(const Text& text) {
-    if (Due()) Draw(text());
-  }
+  /// What to pass the library's driver.
+  const RunControl& Control() const { return control_; }
 
  private:
   using Clock = std::chrono::steady_clock;
-  bool Due();
-  void Draw(const std::string& text);
+  void Draw(const Progress& progress);
+  std::string Text(const Progress& progress) const;
 
   const bool enabled_;
+  const std::string parameter_, parameter2_;
   const Clock::time_point start_ = Clock::now();
   Clock::time_point last_drawn_{};
   bool drawn_ = false;
+  RunControl control_;
 };
 
 }  // namespace impactkit::cli

@@ -21,6 +21,7 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/progress.hpp"
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/continuation/diagram.hpp"
@@ -169,9 +170,9 @@ void RunContinue(const ContinueRequest& request) {
   network.max_depth = request.switch_period_doubling || request.follow_grazing ? 1 : 0;
   std::vector<TracedBranch> branches;
   {
-    BranchProgress progress(request.parameter);
+    const RunProgress progress(request.parameter);
     branches = LabelBranches(TraceDiagram({{system, start, "from the start", options.direction}},
-                                          network, std::ref(progress)));
+                                          network, progress.Control()));
   }
   for (const TracedBranch& b : branches) PrintBranch(b);
   if (request.follow_grazing) ReportGrazingFollowed(branches);

@@ -276,15 +276,8 @@ void RunCurve(const CurveRequest& request) {
   fmt::print("start:      {}\n", start.special.Describe(request.parameter));
   impactkit::Curve curve;
   {
-    StepProgress progress;
-    int points = 0;
-    curve = ContinueCurve(start, options, [&](const CurvePoint& point) {
-      ++points;
-      progress.Step([&] {
-        return fmt::format("curve: {} points, {} = {:.8g}, {} = {:.8g}", points, request.parameter,
-                           point.parameter, request.parameter2, point.parameter2);
-      });
-    });
+    const RunProgress progress(request.parameter, request.parameter2);
+    curve = ContinueCurve(start, options, progress.Control());
   }
   PrintCurve(curve);
   if (curve.points.size() < 2) {

@@ -21,6 +21,7 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/progress.hpp"
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
@@ -127,23 +128,16 @@ void RunDiagram(const DiagramRequest& request) {
         {system, found.orbit, fmt::format("start at {} = {}", request.parameter, *request.start)});
   }
   fmt::print("system:     {}\n", DescribeSystem(system));
-  const bool tty = ::isatty(STDERR_FILENO) == 1;
   SweptDiagram swept;
   if (request.sweep_values == 0) {
-    BranchProgress progress(request.parameter);
+    const RunProgress progress(request.parameter);
     swept.seeds = seeds;
-    swept.diagram = TraceDiagram(seeds, options.diagram, std::ref(progress));
+    swept.diagram = TraceDiagram(seeds, options.diagram, progress.Control());
   } else {
-    swept = TraceSweptDiagram(system, seeds, options,
-                              [&](const std::string& stage, int done, int total) {
-                                if (!tty) return;
-                                if (total > 0) {
-                                  fmt::print(stderr, "\r\033[K{} {}/{}", stage, done, total);
-                                } else {
-                                  fmt::print(stderr, "\r\033[K{}: {} branches traced", stage, done);
-                                }
-                              });
-    if (tty) fmt::print(stderr, "\r\033[K");
+    {
+      const RunProgress progress(request.parameter);
+      swept = TraceSweptDiagram(system, seeds, options, progress.Control());
+    }
     fmt::print("sweep:      {}\n", swept.sweep.BriefReport());
   }
   fmt::print("seeds:      {}\n", swept.seeds.size());

@@ -135,7 +135,9 @@ std::string DiagramTitle(const SweptDiagram& swept) {
   const Diagram& diagram = swept.diagram;
   return fmt::format("Connected bifurcation diagram: {} branches from {} seeds{}",
                      diagram.branches.size(), swept.seeds.size(),
-                     diagram.complete ? "" : " (incomplete: " + diagram.message + ")");
+                     diagram.termination == Termination::kCompleted
+                         ? ""
+                         : " (incomplete: " + diagram.message + ")");
 }
 
 /// The whole range: the sweep's points underneath, the branches coloured by

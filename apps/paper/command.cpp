@@ -23,6 +23,7 @@
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/progress.hpp"
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
@@ -199,8 +200,8 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
     swept.seeds.push_back(std::move(s));
   }
   {
-    BranchProgress progress("omega");
-    swept.diagram = TraceDiagram(swept.seeds, options.diagram, std::ref(progress));
+    const RunProgress progress("omega");
+    swept.diagram = TraceDiagram(swept.seeds, options.diagram, progress.Control());
   }
   swept.sweep = std::move(sweep);
   PrintDiagram(swept.diagram);
@@ -265,15 +266,6 @@ void PrintRegimes(const nlohmann::json& regimes) {
                r["motion"].get<std::string>());
   }
   if (short_runs > 0) fmt::print("  (and {} windows of one or two values)\n", short_runs);
-}
-
-/// "sweep 120/2401" on stderr while a person watches.
-SweepProgress SweepProgressLine() {
-  return [tty = ::isatty(STDERR_FILENO) == 1](int done, int total) {
-    if (!tty) return;
-    fmt::print(stderr, "\r\033[K  sweep {}/{}", done, total);
-    if (done == total) fmt::print(stderr, "\r\033[K");
-  };
 }
 
 SweepOptions PaperSweepOptions(const Resolution& resolution, int threads) {
@@ -366,7 +358,11 @@ void RunPaper(const PaperRequest& request) {
   Stage(3, "brute-force bifurcation diagram (Fig. 3)");
   fmt::print("brute-force diagram, omega 0.1 to 2.5 ({} values):\n", resolution.sweep_values);
   const SweepOptions sweep_options = PaperSweepOptions(resolution, threads);
-  SweepResult sweep = RunSweep(paper, sweep_options, SweepProgressLine());
+  SweepResult sweep;
+  {
+    const RunProgress progress("omega");
+    sweep = RunSweep(paper, sweep_options, progress.Control());
+  }
   summary["regimes"] = SweepStage(paper, sweep_options, sweep, folder);
   Stage(4, "connected bifurcation diagram");
   fmt::print(

@@ -153,13 +153,13 @@ void RunSimulate(const SimulateRequest& request) {
 
   const Window window = WindowOf(request, system);
   HybridState state = initial_state;
-  double elapsed = Advance(simulator, state, window.begin, "transient", nullptr).elapsed_seconds;
+  double elapsed = Advance(simulator, state, window.begin, "transient", nullptr).seconds;
   std::optional<double> sample_interval;
   if (outputs.NeedsSeries()) sample_interval = window.period / request.samples_per_period;
   WindowRecorders recorders(window, sample_interval);
   const SimulationSummary recording =
       Advance(simulator, state, window.end, "recording", &recorders.all);
-  elapsed += recording.elapsed_seconds;
+  elapsed += recording.seconds;
 
   const WindowAnalysis analysis = Analyse(recorders, window, recording);
   const SimulateResult result{request,  system,        window, recorders,

@@ -83,7 +83,7 @@ struct SimulateResult {
   const WindowAnalysis& analysis;
   const HybridState& initial_state;  ///< at t = 0
   const HybridState& final_state;    ///< at the end of the window
-  double elapsed_seconds = 0.0;      ///< transient and window together
+  double seconds = 0.0;              ///< transient and window together
 };
 
 /// The simulator options the request asks for.

@@ -131,7 +131,7 @@ std::string SummaryText(const SimulateResult& result) {
                                 100.0 * analysis.sticking_fraction, analysis.chatter_sequences,
                                 analysis.chatter_sequences == 1 ? "" : "s", cuts));
   line("motion:", DescribeMotion(analysis));
-  line("run time:", fmt::format("{:.3g} s", result.elapsed_seconds));
+  line("run time:", fmt::format("{:.3g} s", result.seconds));
   line("wrote:", WrittenFiles(result.request));
   return text;
 }
@@ -154,7 +154,7 @@ std::string SummaryJson(const SimulateResult& result, const Provenance& provenan
   json["chatter_cuts"] = result.analysis.chatter_cuts;
   json["motion"] = MotionJson(result.analysis);
   json["final_state"] = StateJson(result.final_state);
-  json["elapsed_seconds"] = result.elapsed_seconds;
+  json["seconds"] = result.seconds;
   return json.dump(2);
 }
 

@@ -19,6 +19,7 @@
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
+#include "common/progress.hpp"
 #include "common/provenance.hpp"
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
@@ -36,40 +37,6 @@ struct SweepRequest {
   RunFlags run;
   int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::string out, summary, plot;
-};
-
-/// Values done of K on stderr, rewritten in place; like ProgressLine
-/// (common/progress.hpp), only on a terminal and only after the first second.
-class SweepProgressLine {
- public:
-  explicit SweepProgressLine(std::string parameter)
-      : enabled_(::isatty(STDERR_FILENO) == 1), parameter_(std::move(parameter)) {}
-  ~SweepProgressLine() {
-    if (drawn_) fmt::print(stderr, "\r\033[K");
-  }
-  SweepProgressLine(const SweepProgressLine&) = delete;
-  SweepProgressLine& operator=(const SweepProgressLine&) = delete;
-
-  void Update(int done, int total) {
-    if (!enabled_) return;
-    const Clock::time_point now = Clock::now();
-    if (now - start_ < std::chrono::seconds(1) ||
-        (now - last_drawn_ < std::chrono::milliseconds(200) && done < total)) {
-      return;
-    }
-    fmt::print(stderr, "\r\033[Kimpactkit: sweep of {} {:3.0f}% ({} of {} values)", parameter_,
-               100.0 * done / total, done, total);
-    last_drawn_ = now;
-    drawn_ = true;
-  }
-
- private:
-  using Clock = std::chrono::steady_clock;
-  const bool enabled_;
-  const std::string parameter_;
-  const Clock::time_point start_ = Clock::now();
-  Clock::time_point last_drawn_{};
-  bool drawn_ = false;
 };
 
 /// The flags as library options; flag names in the messages.
@@ -154,9 +121,8 @@ void RunSweepCommand(const SweepRequest& request) {
 
   SweepResult result;
   {
-    SweepProgressLine progress(options.parameter);
-    result = RunSweep(system, options,
-                      [&progress](int done, int total) { progress.Update(done, total); });
+    const RunProgress progress(options.parameter);
+    result = RunSweep(system, options, progress.Control());
   }
 
   fmt::print("system:  {}\n", DescribeSystem(system));

@@ -55,6 +55,7 @@ py::dict SweepArrays(const SweepResult& result) {
   out["impact_t"] = MoveToArray(std::move(impact_t));
   out["impact_phase"] = MoveToArray(std::move(impact_phase));
   out["impact_velocity"] = MoveToArray(std::move(impact_velocity));
+  out["termination"] = ToString(result.termination);
   out["report"] = result.BriefReport();
   return out;
 }
@@ -79,7 +80,7 @@ py::dict SweepPy(const System& system, const std::string& parameter, double from
     throw InvalidInput("each_from must be 'previous' or 'rest', got '" + each_from + "'");
   }
   const SweepResult result =
-      WithoutGil([&] { return RunSweep(system, options, [](int, int) { CheckInterrupt(); }); });
+      WithoutGil([&] { return RunSweep(system, options, InterruptibleRun()); });
   return SweepArrays(result);
 }
 
@@ -139,7 +140,8 @@ p, q (0 where undefined; a sticking motion has its q and p = 0, its kind
 says so); of all values concatenated, the max - min of x_c
 and of x_1 in every recorded forcing period (range_contact, range_first,
 delimited by range_offsets, K + 1) and every recorded impact (impact_t,
-impact_phase, impact_velocity, delimited by impact_offsets); and report. each_from: 'previous' (each value from the previous final
+impact_phase, impact_velocity, delimited by impact_offsets); termination
+('completed') and report. each_from: 'previous' (each value from the previous final
 state) or 'rest'. Releases the GIL; Ctrl-C raises
 KeyboardInterrupt.)");
   module.def("lyapunov", &LyapunovPy, py::arg("system"), py::arg("eta"), py::kw_only(),

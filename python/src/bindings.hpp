@@ -44,6 +44,12 @@ struct Interrupted : std::exception {};
 /// the signal handlers and throws Interrupted if one raised. Only Python's
 /// main thread sees signals; elsewhere it returns.
 void CheckInterrupt();
+/// The control of a library run called from Python: Ctrl-C, checked at
+/// each progress report, raises KeyboardInterrupt (through Interrupted).
+class InterruptibleRun : public RunControl {
+ public:
+  InterruptibleRun() : RunControl([](const Progress&) { CheckInterrupt(); }) {}
+};
 /// Runs `call` without the GIL; an Interrupted from it becomes the pending
 /// Python exception.
 template <class Call>

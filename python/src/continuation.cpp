@@ -50,8 +50,7 @@ Branch ContinueFromStart(const BranchStart& start, const std::string& parameter,
     options.orbit.p = start.orbit.p;
     options.orbit.q = start.orbit.q;
   }
-  return WithoutGil(
-      [&] { return ContinueBranch(start, options, [](const BranchPoint&) { CheckInterrupt(); }); });
+  return WithoutGil([&] { return ContinueBranch(start, options, InterruptibleRun()); });
 }
 
 Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,

@@ -39,9 +39,7 @@ Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialP
   options.orbit.q = branch.q;
   System at = system;
   SetParameter(at, branch.parameter, special.parameter);
-  return WithoutGil([&] {
-    return ContinueCurve({at, special}, options, [](const CurvePoint&) { CheckInterrupt(); });
-  });
+  return WithoutGil([&] { return ContinueCurve({at, special}, options, InterruptibleRun()); });
 }
 
 void BindCodim2(py::module_& module) {

@@ -55,9 +55,7 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
                                         max_depth, max_branches, threads, switch_period_doubling,
                                         switch_grazing, switch_branch_points, switch_pitchforks});
   options.continuation.user_tests = UserTestsFrom(user_tests);
-  return WithoutGil([&] {
-    return TraceDiagram(seeds, options, [](int, const BranchPoint&) { CheckInterrupt(); });
-  });
+  return WithoutGil([&] { return TraceDiagram(seeds, options, InterruptibleRun()); });
 }
 
 void BindNode(py::module_& module) {
@@ -132,8 +130,10 @@ void BindGraph(py::module_& module) {
       .def_readonly("duplicate_starts", &Diagram::duplicate_starts,
                     "Starts not traced: their orbit lies on a branch traced already.")
       .def_readonly("failed_starts", &Diagram::failed_starts, "Starts that did not converge.")
-      .def_readonly("complete", &Diagram::complete,
-                    "Every start was followed (no depth or branch bound cut the network short).")
+      .def_property_readonly(
+          "termination", [](const Diagram& d) { return ToString(d.termination); },
+          "'completed' (every start was followed), 'max_points' (a depth or branch bound cut "
+          "the network short) or 'stopped'.")
       .def_readonly("message", &Diagram::message, "Which bound cut it short, if one did.")
       .def_readonly("seconds", &Diagram::seconds, "Wall time.")
       .def(

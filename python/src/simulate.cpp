@@ -167,7 +167,7 @@ py::dict Simulate(const System& system, double t_end, std::optional<Eigen::Vecto
   result["landings"] = summary.landings;
   result["chatter_cuts"] = summary.chatter_cuts;
   result["stuck_time"] = summary.stuck_time;
-  result["seconds"] = summary.elapsed_seconds;
+  result["seconds"] = summary.seconds;
   result["final_state"] = py::dict(py::arg("t") = state.t, py::arg("x") = state.x,
                                    py::arg("v") = state.v, py::arg("stuck") = state.Stuck());
   return result;

@@ -31,6 +31,7 @@ def test_sweep_classifies_the_known_orbits_and_ignores_threads():
     one = impactkit.sweep(s, threads=1, **kwargs)
     two = impactkit.sweep(s, threads=2, **kwargs)
     np.testing.assert_array_equal(one["values"], [0.6, 0.61, 0.62, 0.63, 0.64])
+    assert one["termination"] == two["termination"] == "completed"
     # omega = 0.6 is the P(2,1) orbit that find_orbit finds from simulation.
     orbit = impactkit.find_orbit(impactkit.System.paper(0.6))
     assert (one["kind"][0], one["p"][0], one["q"][0]) == ("periodic", orbit.p, orbit.q)

@@ -27,6 +27,8 @@ def test_graph_shape(diagram):
     assert np.all(diagram.edge_to < len(diagram.nodes))
     assert np.all(diagram.edge_first <= diagram.edge_last)
     assert diagram.branches[0].origin == "seed 1" and diagram.branches[0].parent == -1
+    # max_depth 2 stops the switching below the doubled branches' own doublings.
+    assert diagram.termination == "max_points" and diagram.message == "max_depth (2) reached"
 
 
 def test_equals_the_command_line_diagram(diagram, tmp_path):

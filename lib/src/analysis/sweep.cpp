@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "impactkit/analysis/steady_window.hpp"
@@ -301,8 +302,7 @@ std::vector<SweepPoint> RunSweepChunk(const System& system, const SweepOptions& 
           std::make_move_iterator(points.begin() + end)};
 }
 
-SweepResult RunSweep(const System& system, const SweepOptions& options,
-                     const SweepProgress& progress) {
+SweepResult RunSweep(const System& system, const SweepOptions& options, const RunControl& control) {
   const auto start_time = std::chrono::steady_clock::now();
   const SweepPlan plan = PlanSweep(system, options);
   const int total = static_cast<int>(plan.values.size());
@@ -313,17 +313,24 @@ SweepResult RunSweep(const System& system, const SweepOptions& options,
   std::mutex mutex;
   int done = 0;
   auto value_done = [&] {
-    if (!progress) return;
     const std::lock_guard<std::mutex> lock(mutex);
-    progress(++done, total);
+    control.Report({.stage = "sweep", .done = ++done, .total = total});
   };
-  std::atomic<int> next_chunk{0};
-  std::atomic<bool> failed{false};
+  int next_chunk = 0;
+  bool failed = false;
   std::exception_ptr error;
+  // Chunks are taken in order, under the lock with the cancellation check,
+  // and each taken one finishes: those done when the run is cancelled are
+  // the leading ones.
+  auto take = [&]() -> std::optional<int> {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (failed || control.Cancelled() || next_chunk == plan.chunks) return std::nullopt;
+    return next_chunk++;
+  };
   auto worker = [&] {
-    for (int chunk = next_chunk++; chunk < plan.chunks && !failed; chunk = next_chunk++) {
+    while (const std::optional<int> chunk = take()) {
       try {
-        RunChunk(plan, chunk, result.points, value_done);
+        RunChunk(plan, *chunk, result.points, value_done);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(mutex);
         if (!error) error = std::current_exception();
@@ -337,6 +344,14 @@ SweepResult RunSweep(const System& system, const SweepOptions& options,
   worker();
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+  result.termination = Termination::kCompleted;
+  if (done < total) {
+    result.points.resize(done);
+    result.termination = Termination::kStopped;
+    result.message =
+        fmt::format("{} after {} of {} values", Describe(result.termination), done, total);
+  }
+  result.iterations = done;
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;

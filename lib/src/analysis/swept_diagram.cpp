@@ -107,8 +107,7 @@ bool SweptDiagramOptions::IsValid(std::string* error) const {
 }
 
 SweptDiagram TraceSweptDiagram(const System& system, const std::vector<DiagramSeed>& seeds,
-                               const SweptDiagramOptions& options,
-                               const SweptDiagramProgress& progress) {
+                               const SweptDiagramOptions& options, const RunControl& control) {
   std::string error;
   Require(options.IsValid(&error), error);
   SweepOptions sweep = options.sweep;
@@ -116,9 +115,13 @@ SweptDiagram TraceSweptDiagram(const System& system, const std::vector<DiagramSe
   sweep.from = options.diagram.continuation.lower;
   sweep.to = options.diagram.continuation.upper;
   SweptDiagram result;
-  result.sweep = RunSweep(system, sweep, [&](int done, int total) {
-    if (progress) progress("sweep", done, total);
-  });
+  result.sweep = RunSweep(system, sweep, control);
+  if (result.sweep.termination == Termination::kStopped) {
+    result.diagram.parameter = sweep.parameter;
+    result.diagram.termination = Termination::kStopped;
+    result.diagram.message = result.sweep.message;
+    return result;
+  }
   result.seeds = seeds;
   for (DiagramSeed& seed : SeedsFromSweep(system, sweep, result.sweep, options.seeds)) {
     result.seeds.push_back(std::move(seed));
@@ -127,10 +130,7 @@ SweptDiagram TraceSweptDiagram(const System& system, const std::vector<DiagramSe
           fmt::format("no seed for the diagram: the sweep of {} over [{}, {}] shows no periodic "
                       "window and none was given",
                       sweep.parameter, sweep.from, sweep.to));
-  result.diagram =
-      TraceDiagram(result.seeds, options.diagram, [&](int branches, const BranchPoint&) {
-        if (progress) progress("diagram", branches, 0);
-      });
+  result.diagram = TraceDiagram(result.seeds, options.diagram, control);
   return result;
 }
 

@@ -59,10 +59,10 @@ std::string NearContact(const BranchPoint& point) {
 class BranchTracer {
  public:
   BranchTracer(const BranchProblem& problem, const ContinuationOptions& options,
-               const ContinuationProgress& progress)
+               const RunControl& control)
       : problem_(problem),
         options_(options),
-        progress_(progress),
+        control_(control),
         sticks_(problem.Section() == OrbitSection::kRelease) {
     newton_ = options.orbit.newton;
     newton_.max_iterations = options.corrector_iterations;
@@ -77,6 +77,11 @@ class BranchTracer {
       if (static_cast<int>(half.points.size()) >= options_.max_points) {
         half.end = Termination::kMaxPoints;
         half.end_message = fmt::format("{} points reached", options_.max_points);
+        return half;
+      }
+      if (control_.Cancelled()) {
+        half.end = Termination::kStopped;
+        half.end_message = Describe(Termination::kStopped);
         return half;
       }
       const BranchPoint from = half.points.back();
@@ -241,7 +246,7 @@ class BranchTracer {
   void Accept(const BranchPoint& point, HalfBranch* half) const {
     refused_ = {};
     half->points.push_back(point);
-    if (progress_) progress_(point);
+    control_.Report({.stage = "branch", .done = ++accepted_, .parameter = point.parameter});
   }
 
   /// Locates each test function's sign change between consecutive points
@@ -570,8 +575,9 @@ class BranchTracer {
 
   const BranchProblem& problem_;
   const ContinuationOptions& options_;
-  const ContinuationProgress& progress_;
-  const bool sticks_;  ///< a family of sticking orbits
+  const RunControl& control_;
+  mutable std::int64_t accepted_ = 0;  ///< points accepted, both directions: the progress
+  const bool sticks_;                  ///< a family of sticking orbits
   NewtonOptions newton_;
   /// A sticking family's end that a trial since the last accepted point
   /// was beyond, and its μ.
@@ -671,7 +677,7 @@ bool ContinuationOptions::IsValid(std::string* error) const {
 }
 
 Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
-                      const ContinuationProgress& progress) {
+                      const RunControl& control) {
   const auto clock_start = std::chrono::steady_clock::now();
   std::string error;
   Require(options.IsValid(&error), error);
@@ -719,11 +725,11 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
       reduced.orbit.q = primitive.q;
       BranchStart shorter = start;
       shorter.orbit = DescribeOrbit(*map, orbit.eta, primitive.p, primitive.q);
-      return ContinueBranch(shorter, reduced, progress);
+      return ContinueBranch(shorter, reduced, control);
     }
   }
 
-  BranchTracer tracer(problem, family, progress);
+  BranchTracer tracer(problem, family, control);
   Branch branch;
   branch.parameter = options.parameter;
   branch.section = orbit.section;

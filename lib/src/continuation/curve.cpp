@@ -50,12 +50,12 @@ bool HasOrbit(const CurvePoint& point) { return point.orbit.multipliers.size() >
 class CurveTracer {
  public:
   CurveTracer(CurveProblem& problem, SpecialPointType type, const CurveOptions& options,
-              const CurveProgress& progress)
+              const RunControl& control)
       : problem_(problem),
         type_(type),
         tests_(detail::SecondTests(type)),
         options_(options),
-        progress_(progress) {
+        control_(control) {
     newton_ = options.orbit.newton;
     newton_.max_iterations = options.corrector_iterations;
   }
@@ -73,6 +73,11 @@ class CurveTracer {
     }
     double step = options_.initial_step;
     while (static_cast<int>(half.points.size()) < options_.max_points) {
+      if (control_.Cancelled()) {
+        half.end = Termination::kStopped;
+        half.message = Describe(Termination::kStopped);
+        return half;
+      }
       const CurvePoint from = half.points.back();
       int iterations = 0;
       std::optional<CurvePoint> next = Advance(from, step, &iterations);
@@ -205,7 +210,10 @@ class CurveTracer {
   void Accept(const CurvePoint& point, HalfCurve* half) {
     half->points.push_back(point);
     problem_.UpdateBorders(point.x);
-    if (progress_) progress_(point);
+    control_.Report({.stage = "curve",
+                     .done = ++accepted_,
+                     .parameter = point.parameter,
+                     .parameter2 = point.parameter2});
   }
 
   /// Locates each second test's sign change between consecutive points and
@@ -328,7 +336,8 @@ class CurveTracer {
   SpecialPointType type_;
   std::vector<detail::SecondTest> tests_;
   const CurveOptions& options_;
-  const CurveProgress& progress_;
+  const RunControl& control_;
+  std::int64_t accepted_ = 0;  ///< points accepted, both directions: the progress
   NewtonOptions newton_;
   /// The depth at which EndAtCorner last tried (per direction).
   double corner_tried_depth_ = std::numeric_limits<double>::infinity();
@@ -490,7 +499,7 @@ bool CurveOptions::IsValid(std::string* error) const {
 }
 
 Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
-                    const CurveProgress& progress) {
+                    const RunControl& control) {
   const auto clock_start = std::chrono::steady_clock::now();
   std::string error;
   Require(options.IsValid(&error), error);
@@ -507,7 +516,7 @@ Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
   const CurvePoint first =
       StartPoint(problem, problem.Join(setup.eta, setup.contact_time, mu1, mu2), own);
 
-  CurveTracer tracer(problem, special.type, own, progress);
+  CurveTracer tracer(problem, special.type, own, control);
   HalfCurve forward = tracer.Trace(first);
   HalfCurve backward{{first}, {}, forward.end, forward.message};
   if (forward.end != Termination::kClosed) {  // a loop is whole in one direction

@@ -110,12 +110,13 @@ namespace {
 
 class NetworkTracer {
  public:
-  NetworkTracer(System system, const DiagramOptions& options, const DiagramProgress& progress)
+  NetworkTracer(System system, const DiagramOptions& options, const RunControl& control)
       : system_(std::move(system)),
         options_(options),
-        progress_(progress),
+        control_(control),
         builder_(&diagram_, options) {
     diagram_.parameter = options.continuation.parameter;
+    diagram_.termination = Termination::kCompleted;
   }
 
   Diagram Run(const std::vector<DiagramSeed>& seeds) {
@@ -135,7 +136,7 @@ class NetworkTracer {
            0,
            -1});
     }
-    while (!generation.empty()) {
+    while (!generation.empty() && !control_.Cancelled()) {
       std::vector<PendingStart> next;
       for (int index : TraceGeneration(Untraced(std::move(generation)))) {
         const std::vector<PendingStart> born = Switch(index);
@@ -143,6 +144,7 @@ class NetworkTracer {
       }
       generation = std::move(next);
     }
+    if (control_.Cancelled()) Incomplete(Termination::kStopped, Describe(Termination::kStopped));
     return std::move(diagram_);
   }
 
@@ -180,7 +182,8 @@ class NetworkTracer {
   /// holds. Returns the indices of the added branches.
   std::vector<int> TraceGeneration(const std::vector<PendingStart>& starts) {
     if (!starts.empty() && static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
-      Incomplete(fmt::format("max_branches ({}) reached", options_.max_branches));
+      Incomplete(Termination::kMaxPoints,
+                 fmt::format("max_branches ({}) reached", options_.max_branches));
       return {};  // not traced at all: none of them could be kept
     }
     std::vector<Branch> traced(starts.size());
@@ -201,11 +204,14 @@ class NetworkTracer {
         // An exception may not leave a worker thread (it would terminate
         // the program): kept, and rethrown or counted after the join.
         try {
-          traced[k] = ContinueBranch(starts[k].start, options, [&](const BranchPoint& point) {
-            if (!progress_) return;
-            std::lock_guard<std::mutex> lock(mutex);
-            progress_(static_cast<int>(diagram_.branches.size()), point);
-          });
+          const RunControl branch_control(
+              [&](const Progress& point) {
+                control_.Report({.stage = "diagram",
+                                 .done = static_cast<std::int64_t>(diagram_.branches.size()),
+                                 .parameter = point.parameter});
+              },
+              control_);
+          traced[k] = ContinueBranch(starts[k].start, options, branch_control);
         } catch (...) {
           errors[k] = std::current_exception();
         }
@@ -236,7 +242,8 @@ class NetworkTracer {
         continue;
       }
       if (static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
-        Incomplete(fmt::format("max_branches ({}) reached", options_.max_branches));
+        Incomplete(Termination::kMaxPoints,
+                   fmt::format("max_branches ({}) reached", options_.max_branches));
         break;
       }
       diagram_.branches.push_back(
@@ -246,9 +253,11 @@ class NetworkTracer {
     return added;
   }
 
-  void Incomplete(const std::string& why) {
-    if (diagram_.complete) diagram_.message = why;
-    diagram_.complete = false;
+  /// Records the first reason the network is cut short.
+  void Incomplete(Termination termination, const std::string& why) {
+    if (diagram_.termination != Termination::kCompleted) return;
+    diagram_.termination = termination;
+    diagram_.message = why;
   }
 
   /// Adds branch `index` to the graph and returns the starts born at its
@@ -260,7 +269,8 @@ class NetworkTracer {
     std::vector<PendingStart> born;
     if (traced.depth >= options_.max_depth) {
       if (!branch.special_points.empty()) {
-        Incomplete(fmt::format("max_depth ({}) reached", options_.max_depth));
+        Incomplete(Termination::kMaxPoints,
+                   fmt::format("max_depth ({}) reached", options_.max_depth));
       }
       return born;
     }
@@ -348,7 +358,7 @@ class NetworkTracer {
   /// sets the value it needs).
   const System system_;
   const DiagramOptions& options_;
-  const DiagramProgress& progress_;
+  const RunControl& control_;
   Diagram diagram_;
   detail::DiagramBuilder builder_;
 };
@@ -372,7 +382,7 @@ bool DiagramOptions::IsValid(std::string* error) const {
 }
 
 Diagram TraceDiagram(const std::vector<DiagramSeed>& seeds, const DiagramOptions& options,
-                     const DiagramProgress& progress) {
+                     const RunControl& control) {
   const auto clock_start = std::chrono::steady_clock::now();
   std::string error;
   Require(options.IsValid(&error), error);
@@ -381,7 +391,8 @@ Diagram TraceDiagram(const std::vector<DiagramSeed>& seeds, const DiagramOptions
     Require(seed.system.Dof() == seeds.front().system.Dof(),
             "the seeds of one diagram must be orbits of one system");
   }
-  Diagram diagram = NetworkTracer(seeds.front().system, options, progress).Run(seeds);
+  Diagram diagram = NetworkTracer(seeds.front().system, options, control).Run(seeds);
+  diagram.iterations = static_cast<int>(diagram.branches.size());
   diagram.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return diagram;

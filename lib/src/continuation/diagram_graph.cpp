@@ -29,7 +29,7 @@ std::string Diagram::BriefReport() const {
       "{} branches, {} nodes, {} edges in {:.3g} s ({} starts on traced branches, "
       "{} seeds not converged){}",
       branches.size(), nodes.size(), edges.size(), seconds, duplicate_starts, failed_starts,
-      complete ? "" : "; incomplete: " + message);
+      termination == Termination::kCompleted ? "" : "; incomplete: " + message);
 }
 
 namespace detail {

@@ -50,8 +50,7 @@ std::string SimulationSummary::BriefReport() const {
   return fmt::format(
       "{}: {} impacts, {} landings, {} chatter sequences ended{}, {} releases, stuck {:.6g} "
       "time units, {:.3g} s",
-      Describe(termination), impacts, landings, chatter_jumps, cuts, releases, stuck_time,
-      elapsed_seconds);
+      Describe(termination), impacts, landings, chatter_jumps, cuts, releases, stuck_time, seconds);
 }
 
 /// The hybrid system (both modes' flows, decomposed once) and the options.
@@ -126,6 +125,7 @@ class HybridRun {
 SimulationSummary HybridRun::Execute() {
   const auto start = std::chrono::steady_clock::now();
   window_begin_ = state_.t;
+  summary_.termination = Termination::kCompleted;
   while (state_.t < t_end_) {
     if (Events() >= options_.max_events) {
       summary_.termination = Termination::kEventLimit;
@@ -148,7 +148,9 @@ SimulationSummary HybridRun::Execute() {
       break;
     }
   }
-  summary_.elapsed_seconds =
+  summary_.message = Describe(summary_.termination);
+  summary_.iterations = Events();
+  summary_.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary_;
 }

@@ -70,10 +70,11 @@ std::string BranchLabel(const Diagram& diagram, std::size_t k) {
 }
 
 std::string DiagramJson(const Diagram& diagram) {
-  nlohmann::json j = {{"parameter", diagram.parameter},     {"complete", diagram.complete},
-                      {"message", diagram.message},         {"seconds", diagram.seconds},
-                      {"nodes", nlohmann::json::array()},   {"edges", nlohmann::json::array()},
-                      {"branches", nlohmann::json::array()}};
+  nlohmann::json j = {
+      {"parameter", diagram.parameter},     {"termination", ToString(diagram.termination)},
+      {"message", diagram.message},         {"seconds", diagram.seconds},
+      {"nodes", nlohmann::json::array()},   {"edges", nlohmann::json::array()},
+      {"branches", nlohmann::json::array()}};
   for (std::size_t k = 0; k < diagram.nodes.size(); ++k) {
     j["nodes"].push_back(NodeJson(diagram.nodes[k], k));
   }

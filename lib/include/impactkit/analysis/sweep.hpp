@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "impactkit/analysis/classify.hpp"
+#include "impactkit/core/run_control.hpp"
 #include "impactkit/core/termination.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
@@ -110,10 +111,12 @@ struct SweepPoint {
   std::int64_t events = 0;  ///< impacts, chatter jumps and releases simulated at this value
 };
 
-struct SweepResult {
+/// Summary::termination: kCompleted, or kStopped (cancelled: `points` then
+/// holds the chunks finished, a leading part of the sweep); iterations
+/// counts the values done.
+struct SweepResult : Summary {
   std::vector<SweepPoint> points;  ///< in sweep order (see `direction`)
   int chunks = 0;
-  double seconds = 0.0;  ///< wall-clock time
   /// "2401 values in 49 chunks on 2 threads, 6.1 s: 1800 periodic, ...".
   std::string BriefReport() const;
 };
@@ -121,15 +124,13 @@ struct SweepResult {
 /// The K values in sweep order.
 std::vector<double> SweepValues(const SweepOptions& options);
 
-/// Called after each finished value with (values done, K); calls are
-/// serialised (never concurrent) but may come from any worker thread.
-using SweepProgress = std::function<void(int done, int total)>;
-
 /// Runs the sweep. Throws InvalidInput for invalid options, an unknown
 /// parameter, a value that makes the system invalid (checked for all values
 /// before any work), or a fixed state that does not fit the system.
+/// Progress: stage "sweep", values done of K. Cancelling `control` lets the
+/// chunks running finish and starts no other.
 SweepResult RunSweep(const System& system, const SweepOptions& options,
-                     const SweepProgress& progress = {});
+                     const RunControl& control = {});
 
 /// The number of chunks RunSweep cuts the sweep into (>= 1).
 int SweepChunks(const SweepOptions& options);

@@ -55,15 +55,12 @@ struct SweptDiagram {
   Diagram diagram;
 };
 
-/// Which stage runs ("sweep" with values done and total, or "diagram" with
-/// branches traced so far and 0).
-using SweptDiagramProgress = std::function<void(const std::string& stage, int done, int total)>;
-
 /// Sweeps `system` over the range, seeds from the windows, and traces the
 /// network from `seeds` (first) and the sweep's. Throws InvalidInput for
-/// bad options or seeds.
+/// bad options or seeds. Progress: the sweep's, then the diagram's stage.
+/// Cancelled during the sweep, it traces no diagram (its termination
+/// kStopped, no branches).
 SweptDiagram TraceSweptDiagram(const System& system, const std::vector<DiagramSeed>& seeds,
-                               const SweptDiagramOptions& options,
-                               const SweptDiagramProgress& progress = {});
+                               const SweptDiagramOptions& options, const RunControl& control = {});
 
 }  // namespace impactkit

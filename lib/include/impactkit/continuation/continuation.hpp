@@ -47,6 +47,7 @@
 
 #include "impactkit/continuation/branch_point.hpp"
 #include "impactkit/continuation/test_functions.hpp"
+#include "impactkit/core/run_control.hpp"
 #include "impactkit/core/termination.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/orbit.hpp"
@@ -140,8 +141,9 @@ struct Branch {
   /// In order along the branch; with kBoth, from the decreasing end to the
   /// increasing end.
   std::vector<BranchPoint> points;
-  std::vector<SpecialPoint> special_points;   ///< in order along the branch
-  Termination end = Termination::kMaxPoints;  ///< why the last point is the last
+  std::vector<SpecialPoint> special_points;  ///< in order along the branch
+  Termination end =
+      Termination::kMaxPoints;  ///< why the last point is the last (see ContinueBranch)
   std::string end_message;
   /// With kBoth: why the first point is the first.
   std::optional<Termination> begin;
@@ -152,9 +154,6 @@ struct Branch {
 /// "P(p,q)", or for a sticking family "P(inf,q)" (with k > 1 sticking
 /// phases, "P(inf,q) k=2").
 std::string FamilyName(const Branch& branch);
-
-/// Called after each accepted point (progress display).
-using ContinuationProgress = std::function<void(const BranchPoint&)>;
 
 /// Where a branch starts: a converged orbit of `system` (whose parameter
 /// value is the start), impacting or sticking, and optionally the initial
@@ -171,9 +170,13 @@ struct BranchStart {
 /// system or not holding the start, or a start that is not an orbit (its
 /// residual above 1e3 times the tolerance). A start that is a shorter orbit
 /// traversed several times (PrimitivePeriod) is followed as that orbit:
-/// Branch::p and q say which.
+/// Branch::p and q say which. Ends (Branch::end, and begin with kBoth)
+/// are kParameterBound, kGrazing, kSticking, kBranchPoint, kMaxPoints,
+/// kCorrectorFailed, kStopped (`control` cancelled), and for a sticking
+/// family kNoSticking or kEarlyRelease. Progress: stage "branch", points
+/// accepted.
 Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
-                      const ContinuationProgress& progress = {});
+                      const RunControl& control = {});
 
 /// A first point on the P(2p, 2q) branch born at the period doubling `pd`
 /// of `branch`, displaced from it by `offset` (arclength) along the flip

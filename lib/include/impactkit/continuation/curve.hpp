@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/core/run_control.hpp"
 #include "impactkit/core/termination.hpp"
 
 namespace impactkit {
@@ -153,8 +154,6 @@ struct CurveStart {
   SpecialPoint special;
 };
 
-using CurveProgress = std::function<void(const CurvePoint&)>;
-
 /// Whether special points of this type lie on two-parameter curves that
 /// ContinueCurve follows: fold, period doubling, Neimark–Sacker, grazing.
 bool HasCurve(SpecialPointType type);
@@ -165,9 +164,12 @@ bool HasCurve(SpecialPointType type);
 /// impact of P(p, q) with p >= 2, or a start the corrector cannot put on
 /// the curve. Such a vanishing impact is the grazing of P(p − 1, q) by a
 /// new contact: pass that orbit's grazing point instead
-/// (ReducedGrazingStart).
+/// (ReducedGrazingStart). Ends (Curve::begin and end) are
+/// kParameterBound, kGrazing, kSticking, kMaxPoints, kCorrectorFailed,
+/// kClosed, or kStopped (`control` cancelled). Progress: stage "curve",
+/// points accepted.
 Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
-                    const CurveProgress& progress = {});
+                    const RunControl& control = {});
 
 /// The special point of `type` on the branch of `start.orbit` in
 /// options.parameter nearest the start's value (the branch is followed both

@@ -68,15 +68,14 @@ struct DiagramSeed {
   ContinuationDirection direction = ContinuationDirection::kBoth;
 };
 
-/// Called after each accepted point of any branch, with the number of
-/// branches traced so far; calls are serialised.
-using DiagramProgress = std::function<void(int branches, const BranchPoint& point)>;
-
 /// Traces the network through `seeds` (in order). Throws InvalidInput for
 /// bad options or a seed that ContinueBranch refuses (outside the bounds,
-/// not an orbit).
+/// not an orbit). Progress: stage "diagram", after each accepted point of
+/// any branch, with the branches finished so far and the point's parameter.
+/// Cancelling `control` stops the branches being traced (each ends
+/// kStopped) and the network (Diagram::termination kStopped).
 Diagram TraceDiagram(const std::vector<DiagramSeed>& seeds, const DiagramOptions& options,
-                     const DiagramProgress& progress = {});
+                     const RunControl& control = {});
 
 /// Whether every point of `branch` lies on `other`: the same P(p,q), and
 /// sorted impact speeds within `tolerance` (relative to 1 + the largest

@@ -67,7 +67,11 @@ struct DiagramBranch {
   int parent = -1;     ///< the node it was started from (-1 for a seed)
 };
 
-struct Diagram {
+/// Summary::termination: kCompleted (every start was followed), kMaxPoints
+/// (a bound of DiagramOptions, depth or branches, cut the network short;
+/// the message says which) or kStopped (cancelled); iterations counts the
+/// branches traced.
+struct Diagram : Summary {
   std::string parameter;
   std::vector<DiagramNode> nodes;
   std::vector<DiagramEdge> edges;
@@ -76,11 +80,6 @@ struct Diagram {
   /// (recognised by the orbit), and seeds that did not converge.
   int duplicate_starts = 0;
   int failed_starts = 0;
-  /// Every start was followed: no bound of DiagramOptions (depth, branches)
-  /// cut the network short. The message says which bound did.
-  bool complete = true;
-  std::string message;
-  double seconds = 0.0;
   /// "7 branches, 15 nodes, 16 edges in 3.2 s (2 starts on traced branches)".
   std::string BriefReport() const;
 };

@@ -7,6 +7,7 @@
 /// Each result carries one Termination and a message saying why in the
 /// computation's words; each function documents which reasons it gives.
 
+#include <cstdint>
 #include <string>
 
 namespace impactkit {
@@ -75,7 +76,9 @@ struct Summary {
   Termination termination = Termination::kFailure;
   /// Why it ended, in the computation's words (e.g. "KINSOL KIN_SUCCESS").
   std::string message;
-  int iterations = 0;    ///< iterations of the method (both methods, if a fallback ran)
+  /// The units of work done: iterations of a method (both methods, if a
+  /// fallback ran), events simulated, values swept, branches traced.
+  std::int64_t iterations = 0;
   double seconds = 0.0;  ///< wall time
 };
 

@@ -102,12 +102,12 @@ struct SimulationOptions {
   bool IsValid(std::string* error) const;
 };
 
-struct SimulationSummary {
-  /// Why Simulate() returned: kCompleted (the state is at t_end),
-  /// kEventLimit or kWorkLimit (the state is at the last event), kStopped
-  /// (an observer asked; the state is where it asked) or kStalled (events
-  /// kept repeating at one instant; the state is there).
-  Termination termination = Termination::kCompleted;
+/// Summary::termination says why Simulate() returned: kCompleted (the
+/// state is at t_end), kEventLimit or kWorkLimit (the state is at the last
+/// event), kStopped (an observer asked; the state is where it asked) or
+/// kStalled (events kept repeating at one instant; the state is there);
+/// iterations counts the events.
+struct SimulationSummary : Summary {
   std::int64_t impacts = 0;        ///< impacts with the stop
   std::int64_t chatter_jumps = 0;  ///< chatter sequences ended by accumulation or threshold
   /// Of those, the ones cut without accumulating (elastic chatter at a
@@ -123,7 +123,6 @@ struct SimulationSummary {
   /// accumulation point of the chatter that led to it (the chatter's tail
   /// before it is impacting, not sticking).
   double stuck_time = 0.0;
-  double elapsed_seconds = 0.0;
   std::string BriefReport() const;
 };
 
