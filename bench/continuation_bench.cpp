@@ -41,8 +41,8 @@ int main() {
     return 1;
   }
   ContinuationOptions options;
-  options.lower = 0.5;
-  options.upper = 1.62;
+  options.from = 0.5;
+  options.to = 1.62;
   options.direction = ContinuationDirection::kBoth;
   Branch branch;
   const double continuation = Time([&] { branch = ContinueBranch({system, start, {}}, options); });

@@ -70,8 +70,8 @@ int main() {
     return 1;
   }
   ContinuationOptions search;
-  search.lower = 1.0;
-  search.upper = 2.0;
+  search.from = 1.0;
+  search.to = 2.0;
   const std::optional<SpecialPoint> pd =
       LocateSpecialPoint({system, start, {}}, search, SpecialPointType::kPeriodDoubling);
   if (!pd) return 1;
@@ -79,10 +79,10 @@ int main() {
   at.omega = pd->parameter;
   CurveOptions options;
   options.parameter2 = "r";
-  options.lower = 1.0;
-  options.upper = 2.0;
-  options.lower2 = 0.3;
-  options.upper2 = 0.95;
+  options.from = 1.0;
+  options.to = 2.0;
+  options.from2 = 0.3;
+  options.to2 = 0.95;
   // Steps that make about 200 points over r in [0.3, 0.95].
   options.initial_step = options.max_step = 0.0033;
   Curve curve;

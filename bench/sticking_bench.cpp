@@ -87,8 +87,8 @@ int main() {
   PeriodicOrbit start;
   FindOrbit(low, low_seed->state, options, &start);
   ContinuationOptions branch_options;
-  branch_options.lower = 0.1;
-  branch_options.upper = 0.6;
+  branch_options.from = 0.1;
+  branch_options.to = 0.6;
   Branch branch;
   double begin = CpuSeconds();
   branch = ContinueBranch({low, start, {}}, branch_options);

@@ -17,8 +17,8 @@ int main() {
   }
 
   ContinuationOptions options;  // Ω, p = q = 1
-  options.lower = 0.5;
-  options.upper = 2.0;
+  options.from = 0.5;
+  options.to = 2.0;
   options.direction = ContinuationDirection::kBoth;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   std::printf("P(1,1): %zu points, from %s to %s\n", branch.points.size(),

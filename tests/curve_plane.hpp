@@ -17,10 +17,10 @@ inline CurveOptions Plane(const std::string& second, double lower2, double upper
   CurveOptions options;
   options.parameter = "omega";
   options.parameter2 = second;
-  options.lower = 0.5;
-  options.upper = 3.0;
-  options.lower2 = lower2;
-  options.upper2 = upper2;
+  options.from = 0.5;
+  options.to = 3.0;
+  options.from2 = lower2;
+  options.to2 = upper2;
   options.orbit.p = p;
   options.orbit.q = q;
   return options;
@@ -30,8 +30,8 @@ inline CurveOptions Plane(const std::string& second, double lower2, double upper
 /// through the seeded orbit of `system`.
 inline CurveStart Start(const System& system, SpecialPointType type, int p, int q) {
   ContinuationOptions options;
-  options.lower = 0.5;
-  options.upper = 3.0;
+  options.from = 0.5;
+  options.to = 3.0;
   options.orbit.p = p;
   options.orbit.q = q;
   const std::optional<SpecialPoint> special =

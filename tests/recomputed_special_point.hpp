@@ -63,10 +63,10 @@ inline RecomputedFold RecomputeFold(const System& system, const std::string& par
   options.parameter = parameter;
   options.parameter2 = std::string(parameter == "c" ? "k" : "c");
   const double mu = fold.point.parameter, mu2 = GetParameter(system, options.parameter2);
-  options.lower = mu - 0.01 * (1.0 + std::abs(mu));
-  options.upper = mu + 0.01 * (1.0 + std::abs(mu));
-  options.lower2 = mu2 - 1e-3;
-  options.upper2 = mu2 + 1e-3;
+  options.from = mu - 0.01 * (1.0 + std::abs(mu));
+  options.to = mu + 0.01 * (1.0 + std::abs(mu));
+  options.from2 = mu2 - 1e-3;
+  options.to2 = mu2 + 1e-3;
   options.max_points = 2;
   options.locate_codim2 = false;
   // From the located point Newton needs no line search, and on a long

@@ -73,8 +73,8 @@ TEST_CASE("the single mass's sticking family ends where its chatter stops accumu
   const System system = SingleMass(1.0, 0.1, 1.2, 0.45, 0.3, 0.6);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
-  options.lower = 0.44;
-  options.upper = 0.47;
+  options.from = 0.44;
+  options.to = 0.47;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == Termination::kNoSticking);
   CHECK_THAT(branch.points.back().parameter, WithinAbs(kEnd, 1e-8));

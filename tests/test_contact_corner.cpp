@@ -91,8 +91,8 @@ TEST_CASE(
   REQUIRE(FindOrbit(system, Eigen::Vector2d(roots[0].tau, roots[0].u), orbit_options, &orbit)
               .termination == Termination::kConverged);
   ContinuationOptions search;
-  search.lower = 1.5;
-  search.upper = 3.0;
+  search.from = 1.5;
+  search.to = 3.0;
   const std::optional<SpecialPoint> fold =
       LocateSpecialPoint({system, orbit, {}}, search, SpecialPointType::kFold);
   REQUIRE(fold.has_value());
@@ -135,8 +135,8 @@ std::pair<std::optional<double>, std::optional<double>> GrazingAndFold(
     const std::string& second, double value, double omega, const CurvePoint& seed, int p, int q,
     double max_step = ContinuationOptions().max_step) {
   ContinuationOptions branch;
-  branch.lower = omega - 0.02;
-  branch.upper = omega + 0.02;
+  branch.from = omega - 0.02;
+  branch.to = omega + 0.02;
   branch.direction = ContinuationDirection::kBoth;
   branch.orbit.p = p;
   branch.orbit.q = q;
@@ -168,16 +168,16 @@ Curve FoldCurve(const System& system, const PeriodicOrbit& seed, int p, int q,
                 const std::string& second, double lower2, double upper2, double lower,
                 double upper) {
   ContinuationOptions search;
-  search.lower = lower;
-  search.upper = upper;
+  search.from = lower;
+  search.to = upper;
   search.orbit.p = p;
   search.orbit.q = q;
   const std::optional<SpecialPoint> fold =
       LocateSpecialPoint({system, seed, {}}, search, SpecialPointType::kFold);
   REQUIRE(fold.has_value());
   CurveOptions options = testing::Plane(second, lower2, upper2, p, q);
-  options.lower = lower;
-  options.upper = upper;
+  options.from = lower;
+  options.to = upper;
   return ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
 }
 

@@ -28,11 +28,11 @@ PeriodicOrbit Orbit(const System& system, int p, int q) {
   return testing::SeededOrbit(system, p, q);
 }
 
-ContinuationOptions Options(double lower, double upper, int p, int q,
+ContinuationOptions Options(double from, double to, int p, int q,
                             ContinuationDirection direction = ContinuationDirection::kBoth) {
   ContinuationOptions options;
-  options.lower = lower;
-  options.upper = upper;
+  options.from = from;
+  options.to = to;
   options.direction = direction;
   options.orbit.p = p;
   options.orbit.q = q;
@@ -393,6 +393,19 @@ TEST_CASE(
   CHECK(std::abs(contact->parameter - end.parameter) < 1e-8);
 }
 
+TEST_CASE("a range's ends may come in either order", "[continuation]") {
+  const System system = PaperSystem(1.2);
+  const PeriodicOrbit orbit = Orbit(system, 1, 1);
+  const Branch ordered = ContinueBranch({system, orbit, {}}, Options(1.1, 1.3, 1, 1));
+  const Branch reversed = ContinueBranch({system, orbit, {}}, Options(1.3, 1.1, 1, 1));
+  REQUIRE(ordered.points.size() == reversed.points.size());
+  for (std::size_t k = 0; k < ordered.points.size(); ++k) {
+    CHECK(ordered.points[k].parameter == reversed.points[k].parameter);
+  }
+  CHECK(ordered.points.front().parameter == Approx(1.1).margin(1e-12));
+  CHECK(ordered.points.back().parameter == Approx(1.3).margin(1e-12));
+}
+
 TEST_CASE("continuation: bad input is rejected with a clear error", "[continuation]") {
   const System system = PaperSystem(1.2);
   const PeriodicOrbit orbit = Orbit(system, 1, 1);
@@ -406,7 +419,8 @@ TEST_CASE("continuation: bad input is rejected with a clear error", "[continuati
   CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, in("n", 1.0, 1.5)),
                     Catch::Contains("integer"));
   ContinuationOptions options = Options(1.5, 1.5, 1, 1);
-  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options), Catch::Contains("lower < upper"));
+  CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options),
+                    Catch::Contains("two finite, different ends"));
   options = Options(1.3, 1.5, 1, 1);
   CHECK_THROWS_WITH(ContinueBranch({system, orbit, {}}, options),
                     Catch::Contains("outside the bounds"));

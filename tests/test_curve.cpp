@@ -31,8 +31,8 @@ double OneParameterOmega(const System& base, const Curve& curve, const CurvePoin
                          SpecialPointType type) {
   const System system = At(At(base, curve.parameter2, point.parameter2), "omega", point.parameter);
   ContinuationOptions options;
-  options.lower = point.parameter - 0.05;
-  options.upper = point.parameter + 0.05;
+  options.from = point.parameter - 0.05;
+  options.to = point.parameter + 0.05;
   options.direction = ContinuationDirection::kBoth;
   options.orbit.p = curve.p;
   options.orbit.q = curve.q;
@@ -163,8 +163,8 @@ TEST_CASE("curves: P(2,1)'s vanishing impact is followed as P(1,1)'s grazing, th
   const System system = PaperSystem(0.6);
   const PeriodicOrbit p21 = testing::SeededOrbit(system, 2, 1);
   ContinuationOptions options;
-  options.lower = 0.5;
-  options.upper = 1.0;
+  options.from = 0.5;
+  options.to = 1.0;
   options.orbit.p = 2;
   const Branch branch = ContinueBranch({system, p21, {}}, options);
   REQUIRE(!branch.special_points.empty());
@@ -251,15 +251,15 @@ TEST_CASE(
   const System system = PaperSystem(1.2);
   ContinuationOptions search;
   search.parameter = "xs";
-  search.lower = 0.1;
-  search.upper = 0.5;
+  search.from = 0.1;
+  search.to = 0.5;
   const std::optional<SpecialPoint> ns = LocateSpecialPoint(
       {system, testing::SeededOrbit(system, 1, 1), {}}, search, SpecialPointType::kNeimarkSacker);
   REQUIRE(ns.has_value());
   CurveOptions options = Plane("omega", 0.9, 1.7, 1, 1);
   options.parameter = "xs";
-  options.lower = 0.1;
-  options.upper = 0.5;
+  options.from = 0.1;
+  options.to = 0.5;
   options.max_points = 120;
   const Curve torus = ContinueCurve({At(system, "xs", ns->parameter), *ns}, options);
   CurveOptions flip_options = Plane("xs", 0.05, 0.39, 1, 1);
@@ -333,7 +333,7 @@ TEST_CASE(
   // point (it used to end with corrector_failed).
   const System system = PaperSystem(1.0);
   CurveOptions options = Plane("xs", -1.0, 1.0, 1, 1);
-  options.lower = 0.1;
+  options.from = 0.1;
   const Curve curve = ContinueCurve(Start(system, SpecialPointType::kGrazing, 1, 1), options);
   REQUIRE(!curve.codim2_points.empty());
   const Codim2Point& corner = curve.codim2_points.back();
@@ -425,5 +425,5 @@ TEST_CASE("curves: bad input is rejected with a clear error", "[curve]") {
                     Catch::Contains("no two-parameter curve"));
   std::string error;
   CHECK(CurveOptions{}.IsValid(&error) == false);  // the default bounds are empty: [0, 0]
-  CHECK_THAT(error, Catch::Contains("bounds"));
+  CHECK_THAT(error, Catch::Contains("two finite, different ends"));
 }

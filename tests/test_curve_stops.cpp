@@ -60,8 +60,8 @@ SpecialPoint BranchGrazing(const System& system, std::initializer_list<double> o
   System start = system;
   start.omega = omega;
   ContinuationOptions options;
-  options.lower = 0.5;
-  options.upper = omega;
+  options.from = 0.5;
+  options.to = omega;
   options.direction = ContinuationDirection::kDecreasing;
   options.orbit.p = 2;
   options.orbit.q = 1;
@@ -97,7 +97,7 @@ TEST_CASE(
   // Up to A1 = 1.15: at 1.2 the motion simulated at omega = 1 is P(8,3),
   // no seed for the fresh branches.
   CurveOptions options = testing::Plane("A1", 0.8, 1.15, 2, 1);
-  options.upper = 1.2;
+  options.to = 1.2;
   System at = clearance;
   at.omega = graze.parameter;
   const Curve curve = ContinueCurve({at, graze}, options);
@@ -145,7 +145,7 @@ TEST_CASE("a grazing curve of a two-stop system starts from either stop's sectio
   System at = clearance;
   at.omega = graze.parameter;
   CurveOptions options = testing::Plane("A1", 1.0, 1.1, 2, 1);
-  options.upper = 1.2;
+  options.to = 1.2;
   SpecialPoint other = graze;
   const ImpactMap map(at, [&] {
     ImpactMapOptions section;

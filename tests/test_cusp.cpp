@@ -28,8 +28,8 @@ std::optional<Branch> BranchInOmega(double r, double start, const Eigen::VectorX
                                     double omega_c) {
   const System system = At(PaperSystem(start), "r", r);
   ContinuationOptions branch;
-  branch.lower = omega_c - 2e-4;
-  branch.upper = omega_c + 2e-4;
+  branch.from = omega_c - 2e-4;
+  branch.to = omega_c + 2e-4;
   branch.initial_step = 1e-4;
   branch.max_step = 2e-4;
   branch.direction = ContinuationDirection::kBoth;
@@ -75,15 +75,15 @@ TEST_CASE(
   REQUIRE(FindOrbit(system, Eigen::Vector4d(0.4277, 2.1354, -1.2808, 0.1051), seed_options, &seed)
               .termination == Termination::kConverged);
   ContinuationOptions search;
-  search.lower = 1.68;
-  search.upper = 1.70;
+  search.from = 1.68;
+  search.to = 1.70;
   search.orbit = seed_options;
   const std::optional<SpecialPoint> fold =
       LocateSpecialPoint({system, seed, {}}, search, SpecialPointType::kFold);
   REQUIRE(fold.has_value());
   CurveOptions options = testing::Plane("r", 0.6, 0.95, kP, kQ);
-  options.lower = 1.68;
-  options.upper = 1.71;
+  options.from = 1.68;
+  options.to = 1.71;
   const Curve curve = ContinueCurve({At(system, "omega", fold->parameter), *fold}, options);
 
   std::vector<Codim2Point> cusps;

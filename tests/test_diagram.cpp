@@ -30,8 +30,8 @@ namespace {
 
 DiagramOptions Options(double lower, double upper, int max_depth) {
   DiagramOptions options;
-  options.continuation.lower = lower;
-  options.continuation.upper = upper;
+  options.continuation.from = lower;
+  options.continuation.to = upper;
   options.max_depth = max_depth;
   return options;
 }

@@ -188,8 +188,8 @@ TEST_CASE("A continued branch is bit-identical to the recorded fingerprint", "[f
   const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 500);
   REQUIRE(seed.has_value());
   ContinuationOptions options;
-  options.lower = 0.8;
-  options.upper = 1.7;
+  options.from = 0.8;
+  options.to = 1.7;
   options.direction = ContinuationDirection::kBoth;
   BranchStart start{system, {}, {}};
   REQUIRE(FindOrbit(system, seed->eta, options.orbit, &start.orbit).termination ==

@@ -86,8 +86,8 @@ std::pair<Branch, double> BranchWith(const std::string& second, double value, do
                                      const Eigen::VectorXd& eta, int p, int q,
                                      SpecialPointType type) {
   ContinuationOptions options;
-  options.lower = omega - 0.05;
-  options.upper = omega + 0.05;
+  options.from = omega - 0.05;
+  options.to = omega + 0.05;
   options.direction = ContinuationDirection::kBoth;
   options.orbit.p = p;
   options.orbit.q = q;

@@ -3,7 +3,6 @@
 // termination kStopped, for sweeps, branches, curves and diagrams.
 
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 
@@ -28,8 +27,8 @@ PaperBranchStart P11() {
   const System system = PaperSystem(1.0);
   ContinuationOptions options;
   options.parameter = "omega";
-  options.lower = 0.9;
-  options.upper = 1.3;
+  options.from = 0.9;
+  options.to = 1.3;
   options.orbit.p = options.orbit.q = 1;
   return {{system, testing::SeededOrbit(system, 1, 1), {}}, options};
 }
@@ -106,9 +105,9 @@ TEST_CASE("a cancelled diagram stops its branches and the network", "[run_contro
     CHECK(std::isfinite(progress.parameter));
     if (++reports == 3) control.Cancel();
   });
-  const Diagram diagram = TraceDiagram(
-      {{p11.start.system, p11.start.orbit, "seed", ContinuationDirection::kBoth}}, options,
-      control);
+  const Diagram diagram =
+      TraceDiagram({{p11.start.system, p11.start.orbit, "seed", ContinuationDirection::kBoth}},
+                   options, control);
   CHECK(diagram.termination == Termination::kStopped);
   REQUIRE(diagram.branches.size() == 1);
   CHECK(diagram.branches[0].branch.end == Termination::kStopped);
@@ -124,8 +123,7 @@ TEST_CASE("a cancelled curve ends both ways at once", "[run_control]") {
     CHECK(std::isfinite(progress.parameter2));
     if (++reports == 4) control.Cancel();
   });
-  const Curve curve =
-      ContinueCurve(start, testing::Plane("r", 0.5, 0.95, 1, 1), control);
+  const Curve curve = ContinueCurve(start, testing::Plane("r", 0.5, 0.95, 1, 1), control);
   CHECK(curve.end == Termination::kStopped);
   CHECK(curve.begin == Termination::kStopped);
   // The start and three points the first way (four reports); the other

@@ -439,8 +439,8 @@ TEST_CASE("a clearance's symmetric P(2,1): multipliers and the pitchfork against
   ContinuationOptions options;
   options.orbit.p = 2;
   options.orbit.q = 1;
-  options.lower = 0.9;
-  options.upper = 1.2;
+  options.from = 0.9;
+  options.to = 1.2;
   const Branch branch = ContinueBranch({Clearance(1.0, d, r), start, {}}, options);
   const auto found =
       std::find_if(branch.special_points.begin(), branch.special_points.end(),
@@ -524,8 +524,8 @@ TEST_CASE(
   REQUIRE(FindOrbit(s, seed->eta, orbit_options, &start).termination == Termination::kConverged);
   ContinuationOptions options;
   options.orbit = orbit_options;
-  options.lower = 1.2;
-  options.upper = 1.6;
+  options.from = 1.2;
+  options.to = 1.6;
   options.direction = ContinuationDirection::kBoth;
   const Branch branch = ContinueBranch({s, start, {}}, options);
   // Each new contact, recomputed with CVODE along the flight that holds it

@@ -254,8 +254,8 @@ TEST_CASE("sticking branch in Omega: its end recomputed, and where simulation st
   const System system = PaperSystem(0.2);
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
-  options.lower = 0.1;
-  options.upper = 0.6;
+  options.from = 0.1;
+  options.to = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == Termination::kNoSticking);
   REQUIRE(!branch.special_points.empty());
@@ -308,8 +308,8 @@ TEST_CASE("sticking branch in xs ends at an early release, recomputed there",
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
   options.parameter = "xs";
-  options.lower = 0.0;
-  options.upper = 0.6;
+  options.from = 0.0;
+  options.to = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == Termination::kEarlyRelease);
   const BranchPoint& end = branch.special_points.back().point;
@@ -338,8 +338,8 @@ TEST_CASE(
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
   options.parameter = "c";
-  options.lower = 0.01;
-  options.upper = 0.1;
+  options.from = 0.01;
+  options.to = 0.1;
   options.direction = ContinuationDirection::kDecreasing;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   const auto pd = std::find_if(
@@ -386,8 +386,8 @@ TEST_CASE(
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
   options.parameter = "A1";
-  options.lower = 0.5;
-  options.upper = 3.0;
+  options.from = 0.5;
+  options.to = 3.0;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == Termination::kGrazing);  // a new impact
   REQUIRE(branch.special_points.back().vanishing_impact < 0);
@@ -479,8 +479,8 @@ TEST_CASE(
   // makes it P(63,1) above; that end is where P(63,1)'s own branch, traced
   // separately, meets its new contact.
   ContinuationOptions continuation;
-  continuation.lower = 0.1655;
-  continuation.upper = 0.1658;
+  continuation.from = 0.1655;
+  continuation.to = 0.1658;
   continuation.direction = ContinuationDirection::kBoth;
   continuation.orbit = options;
   const Branch p64 = ContinueBranch({system, orbit, {}}, continuation);

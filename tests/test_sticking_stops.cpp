@@ -49,8 +49,8 @@ System PaperWithMass1Stop() {
 /// Continuation within paper-mass1-stop's sticking region, Ω in [0.12, 0.2].
 ContinuationOptions StickingRegion(ContinuationDirection direction) {
   ContinuationOptions options;
-  options.lower = 0.12;
-  options.upper = 0.2;
+  options.from = 0.12;
+  options.to = 0.2;
   options.direction = direction;
   return options;
 }
@@ -124,8 +124,8 @@ TEST_CASE("a sticking family at the second stop ends where simulation stops stic
   const System system = PaperWithMass1Stop();
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
-  options.lower = 0.1;
-  options.upper = 0.6;
+  options.from = 0.1;
+  options.to = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == Termination::kNoSticking);
   for (const BranchPoint& point : branch.points) {
@@ -260,8 +260,8 @@ TEST_CASE(
   system.stops.push_back({0, StopSide::kLower, -0.5, 0.8});
   const PeriodicOrbit start = testing::SeededStickingOrbit(system);
   ContinuationOptions options;
-  options.lower = 0.15;
-  options.upper = 0.6;
+  options.from = 0.15;
+  options.to = 0.6;
   const Branch branch = ContinueBranch({system, start, {}}, options);
   REQUIRE(branch.end == Termination::kNoSticking);
   for (const BranchPoint& point : branch.points) {

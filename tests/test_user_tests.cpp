@@ -26,8 +26,8 @@ UserTest ExcursionAbove(double level) {
 
 ContinuationOptions Along(double lower, double upper, const UserTest& test) {
   ContinuationOptions options;
-  options.lower = lower;
-  options.upper = upper;
+  options.from = lower;
+  options.to = upper;
   options.direction = ContinuationDirection::kBoth;
   options.user_tests = {test};
   return options;
@@ -134,8 +134,8 @@ TEST_CASE("a user test's zero is a codimension-two point along a curve", "[curve
 TEST_CASE("user tests without a name, a function or with one name twice are refused",
           "[continuation][user_test]") {
   ContinuationOptions options;
-  options.lower = 1.5;
-  options.upper = 1.8;
+  options.from = 1.5;
+  options.to = 1.8;
   std::string error;
   options.user_tests = {{"", [](const PeriodicOrbit&) { return 0.0; }}};
   CHECK_FALSE(options.IsValid(&error));

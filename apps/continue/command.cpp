@@ -50,8 +50,8 @@ ContinuationOptions MakeOptions(const ContinueRequest& request, const OrbitOptio
   RequireArclengthFlags(request.step, request.min_step, request.max_step, request.max_points);
   ContinuationOptions options;
   options.parameter = request.parameter;
-  options.lower = std::min(*request.from, *request.to);
-  options.upper = std::max(*request.from, *request.to);
+  options.from = *request.from;
+  options.to = *request.to;
   options.direction = request.start                 ? ContinuationDirection::kBoth
                       : *request.to > *request.from ? ContinuationDirection::kIncreasing
                                                     : ContinuationDirection::kDecreasing;

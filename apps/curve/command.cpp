@@ -77,10 +77,10 @@ CurveOptions MakeOptions(const CurveRequest& request, const System& system) {
                       request.parameter, mu1));
   const double from = request.from.value_or(mu1 / kDefaultRangeFactor);
   const double to = request.to.value_or(mu1 * kDefaultRangeFactor);
-  options.lower = std::min(from, to);
-  options.upper = std::max(from, to);
-  options.lower2 = std::min(request.from2, request.to2);
-  options.upper2 = std::max(request.from2, request.to2);
+  options.from = from;
+  options.to = to;
+  options.from2 = request.from2;
+  options.to2 = request.to2;
   RequireArclengthFlags(request.step, request.min_step, request.max_step, request.max_points);
   options.initial_step = request.step;
   options.min_step = request.min_step;
@@ -88,10 +88,10 @@ CurveOptions MakeOptions(const CurveRequest& request, const System& system) {
   options.max_points = request.max_points;
   std::string error;
   Require(options.IsValid(&error), error);
-  Require(mu1 >= options.lower && mu1 <= options.upper,
+  Require(mu1 >= options.Lower() && mu1 <= options.Upper(),
           fmt::format("the start {} = {} is not between --from and --to", request.parameter, mu1));
   Require(
-      mu2 >= options.lower2 && mu2 <= options.upper2,
+      mu2 >= options.Lower2() && mu2 <= options.Upper2(),
       fmt::format("the start {} = {} is not between --from2 and --to2", request.parameter2, mu2));
   for (const auto& [name, flag, bound] :
        {std::tuple{request.parameter, "--from", from}, std::tuple{request.parameter, "--to", to},
@@ -118,14 +118,14 @@ CurveStart FindStart(const CurveRequest& request, const System& system, CurveOpt
   options->orbit = found.options;
   ContinuationOptions search;
   search.parameter = request.parameter;
-  search.lower = options->lower;
-  search.upper = options->upper;
+  search.from = options->from;
+  search.to = options->to;
   search.orbit = found.options;
   const std::optional<SpecialPoint> special = LocateSpecialPoint({system, orbit, {}}, search, type);
-  Require(
-      special.has_value(),
-      fmt::format("the P({},{}) branch through the start has no {} point for {} in [{}, {}]",
-                  orbit.p, orbit.q, request.type, request.parameter, search.lower, search.upper));
+  Require(special.has_value(),
+          fmt::format("the P({},{}) branch through the start has no {} point for {} in [{}, {}]",
+                      orbit.p, orbit.q, request.type, request.parameter, search.Lower(),
+                      search.Upper()));
   System at = system;
   SetParameter(at, request.parameter, special->parameter);
   if (special->type != SpecialPointType::kGrazing || special->vanishing_impact < 0) {
@@ -245,7 +245,7 @@ Provenance ProvenanceOf(const CurveRequest& request, const System& system,
       fmt::format("curve --type {} --param {} --param2 {} --from {} --to {} --from2 {} --to2 {} "
                   "--p {} --q {}",
                   ToString(start.special.type), request.parameter, request.parameter2,
-                  options.lower, options.upper, request.from2, request.to2,
+                  options.Lower(), options.Upper(), request.from2, request.to2,
                   start.special.point.orbit.p, start.special.point.orbit.q));
 }
 

@@ -87,8 +87,8 @@ SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   SweptDiagramOptions options;
   ContinuationOptions& c = options.diagram.continuation;
   c.parameter = request.parameter;
-  c.lower = std::min(request.from, request.to);
-  c.upper = std::max(request.from, request.to);
+  c.from = std::min(request.from, request.to);
+  c.to = std::max(request.from, request.to);
   RequireArclengthFlags(std::min(request.step, request.max_step), c.min_step, request.max_step,
                         request.max_points, "the smallest step");
   c.initial_step = std::min(request.step, request.max_step);

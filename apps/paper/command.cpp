@@ -177,8 +177,8 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
                             const SweepOptions& sweep_options, SweepResult sweep, bool all_branches,
                             Folder& folder) {
   SweptDiagramOptions options;
-  options.diagram.continuation.lower = sweep_options.from;
-  options.diagram.continuation.upper = sweep_options.to;
+  options.diagram.continuation.from = sweep_options.from;
+  options.diagram.continuation.to = sweep_options.to;
   options.diagram.threads = threads;
   options.diagram.max_depth = resolution.max_depth;
   options.seeds.max_p = resolution.max_q;

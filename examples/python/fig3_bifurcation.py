@@ -27,7 +27,7 @@ def main():
     parser.add_argument("--threads", type=int, default=os.cpu_count() or 1)
     args = parser.parse_args()
 
-    result = impactkit.sweep(impactkit.System.paper(), parameter="omega", first=0.1, last=2.5,
+    result = impactkit.sweep(impactkit.System.paper(), parameter="omega", from_=0.1, to=2.5,
                              steps=args.steps, transient_periods=500, recorded_periods=100,
                              threads=args.threads)
     print(result["report"])

@@ -23,7 +23,7 @@ def main():
     figure = sys.argv[1] if len(sys.argv) > 1 else "out/figures/p11_branch_python.png"
     system = impactkit.System.paper(1.0)
     orbit = impactkit.find_orbit(system, p=1, q=1)
-    branch = impactkit.continue_branch(system, orbit, parameter="omega", lower=0.5, upper=2.0,
+    branch = impactkit.continue_branch(system, orbit, parameter="omega", from_=0.5, to=2.0,
                                        direction="both")
     print(branch)
     for sp in branch.special_points:

@@ -128,13 +128,13 @@ py::dict ResonancePy(const System& system, double from, double to, int steps) {
 void BindAnalysis(py::module_& module) {
   const SweepOptions kSweep;  // the defaults are the library's, as the command line's are
   module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(),
-             py::arg("parameter") = kSweep.parameter, py::arg("first") = kSweep.from,
-             py::arg("last") = kSweep.to, py::arg("steps") = kSweep.steps,
+             py::arg("parameter") = kSweep.parameter, py::arg("from_") = kSweep.from,
+             py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
              py::arg("transient_periods") = kSweep.transient_periods,
              py::arg("recorded_periods") = kSweep.recorded_periods, py::arg("threads") = 1,
              py::arg("each_from") = "previous", py::arg("chunk_values") = kSweep.chunk_values,
              R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
-first to last, each simulated to steady state and classified.
+from_ to to, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,
 p, q (0 where undefined; a sticking motion has its q and p = 0, its kind
 says so); of all values concatenated, the max - min of x_c
@@ -150,8 +150,8 @@ KeyboardInterrupt.)");
 time, descending. Returns a dict: exponents (2N,), largest, impacts_used,
 time_span. Raises NumericalError when the map fails (chatter, grazing, a lost
 impact), with the library's message. Releases the GIL.)");
-  module.def("resonance", &ResonancePy, py::arg("system"), py::kw_only(), py::arg("first"),
-             py::arg("last"), py::arg("steps"),
+  module.def("resonance", &ResonancePy, py::arg("system"), py::kw_only(), py::arg("from_"),
+             py::arg("to"), py::arg("steps"),
              R"(Closed-form resonance curves of the system without its stop: omega (n,),
 range (n, N) = max - min of each x_i (2 |X_i|), phase (n, N), and peaks (a
 list of {dof, omega, range}).)");

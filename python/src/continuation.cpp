@@ -23,13 +23,13 @@ ContinuationDirection DirectionFromName(const std::string& name) {
   throw InvalidInput("direction must be 'increasing', 'decreasing' or 'both', got '" + name + "'");
 }
 
-ContinuationOptions MakeOptions(const std::string& parameter, double lower, double upper,
+ContinuationOptions MakeOptions(const std::string& parameter, double from, double to,
                                 const std::string& direction, double initial_step, double min_step,
                                 double max_step, int max_points, bool locate_bifurcations) {
   ContinuationOptions options;
   options.parameter = parameter;
-  options.lower = lower;
-  options.upper = upper;
+  options.from = from;
+  options.to = to;
   options.direction = DirectionFromName(direction);
   options.initial_step = initial_step;
   options.min_step = min_step;
@@ -39,12 +39,12 @@ ContinuationOptions MakeOptions(const std::string& parameter, double lower, doub
   return options;
 }
 
-Branch ContinueFromStart(const BranchStart& start, const std::string& parameter, double lower,
-                         double upper, const std::string& direction, double initial_step,
+Branch ContinueFromStart(const BranchStart& start, const std::string& parameter, double from,
+                         double to, const std::string& direction, double initial_step,
                          double min_step, double max_step, int max_points, bool locate_bifurcations,
                          const std::optional<py::dict>& user_tests) {
-  ContinuationOptions options = MakeOptions(parameter, lower, upper, direction, initial_step,
-                                            min_step, max_step, max_points, locate_bifurcations);
+  ContinuationOptions options = MakeOptions(parameter, from, to, direction, initial_step, min_step,
+                                            max_step, max_points, locate_bifurcations);
   options.user_tests = UserTestsFrom(user_tests);
   if (!start.orbit.Sticks()) {  // a sticking family is its start's
     options.orbit.p = start.orbit.p;
@@ -54,11 +54,11 @@ Branch ContinueFromStart(const BranchStart& start, const std::string& parameter,
 }
 
 Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,
-                         const std::string& parameter, double lower, double upper,
+                         const std::string& parameter, double from, double to,
                          const std::string& direction, double initial_step, double min_step,
                          double max_step, int max_points, bool locate_bifurcations,
                          const std::optional<py::dict>& user_tests) {
-  return ContinueFromStart({system, orbit, {}}, parameter, lower, upper, direction, initial_step,
+  return ContinueFromStart({system, orbit, {}}, parameter, from, to, direction, initial_step,
                            min_step, max_step, max_points, locate_bifurcations, user_tests);
 }
 
@@ -258,7 +258,7 @@ void BindContinuation(py::module_& module) {
 
   const char* continue_doc =
       R"(Follows the branch of `orbit` (found for `system`), or from a BranchStart,
-in a named parameter within [lower, upper] by pseudo-arclength continuation,
+in a named parameter between from_ and to (either order; `from` is a Python keyword) by pseudo-arclength continuation,
 locating folds, period doublings, Neimark-Sacker points, and ending at
 grazing or sticking.
 
@@ -270,14 +270,14 @@ Returns a Branch. Raises ValueError for bad input, and what a user test
 raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
   const ContinuationOptions kBranch;  // the defaults are the library's, as the command line's are
   module.def("continue_branch", &ContinueFromOrbit, py::arg("system"), py::arg("orbit"),
-             py::kw_only(), py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
+             py::kw_only(), py::arg("parameter") = "omega", py::arg("from_"), py::arg("to"),
              py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
              py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
              py::arg("max_points") = kBranch.max_points,
              py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
              py::arg("user_tests") = py::none(), continue_doc);
   module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
-             py::arg("parameter") = "omega", py::arg("lower"), py::arg("upper"),
+             py::arg("parameter") = "omega", py::arg("from_"), py::arg("to"),
              py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
              py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
              py::arg("max_points") = kBranch.max_points,

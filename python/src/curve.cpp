@@ -18,18 +18,18 @@ namespace impactkit::python {
 namespace {
 
 Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialPoint& special,
-                      const std::string& parameter2, double lower, double upper, double lower2,
-                      double upper2, double initial_step, double min_step, double max_step,
+                      const std::string& parameter2, double from, double to, double from2,
+                      double to2, double initial_step, double min_step, double max_step,
                       int max_points, bool locate_codim2,
                       const std::optional<py::dict>& user_tests) {
   CurveOptions options;
   options.user_tests = UserTestsFrom(user_tests);
   options.parameter = branch.parameter;
   options.parameter2 = parameter2;
-  options.lower = lower;
-  options.upper = upper;
-  options.lower2 = lower2;
-  options.upper2 = upper2;
+  options.from = from;
+  options.to = to;
+  options.from2 = from2;
+  options.to2 = to2;
   options.initial_step = initial_step;
   options.min_step = min_step;
   options.max_step = max_step;
@@ -139,14 +139,14 @@ void BindCurve(py::module_& module) {
   BindCurveClass(module);
   const CurveOptions kCurve;  // the defaults are the library's, as the command line's are
   module.def("continue_curve", &ContinueCurvePy, py::arg("system"), py::arg("branch"),
-             py::arg("special_point"), py::kw_only(), py::arg("parameter2") = "r", py::arg("lower"),
-             py::arg("upper"), py::arg("lower2"), py::arg("upper2"),
+             py::arg("special_point"), py::kw_only(), py::arg("parameter2") = "r", py::arg("from_"),
+             py::arg("to"), py::arg("from2"), py::arg("to2"),
              py::arg("initial_step") = kCurve.initial_step, py::arg("min_step") = kCurve.min_step,
              py::arg("max_step") = kCurve.max_step, py::arg("max_points") = kCurve.max_points,
              py::arg("locate_codim2") = kCurve.locate_codim2, py::arg("user_tests") = py::none(),
              R"(Follows a fold, period doubling, Neimark-Sacker or grazing point of
 `branch` (continued for `system`) as the branch's parameter (mu1, within
-[lower, upper]) and `parameter2` (mu2, within [lower2, upper2]) move, both
+between from_ and to) and `parameter2` (mu2, between from2 and to2) move, both
 ways, locating codimension-two points (`impactkit curve`), and the zeros
 of user_tests ({name: function(Orbit) -> float}) as 'user_test' points.
 Returns a Curve.

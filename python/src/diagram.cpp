@@ -18,7 +18,7 @@ namespace {
 
 struct DiagramArguments {
   std::string parameter;
-  double lower, upper, initial_step, max_step;
+  double from, to, initial_step, max_step;
   int max_points, max_depth, max_branches, threads;
   bool switch_period_doubling, switch_grazing, switch_branch_points, switch_pitchforks;
 };
@@ -26,8 +26,8 @@ struct DiagramArguments {
 DiagramOptions MakeOptions(const DiagramArguments& a) {
   DiagramOptions options;
   options.continuation.parameter = a.parameter;
-  options.continuation.lower = a.lower;
-  options.continuation.upper = a.upper;
+  options.continuation.from = a.from;
+  options.continuation.to = a.to;
   options.continuation.initial_step = a.initial_step;
   options.continuation.max_step = a.max_step;
   options.continuation.max_points = a.max_points;
@@ -42,7 +42,7 @@ DiagramOptions MakeOptions(const DiagramArguments& a) {
 }
 
 Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
-              const std::string& parameter, double lower, double upper, double initial_step,
+              const std::string& parameter, double from, double to, double initial_step,
               double max_step, int max_points, int max_depth, int max_branches, int threads,
               bool switch_period_doubling, bool switch_grazing, bool switch_branch_points,
               bool switch_pitchforks, const std::optional<py::dict>& user_tests) {
@@ -51,7 +51,7 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
     seeds.push_back({starts[i].first, starts[i].second, "seed " + std::to_string(i + 1),
                      ContinuationDirection::kBoth});
   }
-  DiagramOptions options = MakeOptions({parameter, lower, upper, initial_step, max_step, max_points,
+  DiagramOptions options = MakeOptions({parameter, from, to, initial_step, max_step, max_points,
                                         max_depth, max_branches, threads, switch_period_doubling,
                                         switch_grazing, switch_branch_points, switch_pitchforks});
   options.continuation.user_tests = UserTestsFrom(user_tests);
@@ -157,7 +157,7 @@ void BindDiagram(py::module_& module) {
   const DiagramOptions kNetwork;
   module.def(
       "trace_diagram", &Trace, py::arg("seeds"), py::kw_only(), py::arg("parameter") = "omega",
-      py::arg("lower"), py::arg("upper"), py::arg("initial_step") = kBranch.initial_step,
+      py::arg("from_"), py::arg("to"), py::arg("initial_step") = kBranch.initial_step,
       py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
       py::arg("max_depth") = kNetwork.max_depth, py::arg("max_branches") = kNetwork.max_branches,
       py::arg("threads") = 1, py::arg("switch_period_doubling") = kNetwork.switch_period_doubling,
@@ -166,7 +166,7 @@ void BindDiagram(py::module_& module) {
       py::arg("switch_pitchforks") = kNetwork.switch_pitchforks, py::arg("user_tests") = py::none(),
       R"(Traces the connected bifurcation diagram through `seeds`, a list of
 (system, orbit) pairs: each seed's branch is followed both ways in the named
-parameter within [lower, upper], and at every period doubling, grazing,
+parameter between from_ and to, and at every period doubling, grazing,
 branch point and pitchfork the branch that starts there, each branch once (the library's
 TraceDiagram, as `impactkit diagram --start` does). Returns a Diagram.
 threads: branches of one generation traced at once; the result does not

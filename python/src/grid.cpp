@@ -150,21 +150,21 @@ void BindGrid(py::module_& module) {
   // command line's are.
   const SweepOptions kRun;
   module.def("parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
-             py::arg("parameter") = "omega", py::arg("first"), py::arg("last"), py::arg("steps"),
-             py::arg("parameter2") = "r", py::arg("first2"), py::arg("last2"), py::arg("steps2"),
+             py::arg("parameter") = "omega", py::arg("from_"), py::arg("to"), py::arg("steps"),
+             py::arg("parameter2") = "r", py::arg("from2"), py::arg("to2"), py::arg("steps2"),
              py::arg("transient_periods") = kRun.transient_periods,
              py::arg("recorded_periods") = kRun.recorded_periods, py::arg("threads") = 1,
              py::arg("each_from") = "previous", py::arg("chunk_values") = kRun.chunk_values,
              R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
-of `parameter` (steps values from first to last) at one of the steps2
+of `parameter` (steps values from from_ to to) at one of the steps2
 values of `parameter2` (ascending), each cell's motion classified. Returns
 a dict of arrays of shape (steps2, steps): 'kind' (names), 'kind_code'
 (index into 'kinds'), 'p', 'q' (0 where undefined), 'max_v', 'range_xN',
 'lyapunov' (NaN where undefined), and 'values', 'values2'. threads does not
 change the result. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
   module.def("basins", &BasinsPy, py::arg("system"), py::kw_only(), py::arg("coordinate") = "x2",
-             py::arg("first"), py::arg("last"), py::arg("steps"), py::arg("coordinate2") = "v2",
-             py::arg("first2"), py::arg("last2"), py::arg("steps2"),
+             py::arg("from_"), py::arg("to"), py::arg("steps"), py::arg("coordinate2") = "v2",
+             py::arg("from2"), py::arg("to2"), py::arg("steps2"),
              py::arg("transient_periods") = kRun.transient_periods,
              py::arg("recorded_periods") = kRun.recorded_periods, py::arg("threads") = 1,
              py::arg("orbit_tolerance") = BasinsOptions{}.orbit_tolerance,

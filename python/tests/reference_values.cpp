@@ -30,8 +30,8 @@ int main() {
   fmt::print("\n");
 
   ContinuationOptions continuation;
-  continuation.lower = 1.5;
-  continuation.upper = 1.8;
+  continuation.from = 1.5;
+  continuation.to = 1.8;
   continuation.direction = ContinuationDirection::kBoth;
   const Branch branch = ContinueBranch({system, orbit, {}}, continuation);
   fmt::print("branch {}", branch.points.size());

@@ -7,7 +7,7 @@ import impactkit
 
 def test_resonance_is_the_closed_form_linear_response():
     s = impactkit.System.paper()
-    r = impactkit.resonance(s, first=0.2, last=2.4, steps=23)
+    r = impactkit.resonance(s, from_=0.2, to=2.4, steps=23)
     np.testing.assert_allclose(r["omega"], np.linspace(0.2, 2.4, 23), rtol=1e-15)
     for omega, rng in zip(r["omega"], r["range"]):
         x = np.linalg.solve(s.stiffness - omega**2 * s.mass + 1j * omega * s.damping, s.forcing)
@@ -26,7 +26,7 @@ def test_lyapunov_of_a_periodic_orbit_is_log_multipliers_per_period(stable_orbit
 
 def test_sweep_classifies_the_known_orbits_and_ignores_threads():
     s = impactkit.System.paper()
-    kwargs = dict(first=0.6, last=0.64, steps=5, transient_periods=300, recorded_periods=130,
+    kwargs = dict(from_=0.6, to=0.64, steps=5, transient_periods=300, recorded_periods=130,
                   chunk_values=2)
     one = impactkit.sweep(s, threads=1, **kwargs)
     two = impactkit.sweep(s, threads=2, **kwargs)

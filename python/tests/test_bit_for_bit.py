@@ -38,7 +38,7 @@ def test_branch(reference):
     fields = reference["branch"][0]
     system = impactkit.System.paper(1.65)
     orbit = impactkit.find_orbit(system, p=1, q=1)
-    branch = impactkit.continue_branch(system, orbit, lower=1.5, upper=1.8, direction="both")
+    branch = impactkit.continue_branch(system, orbit, from_=1.5, to=1.8, direction="both")
     assert len(branch) == int(fields[0])
     np.testing.assert_array_equal(branch.values, [float.fromhex(f) for f in fields[1:]])
     specials = [(t, float.fromhex(v)) for t, v in reference.get("special", [])]

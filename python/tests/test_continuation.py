@@ -14,7 +14,7 @@ TYPES = {"fold", "period_doubling", "neimark_sacker", "grazing", "sticking", "br
 @pytest.fixture(scope="module")
 def branch(paper_orbit):
     system, orbit = paper_orbit
-    return impactkit.continue_branch(system, orbit, lower=1.5, upper=1.8, direction="both")
+    return impactkit.continue_branch(system, orbit, from_=1.5, to=1.8, direction="both")
 
 
 def test_arrays(branch):
@@ -51,11 +51,11 @@ def test_special_points_are_objects_at_their_critical_multipliers(branch):
 def test_period_doubling_switches_to_a_genuinely_doubled_branch():
     system = impactkit.System.paper(1.0)
     single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
-                                       lower=0.5, upper=2.0, direction="both")
+                                       from_=0.5, to=2.0, direction="both")
     pd = next(sp for sp in single.special_points if sp.type == "period_doubling")
     start = impactkit.doubled_branch_start(system, single, pd)
     assert start is not None and (start.orbit.p, start.orbit.q) == (2, 2)
-    doubled = impactkit.continue_branch(start, lower=1.5, upper=1.8, max_points=40)
+    doubled = impactkit.continue_branch(start, from_=1.5, to=1.8, max_points=40)
     assert (doubled.p, doubled.q) == (2, 2) and len(doubled) > 5
     # A point away from the doubling, re-solved by Newton on its own, has two
     # distinct impact speeds (not P(1,1) traversed twice).
@@ -71,7 +71,7 @@ def test_period_doubling_switches_to_a_genuinely_doubled_branch():
 def test_grazing_seeds_refine_to_orbits_with_one_impact_more_or_fewer():
     system = impactkit.System.paper(1.0)
     single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
-                                       lower=0.5, upper=2.0, direction="both")
+                                       from_=0.5, to=2.0, direction="both")
     graze = next(sp for sp in single.special_points if sp.type == "grazing")
     seeds = impactkit.seeds_at_grazing(system, single, graze)
     assert seeds and all(s.p in (0, 2) and s.q == 1 for s in seeds)
@@ -92,7 +92,7 @@ def test_sticking_family_ends_where_the_simulation_stops_sticking():
     system = impactkit.System.paper(0.2)
     orbit = impactkit.find_orbit(system)
     assert orbit.section == "release" and (orbit.releases, orbit.q) == (1, 1)
-    branch = impactkit.continue_branch(system, orbit, lower=0.2, upper=0.5)
+    branch = impactkit.continue_branch(system, orbit, from_=0.2, to=0.5)
     assert branch.section == "release" and branch.releases == 1 and branch.p == 0
     assert branch.end == "no_sticking" and branch.special_points[-1].type == "no_sticking"
     end = branch.values[-1]
@@ -109,13 +109,13 @@ def test_sticking_family_period_doubles_onto_the_simulations_period_two_sticking
     # sticking orbit seeded by the simulation there.
     system = impactkit.System.paper(0.27)
     single = impactkit.continue_branch(system, impactkit.find_orbit(system),
-                                       parameter="c", lower=0.01, upper=0.1,
+                                       parameter="c", from_=0.01, to=0.1,
                                        direction="decreasing")
     pd = next(sp for sp in single.special_points if sp.type == "period_doubling")
     assert 0.03 < pd.parameter < 0.04
     start = impactkit.doubled_branch_start(system, single, pd)
     assert start is not None and start.orbit.releases == 2
-    doubled = impactkit.continue_branch(start, parameter="c", lower=0.01, upper=0.1)
+    doubled = impactkit.continue_branch(start, parameter="c", from_=0.01, to=0.1)
     assert doubled.section == "release" and (doubled.releases, doubled.q) == (2, 2)
     i = len(doubled) // 2
     c = doubled.values[i]
@@ -143,7 +143,7 @@ def test_a_branch_with_its_defaults_equals_the_command_line(tmp_path):
                     "--json", str(cli_json)], check=True, capture_output=True)
     system = impactkit.System.paper(1.65)
     branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
-                                       lower=1.65, upper=1.8)
+                                       from_=1.65, to=1.8)
     py_csv = tmp_path / "py.csv"
     branch.write_csv(py_csv)
     assert data_lines(py_csv) == data_lines(cli_csv)
@@ -166,7 +166,7 @@ def test_a_user_test_of_python_is_located_along_the_branch(branch):
     system = impactkit.System.paper(1.65)
     start = impactkit.find_orbit(system, p=1, q=1)
     tests = {"speed": lambda orbit: orbit.impact_velocities[0] - level}
-    mine = impactkit.continue_branch(system, start, lower=1.5, upper=1.8, direction="both",
+    mine = impactkit.continue_branch(system, start, from_=1.5, to=1.8, direction="both",
                                      user_tests=tests)
     found = [s for s in mine.special_points if s.type == "user_test"]
     assert found and all(s.user_test == "speed" for s in found)
@@ -175,11 +175,11 @@ def test_a_user_test_of_python_is_located_along_the_branch(branch):
         assert abs(again.impact_velocities[0] - level) < 1e-9
     assert "user_test" in [p["type"] for p in json.loads(mine.to_json())["special_points"]]
     with pytest.raises(ValueError, match="not callable"):
-        impactkit.continue_branch(system, start, lower=1.5, upper=1.8, user_tests={"x": 1})
+        impactkit.continue_branch(system, start, from_=1.5, to=1.8, user_tests={"x": 1})
 
     def broken(orbit):
         raise ZeroDivisionError("from the user's test")
 
     with pytest.raises(ZeroDivisionError, match="from the user's test"):
-        impactkit.continue_branch(system, start, lower=1.5, upper=1.8,
+        impactkit.continue_branch(system, start, from_=1.5, to=1.8,
                                   user_tests={"broken": broken})

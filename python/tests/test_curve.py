@@ -17,11 +17,11 @@ import impactkit
 def curve():
     system = impactkit.System.paper(1.6)
     branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
-                                       lower=0.5, upper=3.0, direction="both")
+                                       from_=0.5, to=3.0, direction="both")
     pd = min((p for p in branch.special_points if p.type == "period_doubling"),
              key=lambda p: abs(p.parameter - 1.6))
-    return impactkit.continue_curve(system, branch, pd, parameter2="r", lower=0.5, upper=3.0,
-                                    lower2=0.3, upper2=0.95)
+    return impactkit.continue_curve(system, branch, pd, parameter2="r", from_=0.5, to=3.0,
+                                    from2=0.3, to2=0.95)
 
 
 def test_arrays(curve):

@@ -15,7 +15,7 @@ import impactkit
 @pytest.fixture(scope="module")
 def diagram(paper_orbit):
     system, orbit = paper_orbit
-    return impactkit.trace_diagram([(system, orbit)], lower=1.5, upper=1.8, max_depth=2)
+    return impactkit.trace_diagram([(system, orbit)], from_=1.5, to=1.8, max_depth=2)
 
 
 def test_graph_shape(diagram):
@@ -73,7 +73,7 @@ def test_pitchfork_of_a_symmetric_clearance_starts_the_asymmetric_branch():
         {"dof": 0, "side": "upper", "position": 0.5, "restitution": 0.8},
         {"dof": 0, "side": "lower", "position": -0.5, "restitution": 0.8}])
     orbit = impactkit.find_orbit(clearance)
-    diagram = impactkit.trace_diagram([(clearance, orbit)], lower=0.9, upper=1.2, max_depth=1)
+    diagram = impactkit.trace_diagram([(clearance, orbit)], from_=0.9, to=1.2, max_depth=1)
     pitchforks = [node for node in diagram.nodes if node.type == "pitchfork"]
     assert len(pitchforks) == 1
     assert pitchforks[0].parameter == pytest.approx(1.037642583, abs=1e-8)
@@ -93,8 +93,8 @@ def test_sticking_family_beside_the_chatter_orbits_that_accumulate_on_it():
     chatter_system = impactkit.System.paper(0.309)
     chatter = impactkit.find_orbit(chatter_system, p=10, q=1)
     diagram = impactkit.trace_diagram([(sticking_system, sticking), (chatter_system, chatter)],
-                                      lower=0.2, upper=0.5, max_depth=2)
-    family = impactkit.continue_branch(sticking_system, sticking, lower=0.2, upper=0.5)
+                                      from_=0.2, to=0.5, max_depth=2)
+    family = impactkit.continue_branch(sticking_system, sticking, from_=0.2, to=0.5)
     released = [b.branch for b in diagram.branches if b.branch.section == "release"]
     assert len(released) == 1 and released[0].end == "no_sticking"
     end = max(released[0].values)
@@ -109,10 +109,10 @@ def test_a_user_test_reaches_every_branch_of_the_diagram(paper_orbit):
     # main branch's ends, located in the network traced on two threads: each
     # node's orbit, solved afresh at its omega, has that speed (1e-9).
     system, orbit = paper_orbit
-    main = impactkit.continue_branch(system, orbit, lower=1.5, upper=1.8, direction="both")
+    main = impactkit.continue_branch(system, orbit, from_=1.5, to=1.8, direction="both")
     level = 0.5 * (main.orbits[0].impact_velocities[0] + main.orbits[-1].impact_velocities[0])
     network = impactkit.trace_diagram(
-        [(system, orbit)], lower=1.5, upper=1.8, max_depth=1, threads=2,
+        [(system, orbit)], from_=1.5, to=1.8, max_depth=1, threads=2,
         user_tests={"speed": lambda o: o.impact_velocities[0] - level})
     nodes = [n for n in network.nodes if n.type == "user_test"]
     assert all(n.user_test == "speed" for n in nodes)

@@ -88,7 +88,7 @@ def test_ctrl_c_stops_a_long_continuation(paper_orbit):
     system, orbit = paper_orbit
     interrupt_after(0.2)
     with pytest.raises(KeyboardInterrupt):
-        impactkit.continue_branch(system, orbit, lower=1.6, upper=1.7, initial_step=1e-7,
+        impactkit.continue_branch(system, orbit, from_=1.6, to=1.7, initial_step=1e-7,
                                   max_step=1e-7, min_step=1e-8, max_points=100000000,
                                   locate_bifurcations=False)
 

@@ -27,7 +27,7 @@ def test_p11_branch(tmp_path):
     out = run("p11_branch.py", str(figure))
     system = impactkit.System.paper(1.0)
     branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
-                                       lower=0.5, upper=2.0, direction="both")
+                                       from_=0.5, to=2.0, direction="both")
     for sp in branch.special_points:
         assert sp.describe("omega") in out
     assert figure.stat().st_size > 10000

@@ -41,8 +41,8 @@ def test_map_equals_the_command_line(tmp_path, threads):
                     "--to", "1.9", "--steps", "3", "--param2", "r", "--from2", "0.6", "--to2",
                     "0.8", "--steps2", "2", "--transient", "200", "--record", "40",
                     "--threads", "1", "--out", str(out)], check=True, capture_output=True)
-    result = impactkit.parameter_map(impactkit.System.paper(), parameter="omega", first=1.7,
-                                     last=1.9, steps=3, parameter2="r", first2=0.6, last2=0.8,
+    result = impactkit.parameter_map(impactkit.System.paper(), parameter="omega", from_=1.7,
+                                     to=1.9, steps=3, parameter2="r", from2=0.6, to2=0.8,
                                      steps2=2, transient_periods=200, recorded_periods=40,
                                      threads=threads)
     assert result["kind"].shape == (2, 3) and result["p"].shape == (2, 3)
@@ -56,8 +56,8 @@ def test_basins_equal_the_command_line(tmp_path):
                     "--from2", "-0.5", "--to2", "0.5", "--steps2", "3", "--transient", "100",
                     "--record", "30", "--threads", "1", "--out", str(out)],
                    check=True, capture_output=True)
-    result = impactkit.basins(impactkit.System.paper(2.0), coordinate="x2", first=-0.5, last=0.1,
-                              steps=4, coordinate2="v2", first2=-0.5, last2=0.5, steps2=3,
+    result = impactkit.basins(impactkit.System.paper(2.0), coordinate="x2", from_=-0.5, to=0.1,
+                              steps=4, coordinate2="v2", from2=-0.5, to2=0.5, steps2=3,
                               transient_periods=100, recorded_periods=30)
     rows = read_rows(out)
     check_cells(rows, result, ("x2", "v2"))
@@ -75,20 +75,20 @@ def test_map_and_basins_with_their_defaults_equal_the_command_line(tmp_path):
     subprocess.run([cli, "map", "--param", "omega", "--from", "1.66", "--to", "1.7", "--steps",
                     "3", "--param2", "r", "--from2", "0.7", "--to2", "0.75", "--steps2", "2",
                     "--out", str(out)], check=True, capture_output=True)
-    result = impactkit.parameter_map(impactkit.System.paper(), parameter="omega", first=1.66,
-                                     last=1.7, steps=3, parameter2="r", first2=0.7, last2=0.75,
+    result = impactkit.parameter_map(impactkit.System.paper(), parameter="omega", from_=1.66,
+                                     to=1.7, steps=3, parameter2="r", from2=0.7, to2=0.75,
                                      steps2=2)
     check_cells(read_rows(out), result, ("omega", "r"))
     out = tmp_path / "b.csv"
     subprocess.run([cli, "basins", "--omega", "2", "--from", "-0.5", "--to", "0.1", "--steps", "3",
                     "--from2", "-0.5", "--to2", "0.5", "--steps2", "2", "--out", str(out)],
                    check=True, capture_output=True)
-    result = impactkit.basins(impactkit.System.paper(2.0), first=-0.5, last=0.1, steps=3,
-                              first2=-0.5, last2=0.5, steps2=2)
+    result = impactkit.basins(impactkit.System.paper(2.0), from_=-0.5, to=0.1, steps=3,
+                              from2=-0.5, to2=0.5, steps2=2)
     check_cells(read_rows(out), result, ("x2", "v2"))
 
 
 def test_bad_input_is_a_value_error():
     with pytest.raises(ValueError, match="unknown parameter"):
-        impactkit.parameter_map(impactkit.System.paper(), parameter="q", first=1, last=2,
-                                steps=2, first2=0.5, last2=0.6, steps2=2)
+        impactkit.parameter_map(impactkit.System.paper(), parameter="q", from_=1, to=2,
+                                steps=2, from2=0.5, to2=0.6, steps2=2)

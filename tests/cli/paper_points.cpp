@@ -16,8 +16,8 @@ int main() {
     const std::optional<OrbitSeed> seed = SeedFromSimulation(system, 200);
     if (!seed || !seed->motion.periodic) return EXIT_FAILURE;
     ContinuationOptions options;
-    options.lower = 0.1;
-    options.upper = 2.5;
+    options.from = 0.1;
+    options.to = 2.5;
     options.direction = ContinuationDirection::kBoth;
     options.orbit.p = static_cast<int>(seed->motion.p);
     options.orbit.q = seed->motion.q;

@@ -101,8 +101,8 @@ std::vector<DiagramSeed> SeedsFromSweep(const System& system, const SweepOptions
 bool SweptDiagramOptions::IsValid(std::string* error) const {
   SweepOptions swept = sweep;
   swept.parameter = diagram.continuation.parameter;
-  swept.from = diagram.continuation.lower;
-  swept.to = diagram.continuation.upper;
+  swept.from = diagram.continuation.Lower();
+  swept.to = diagram.continuation.Upper();
   return diagram.IsValid(error) && seeds.IsValid(error) && swept.IsValid(error);
 }
 
@@ -112,8 +112,8 @@ SweptDiagram TraceSweptDiagram(const System& system, const std::vector<DiagramSe
   Require(options.IsValid(&error), error);
   SweepOptions sweep = options.sweep;
   sweep.parameter = options.diagram.continuation.parameter;
-  sweep.from = options.diagram.continuation.lower;
-  sweep.to = options.diagram.continuation.upper;
+  sweep.from = options.diagram.continuation.Lower();
+  sweep.to = options.diagram.continuation.Upper();
   SweptDiagram result;
   result.sweep = RunSweep(system, sweep, control);
   if (result.sweep.termination == Termination::kStopped) {

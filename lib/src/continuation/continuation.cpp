@@ -93,7 +93,7 @@ class BranchTracer {
         // prediction, ends the branch.
         const Eigen::VectorXd predicted = BranchProblem::PointX(from) + step * from.tangent;
         const double mu = BranchProblem::Mu(predicted);
-        if (mu > options_.upper || mu < options_.lower) {
+        if (mu > options_.Upper() || mu < options_.Lower()) {
           if (std::optional<BranchPoint> on = OnBound(from, predicted)) {
             EndOnBound(from, *on, &half);
             return half;
@@ -110,9 +110,10 @@ class BranchTracer {
             options_.min_step, problem_.Parameter(), from.parameter, NearContact(from));
         return half;
       }
-      const bool beyond = next->parameter < options_.lower || next->parameter > options_.upper;
+      const bool beyond = next->parameter < options_.Lower() || next->parameter > options_.Upper();
       if (beyond) {
-        const double bound = next->parameter > options_.upper ? options_.upper : options_.lower;
+        const double bound =
+            next->parameter > options_.Upper() ? options_.Upper() : options_.Lower();
         next = OnBound(from, BranchProblem::PointX(*next));
         if (!next && step > options_.min_step) {
           step = std::max(step / 2.0, options_.min_step);
@@ -221,7 +222,7 @@ class BranchTracer {
   /// and `beyond`.
   std::optional<BranchPoint> OnBound(const BranchPoint& from, const Eigen::VectorXd& beyond) const {
     const double mu = BranchProblem::Mu(beyond);
-    const double bound = mu > options_.upper ? options_.upper : options_.lower;
+    const double bound = mu > options_.Upper() ? options_.Upper() : options_.Lower();
     const double w = (bound - from.parameter) / (mu - from.parameter);
     const Eigen::VectorXd x0 = BranchProblem::PointX(from);
     const Eigen::VectorXd guess = x0 + w * (beyond - x0);
@@ -662,9 +663,11 @@ bool ContinuationOptions::IsValid(std::string* error) const {
   if (parameter == "n") {
     return fail("n (the number of masses) is an integer and cannot be continued");
   }
-  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper)) {
-    return fail(fmt::format("the parameter bounds must be finite with lower < upper, got [{}, {}]",
-                            lower, upper));
+  if (!(std::isfinite(from) && std::isfinite(to) && from != to)) {
+    return fail(
+        fmt::format("the parameter's range must have two finite, different ends, got {} "
+                    "and {}",
+                    from, to));
   }
   if (const auto problem = StepControlProblem(min_step, initial_step, max_step, max_points,
                                               corrector_iterations, max_correction)) {
@@ -691,10 +694,10 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
   const BranchProblem problem =
       detail::FamilyProblem(start.system, family, orbit.section, orbit.stop, k, q);
   const double mu = GetParameter(start.system, options.parameter);
-  Require(mu >= options.lower && mu <= options.upper,
+  Require(mu >= options.Lower() && mu <= options.Upper(),
           fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter, mu,
-                      options.lower, options.upper));
-  for (double bound : {options.lower, options.upper}) {
+                      options.Lower(), options.Upper()));
+  for (double bound : {options.Lower(), options.Upper()}) {
     try {
       Validate(problem.SystemAt(bound));
     } catch (const InvalidInput& e) {

@@ -165,18 +165,18 @@ class CurveTracer {
   }
 
   bool Beyond(double mu1, double mu2) const {
-    return mu1 < options_.lower || mu1 > options_.upper || mu2 < options_.lower2 ||
-           mu2 > options_.upper2;
+    return mu1 < options_.Lower() || mu1 > options_.Upper() || mu2 < options_.Lower2() ||
+           mu2 > options_.Upper2();
   }
 
   /// True for a point on a bound whose tangent leads out of the bounds.
   bool Leaving(const CurvePoint& point) const {
     const Eigen::Index size = point.tangent.size();
     const double d1 = point.tangent(size - 2), d2 = point.tangent(size - 1);
-    return (point.parameter <= options_.lower && d1 < 0) ||
-           (point.parameter >= options_.upper && d1 > 0) ||
-           (point.parameter2 <= options_.lower2 && d2 < 0) ||
-           (point.parameter2 >= options_.upper2 && d2 > 0);
+    return (point.parameter <= options_.Lower() && d1 < 0) ||
+           (point.parameter >= options_.Upper() && d1 > 0) ||
+           (point.parameter2 <= options_.Lower2() && d2 < 0) ||
+           (point.parameter2 >= options_.Upper2() && d2 > 0);
   }
 
   /// The curve's point on the first bound crossed between `from` and `beyond`.
@@ -185,7 +185,7 @@ class CurveTracer {
     int index = 0;
     const int size = problem_.Size();
     const std::array<std::pair<double, double>, 2> limits = {
-        {{options_.lower, options_.upper}, {options_.lower2, options_.upper2}}};
+        {{options_.Lower(), options_.Upper()}, {options_.Lower2(), options_.Upper2()}}};
     for (int k = 0; k < 2; ++k) {
       const double a = from.x(size - 2 + k), b = beyond(size - 2 + k);
       for (double limit : {limits[k].first, limits[k].second}) {
@@ -420,12 +420,12 @@ void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1
   Require(type != SpecialPointType::kGrazing || vanishing ||
               start.special.point.orbit.contacts.clearance,
           "the grazing start has no flight maximum to follow");
-  Require(mu1 >= options.lower && mu1 <= options.upper,
+  Require(mu1 >= options.Lower() && mu1 <= options.Upper(),
           fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter, mu1,
-                      options.lower, options.upper));
-  Require(mu2 >= options.lower2 && mu2 <= options.upper2,
+                      options.Lower(), options.Upper()));
+  Require(mu2 >= options.Lower2() && mu2 <= options.Upper2(),
           fmt::format("the start {} = {} is outside the bounds [{}, {}]", options.parameter2, mu2,
-                      options.lower2, options.upper2));
+                      options.Lower2(), options.Upper2()));
 }
 
 }  // namespace
@@ -483,11 +483,11 @@ bool CurveOptions::IsValid(std::string* error) const {
   if (parameter == parameter2) {
     return fail(fmt::format("the two parameters must differ (both {})", parameter));
   }
-  for (const auto& [lo, hi, name] :
-       {std::tuple{lower, upper, parameter}, std::tuple{lower2, upper2, parameter2}}) {
-    if (!(std::isfinite(lo) && std::isfinite(hi) && lo < hi)) {
-      return fail(fmt::format("the bounds of {} must be finite with lower < upper, got [{}, {}]",
-                              name, lo, hi));
+  for (const auto& [one, other, name] :
+       {std::tuple{from, to, parameter}, std::tuple{from2, to2, parameter2}}) {
+    if (!(std::isfinite(one) && std::isfinite(other) && one != other)) {
+      return fail(fmt::format("the range of {} must have two finite, different ends, got {} and {}",
+                              name, one, other));
     }
   }
   if (const auto problem = StepControlProblem(min_step, initial_step, max_step, max_points,

@@ -283,7 +283,7 @@ class NetworkTracer {
         // A special point located just past a bound (grazings are
         // approached from the branch side) may seed outside the range.
         const double mu = GetParameter(start.system, diagram_.parameter);
-        if (mu < options_.continuation.lower || mu > options_.continuation.upper) return;
+        if (mu < options_.continuation.Lower() || mu > options_.continuation.Upper()) return;
         OrbitOptions orbit = options_.continuation.orbit;
         if (!start.orbit.Sticks()) {  // a sticking family is its start's
           orbit.p = p;

@@ -39,6 +39,7 @@
 /// impact, an early release: continuation/sticking_end.hpp).
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <complex>
 #include <functional>
 #include <optional>
@@ -70,9 +71,13 @@ struct UserTest {
 
 struct ContinuationOptions {
   std::string parameter = "omega";
-  /// The branch stays within [lower, upper] (it ends on reaching a bound).
-  double lower = 0.0;
-  double upper = 0.0;
+  /// The ends of the parameter's range, in either order, as every range of
+  /// the library (SweepOptions, CurveOptions): the branch stays within it
+  /// and ends on reaching an end.
+  double from = 0.0;
+  double to = 0.0;
+  double Lower() const { return std::min(from, to); }
+  double Upper() const { return std::max(from, to); }
   /// Initial sense of μ from the start; kBoth follows the branch both ways.
   ContinuationDirection direction = ContinuationDirection::kIncreasing;
   /// Arclength steps in (η, μ) space: start, floor and ceiling.

@@ -36,6 +36,7 @@
 /// existing (a bifurcation curve meeting a grazing curve).
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <complex>
 #include <functional>
@@ -75,9 +76,14 @@ struct CurveOptions {
   /// μ1 (the parameter of the branch the start point came from) and μ2.
   std::string parameter = "omega";
   std::string parameter2 = "r";
-  /// The curve stays within these bounds (it ends on reaching one).
-  double lower = 0.0, upper = 0.0;
-  double lower2 = 0.0, upper2 = 0.0;
+  /// The ends of the ranges of μ1 and μ2, each in either order: the curve
+  /// stays within them and ends on reaching one.
+  double from = 0.0, to = 0.0;
+  double from2 = 0.0, to2 = 0.0;
+  double Lower() const { return std::min(from, to); }
+  double Upper() const { return std::max(from, to); }
+  double Lower2() const { return std::min(from2, to2); }
+  double Upper2() const { return std::max(from2, to2); }
   /// Arclength steps in X = (η, [t*], μ1, μ2): start, floor and ceiling.
   double initial_step = 0.01;
   double min_step = 1e-7;
