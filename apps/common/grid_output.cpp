@@ -20,7 +20,7 @@ std::string Number(double value) { return std::isnan(value) ? "" : fmt::format("
 PeriodLabels LabelsOf(const GridCell& cell) {
   PeriodLabels labels{ToString(cell.kind), "", ""};
   if (cell.q > 0) {
-    labels.p = cell.kind == MotionKind::kSticking ? "inf" : std::to_string(cell.p);
+    labels.p = std::to_string(cell.p);  // 0 when sticking: GridCell::p
     labels.q = std::to_string(cell.q);
   }
   return labels;

@@ -250,7 +250,7 @@ void AddMapCommand(CLI::App& app) {
   const std::string output = "Output (each written only if asked for, and only whole)";
   command
       ->add_option("--out", request->out,
-                   "One row per cell: PARAM,PARAM2,kind,p,q,max_v,range_xN,lyapunov (p = inf "
+                   "One row per cell: PARAM,PARAM2,kind,p,q,max_v,range_xN,lyapunov (p = 0 "
                    "when sticking; max_v the largest impact speed, range_xN the largest "
                    "per-period max - min of the contact mass; empty where undefined)")
       ->type_name("FILE.csv")

@@ -70,9 +70,10 @@ Json MotionJson(const WindowAnalysis& analysis) {
                {"periodic", motion.periodic},
                {"searched_q", analysis.searched_q}};
   if (motion.periodic) {
-    // The schema of every output (common/grid_output.hpp): p = "inf" when
-    // the motion sticks (its impact count before accumulation is no period).
-    json["p"] = motion.sticking ? Json("inf") : Json(motion.p);
+    // The schema of every output and of Python (the library's GridCell):
+    // p = 0 when the motion sticks (its impacts before accumulation are no
+    // period; `sticking` and the label say P(inf,q)).
+    json["p"] = motion.sticking ? 0 : motion.p;
     json["q"] = motion.q;
     json["sticking"] = motion.sticking;
     json["mismatch"] = motion.mismatch;

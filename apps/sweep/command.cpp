@@ -189,7 +189,7 @@ void AddSweepCommand(CLI::App& app) {
       ->add_option("--summary", request->summary,
                    "One row per value: param,kind,p,q,range_xN,range_x1,range_xN_min,"
                    "range_x1_min,impacts,v_min,v_max,lyapunov,restarted (range_*: largest and "
-                   "smallest per-period max - min; p = inf when sticking; empty where undefined)")
+                   "smallest per-period max - min; p = 0 when sticking; empty where undefined)")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group(output);

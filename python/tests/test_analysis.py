@@ -24,6 +24,13 @@ def test_lyapunov_of_a_periodic_orbit_is_log_multipliers_per_period(stable_orbit
     np.testing.assert_allclose(result["exponents"], expected, rtol=0, atol=1e-3)
 
 
+def test_a_sticking_motion_has_p_0_as_every_output_gives_it():
+    # check_kind_schema.sh checks the command line's files at the same value.
+    run = impactkit.sweep(impactkit.System.paper(), from_=0.2, to=0.2, steps=1,
+                          transient_periods=300, recorded_periods=20)
+    assert (run["kind"][0], run["p"][0], run["q"][0]) == ("sticking", 0, 1)
+
+
 def test_sweep_classifies_the_known_orbits_and_ignores_threads():
     s = impactkit.System.paper()
     kwargs = dict(from_=0.6, to=0.64, steps=5, transient_periods=300, recorded_periods=130,

@@ -1,18 +1,19 @@
 #!/usr/bin/env bash
 # One schema for motion kinds (docs/cli.md, "Motion kinds"): the sticking
-# motion at omega = 0.2 is p = inf, q = 1 in `simulate --json`, `sweep
-# --summary` and `map --out`; the periodic P(1,1) at omega = 1.0 is p = 1.
+# motion at omega = 0.2 is p = 0, q = 1 in `simulate --json`, `sweep
+# --summary` and `map --out` (and Python's sweep: test_analysis.py), as
+# the library's GridCell has it; the periodic P(1,1) at omega = 1.0 is p = 1.
 #
 #     check_kind_schema.sh IMPACTKIT
 source "$(dirname "$0")/testlib.sh"
 impactkit=$1
 
-for case in "0.2 sticking inf" "1.0 periodic 1"; do
+for case in "0.2 sticking 0" "1.0 periodic 1"; do
   read -r omega kind p <<<"$case"
   "$impactkit" simulate --omega "$omega" --transient 300 --periods 20 --json "$work/s.json" \
     >/dev/null || fail "simulate failed"
   json=$(tr -d ' \n' <"$work/s.json")
-  if [[ $p == inf ]]; then want='"p":"inf","q":1'; else want="\"p\":$p,\"q\":1"; fi
+  want="\"p\":$p,\"q\":1"
   [[ $json == *"$want"* ]] || fail "simulate --json at $omega lacks $want"
   "$impactkit" sweep --from "$omega" --to "$omega" --steps 1 --transient 300 --record 20 \
     --summary "$work/w.csv" >/dev/null || fail "sweep failed"

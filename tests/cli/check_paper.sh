@@ -33,12 +33,12 @@ for section in "modal data:" "resonance:" "orbits (" "branches (" "brute-force d
 done
 grep -q "omega = 0.6   P(2,1) stable" "$work/stdout" || fail "no stable P(2,1) at 0.6"
 # One schema for motion kinds (docs/cli.md, "Motion kinds"): names, and p =
-# inf for sticking, as `sweep --summary` writes them.
+# 0 for sticking, as `sweep --summary` writes them.
 columns_of "$work/paper/fig3-sweep.csv" | grep -qx "omega,range_xN_max,impacts,kind,p,q" ||
   fail "fig3-sweep.csv columns: $(columns_of "$work/paper/fig3-sweep.csv")"
 awk -F, '!/^#/ && ++row > 1 && $4 !~ /^(periodic|sticking|chaotic|non_impacting|unresolved)$/ {exit 1}'   "$work/paper/fig3-sweep.csv" || fail "fig3-sweep.csv has a kind that is not a name"
-awk -F, '!/^#/ && ++row > 1 && $4 == "sticking" && $5 != "inf" {exit 1}' "$work/paper/fig3-sweep.csv" ||
-  fail "fig3-sweep.csv: a sticking row whose p is not inf"
+awk -F, '!/^#/ && ++row > 1 && $4 == "sticking" && $5 != "0" {exit 1}' "$work/paper/fig3-sweep.csv" ||
+  fail "fig3-sweep.csv: a sticking row whose p is not 0"
 # Provenance (docs/cli.md, "Output files"): every table names the run and
 # what it holds; summary.json has the same object as every JSON output.
 for table in fig3-sweep.csv branch-main.csv; do
