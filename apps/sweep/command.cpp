@@ -114,7 +114,7 @@ void RunSweepCommand(const SweepRequest& request) {
   CsvWriter* out = nullptr;
   if (!request.out.empty()) {
     out = &outputs.AddCsv(request.out, provenance,
-                          std::vector<std::string>{"param", "t", "phase", "v", "stop"});
+                          std::vector<std::string>{options.parameter, "t", "phase", "v", "stop"});
   }
   AtomicOutputFile* summary = AddIfAsked(outputs, request.summary);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
@@ -143,7 +143,7 @@ void RunSweepCommand(const SweepRequest& request) {
     }
   }
   if (summary) {
-    summary->Write(CsvHead({"param", "kind", "p", "q", "range_xN", "range_x1", "range_xN_min",
+    summary->Write(CsvHead({options.parameter, "kind", "p", "q", "range_xN", "range_x1", "range_xN_min",
                             "range_x1_min", "impacts", "v_min", "v_max", "lyapunov", "restarted"},
                            provenance));
     for (const SweepPoint& point : result.points) summary->Write(SummaryRow(point));

@@ -51,7 +51,7 @@ case $mode in
     "$impactkit" sweep --set r=0.7 --from 0.6 --to 2.4 --steps 13 --transient 200 --record 40 \
       --chunk 5 --summary "$work/sweep.csv" >/dev/null || fail "sweep failed"
     # map: omega,r,kind,p,q,max_v,range_xN,lyapunov; sweep summary:
-    # param,kind,p,q,range_xN,...,v_max (11),lyapunov (12).
+    # omega,kind,p,q,range_xN,...,v_max (11),lyapunov (12).
     awk -F, '!/^#/ && ++row > 1 && $2 == "0.7" { print $1","$3","$4","$5","$6","$7","$8 }' "$work/map.csv" \
       >"$work/map-row"
     awk -F, '!/^#/ && ++row > 1 { print $1","$2","$3","$4","$11","$5","$12 }' "$work/sweep.csv" \

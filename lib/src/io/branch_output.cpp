@@ -70,8 +70,9 @@ std::vector<std::string> BranchColumns(const Branch& branch) {
   }
   // A sticking orbit's first impact after each release.
   const int impacts = branch.section == OrbitSection::kRelease ? branch.releases : branch.p;
-  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("phase{}", i));
-  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("v{}", i));
+  // Prefixed: v1..vN name the masses' velocities in every other table.
+  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("impact_phase{}", i));
+  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("impact_v{}", i));
   columns.push_back("range_xN");
   const Eigen::Index multipliers = branch.points.front().orbit.multipliers.size();
   for (Eigen::Index i = 1; i <= multipliers; ++i) columns.push_back(fmt::format("mod{}", i));
