@@ -31,6 +31,34 @@ def test_a_sticking_motion_has_p_0_as_every_output_gives_it():
     assert (run["kind"][0], run["p"][0], run["q"][0]) == ("sticking", 0, 1)
 
 
+def test_a_sweep_with_its_defaults_equals_the_command_line(tmp_path):
+    # No run flag on either side: both take the library's defaults
+    # (SweepOptions), and give the same motions and impacts value for value.
+    import csv
+    import os
+    import subprocess
+
+    summary, out = tmp_path / "s.csv", tmp_path / "o.csv"
+    subprocess.run([os.environ["IMPACTKIT_CLI"], "sweep", "--from", "0.6", "--to", "0.64",
+                    "--steps", "5", "--summary", str(summary), "--out", str(out)], check=True,
+                   capture_output=True)
+    run = impactkit.sweep(impactkit.System.paper(), from_=0.6, to=0.64, steps=5)
+
+    def rows(path):
+        with open(path) as f:
+            return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+    cells = rows(summary)
+    assert [float(c["omega"]) for c in cells] == list(run["values"])
+    assert [c["kind"] for c in cells] == run["kind"]
+    assert [int(c["p"]) for c in cells] == list(run["p"])
+    assert [int(c["q"]) for c in cells] == list(run["q"])
+    impacts = rows(out)
+    assert [float(i["t"]) for i in impacts] == list(run["impact_t"])
+    assert [float(i["phase"]) for i in impacts] == list(run["impact_phase"])
+    assert [float(i["v"]) for i in impacts] == list(run["impact_velocity"])
+
+
 def test_sweep_classifies_the_known_orbits_and_ignores_threads():
     s = impactkit.System.paper()
     kwargs = dict(from_=0.6, to=0.64, steps=5, transient_periods=300, recorded_periods=130,

@@ -157,6 +157,28 @@ def test_a_branch_with_its_defaults_equals_the_command_line(tmp_path):
         branch.write_csv(tmp_path / "missing" / "x.csv")
 
 
+def test_a_branch_followed_both_ways_equals_continue_start(tmp_path):
+    # `continue --start` finds the orbit at --start and follows it both
+    # ways, with the library's defaults: Python's branch through the same
+    # orbit, direction both, is the same file row for row.
+    import os
+    import subprocess
+
+    cli_csv = tmp_path / "cli.csv"
+    subprocess.run([os.environ["IMPACTKIT_CLI"], "continue", "--p", "1", "--q", "1", "--from",
+                    "1.65", "--to", "1.8", "--start", "1.7", "--out", str(cli_csv)], check=True,
+                   capture_output=True)
+    system = impactkit.System.paper(1.7)
+    branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       from_=1.65, to=1.8, direction="both")
+    assert branch.begin is not None
+    py_csv = tmp_path / "py.csv"
+    branch.write_csv(py_csv)
+    with open(py_csv) as mine, open(cli_csv) as theirs:
+        assert ([line for line in mine if not line.startswith("#")] ==
+                [line for line in theirs if not line.startswith("#")])
+
+
 
 def test_a_user_test_of_python_is_located_along_the_branch(branch):
     # The impact speed crossing a level between its values at the branch's
