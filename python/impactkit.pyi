@@ -1,7 +1,7 @@
 """Type stubs of the impactkit module (python/src/*.cpp); docstrings there."""
 
 from os import PathLike
-from typing import Any, Callable, Literal, Optional, TypedDict, overload
+from typing import Any, Callable, Iterator, Literal, Optional, TypedDict, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -21,6 +21,15 @@ Termination = Literal[
 ]
 
 class NumericalError(RuntimeError): ...
+
+# Stub only (no such class at run time): the mapping protocol every option
+# set (SweepOptions, ContinuationOptions, ...) has, for `f(..., **options)`.
+class _OptionSet:
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, key: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 class StopDict(TypedDict, total=False):
     dof: int
@@ -276,6 +285,30 @@ class GrazingSeed:
     @property
     def eta(self) -> FloatArray: ...
 
+class ContinuationOptions(_OptionSet):
+    def __init__(
+        self,
+        *,
+        parameter: str = "omega",
+        from_: Optional[float] = None,
+        to: Optional[float] = None,
+        direction: Literal["increasing", "decreasing", "both"] = "increasing",
+        initial_step: float = 0.01,
+        min_step: float = 1e-7,
+        max_step: float = 0.02,
+        max_points: int = 10000,
+        locate_bifurcations: bool = True,
+    ) -> None: ...
+    parameter: str
+    from_: Optional[float]
+    to: Optional[float]
+    direction: Literal["increasing", "decreasing", "both"]
+    initial_step: float
+    min_step: float
+    max_step: float
+    max_points: int
+    locate_bifurcations: bool
+
 @overload
 def continue_branch(
     system: System,
@@ -329,6 +362,30 @@ class Sweep(TypedDict):
     impact_velocity: FloatArray
     termination: Termination
     report: str
+
+class SweepOptions(_OptionSet):
+    def __init__(
+        self,
+        *,
+        parameter: str = "omega",
+        from_: float = 0.1,
+        to: float = 2.5,
+        steps: int = 2401,
+        transient_periods: int = 500,
+        recorded_periods: int = 100,
+        threads: int = 1,
+        each_from: Literal["previous", "rest"] = "previous",
+        chunk_values: int = 100,
+    ) -> None: ...
+    parameter: str
+    from_: float
+    to: float
+    steps: int
+    transient_periods: int
+    recorded_periods: int
+    threads: int
+    each_from: Literal["previous", "rest"]
+    chunk_values: int
 
 def sweep(
     system: System,
@@ -431,6 +488,38 @@ class Diagram:
     def to_json(self) -> str: ...
     def brief_report(self) -> str: ...
 
+class DiagramOptions(_OptionSet):
+    def __init__(
+        self,
+        *,
+        parameter: str = "omega",
+        from_: Optional[float] = None,
+        to: Optional[float] = None,
+        initial_step: float = 0.01,
+        max_step: float = 0.02,
+        max_points: int = 10000,
+        max_depth: int = 8,
+        max_branches: int = 200,
+        threads: int = 1,
+        switch_period_doubling: bool = True,
+        switch_grazing: bool = True,
+        switch_branch_points: bool = True,
+        switch_pitchforks: bool = True,
+    ) -> None: ...
+    parameter: str
+    from_: Optional[float]
+    to: Optional[float]
+    initial_step: float
+    max_step: float
+    max_points: int
+    max_depth: int
+    max_branches: int
+    threads: int
+    switch_period_doubling: bool
+    switch_grazing: bool
+    switch_branch_points: bool
+    switch_pitchforks: bool
+
 def trace_diagram(
     seeds: list[tuple[System, Orbit]],
     *,
@@ -449,6 +538,38 @@ def trace_diagram(
     switch_pitchforks: bool = True,
     user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
 ) -> Diagram: ...
+
+class MapOptions(_OptionSet):
+    def __init__(
+        self,
+        *,
+        parameter: str = "omega",
+        from_: Optional[float] = None,
+        to: Optional[float] = None,
+        steps: Optional[int] = None,
+        parameter2: str = "r",
+        from2: Optional[float] = None,
+        to2: Optional[float] = None,
+        steps2: Optional[int] = None,
+        transient_periods: int = 500,
+        recorded_periods: int = 100,
+        threads: int = 1,
+        each_from: Literal["previous", "rest"] = "previous",
+        chunk_values: int = 100,
+    ) -> None: ...
+    parameter: str
+    from_: Optional[float]
+    to: Optional[float]
+    steps: Optional[int]
+    parameter2: str
+    from2: Optional[float]
+    to2: Optional[float]
+    steps2: Optional[int]
+    transient_periods: int
+    recorded_periods: int
+    threads: int
+    each_from: Literal["previous", "rest"]
+    chunk_values: int
 
 def parameter_map(
     system: System,
@@ -483,6 +604,36 @@ def basins(
     threads: int = 1,
     orbit_tolerance: float = 1e-4,
 ) -> dict[str, Any]: ...
+
+class BasinsOptions(_OptionSet):
+    def __init__(
+        self,
+        *,
+        coordinate: str = "x2",
+        from_: Optional[float] = None,
+        to: Optional[float] = None,
+        steps: Optional[int] = None,
+        coordinate2: str = "v2",
+        from2: Optional[float] = None,
+        to2: Optional[float] = None,
+        steps2: Optional[int] = None,
+        transient_periods: int = 500,
+        recorded_periods: int = 100,
+        threads: int = 1,
+        orbit_tolerance: float = 1e-4,
+    ) -> None: ...
+    coordinate: str
+    from_: Optional[float]
+    to: Optional[float]
+    steps: Optional[int]
+    coordinate2: str
+    from2: Optional[float]
+    to2: Optional[float]
+    steps2: Optional[int]
+    transient_periods: int
+    recorded_periods: int
+    threads: int
+    orbit_tolerance: float
 
 class Codim2Point:
     @property
@@ -531,6 +682,32 @@ class Curve:
     def to_json(self) -> str: ...
     def write_csv(self, path: str | PathLike[str]) -> None: ...
     def __len__(self) -> int: ...
+
+class CurveOptions(_OptionSet):
+    def __init__(
+        self,
+        *,
+        parameter2: str = "r",
+        from_: Optional[float] = None,
+        to: Optional[float] = None,
+        from2: Optional[float] = None,
+        to2: Optional[float] = None,
+        initial_step: float = 0.01,
+        min_step: float = 1e-7,
+        max_step: float = 0.02,
+        max_points: int = 2000,
+        locate_codim2: bool = True,
+    ) -> None: ...
+    parameter2: str
+    from_: Optional[float]
+    to: Optional[float]
+    from2: Optional[float]
+    to2: Optional[float]
+    initial_step: float
+    min_step: float
+    max_step: float
+    max_points: int
+    locate_codim2: bool
 
 def continue_curve(
     system: System,

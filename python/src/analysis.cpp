@@ -10,6 +10,7 @@
 #include "impactkit/analysis/lyapunov.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/sweep.hpp"
+#include "option_sets.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -72,13 +73,7 @@ py::dict SweepPy(const System& system, const std::string& parameter, double from
   options.recorded_periods = recorded_periods;
   options.threads = threads;
   options.chunk_values = chunk_values;
-  if (each_from == "previous") {
-    options.start = SweepStart::kPrevious;
-  } else if (each_from == "rest") {
-    options.start = SweepStart::kFixed;
-  } else {
-    throw InvalidInput("each_from must be 'previous' or 'rest', got '" + each_from + "'");
-  }
+  options.start = StartFromName(each_from);
   const SweepResult result =
       WithoutGil([&] { return RunSweep(system, options, InterruptibleRun()); });
   return SweepArrays(result);
@@ -123,17 +118,58 @@ py::dict ResonancePy(const System& system, double from, double to, int steps) {
   return out;
 }
 
+/// impactkit.SweepOptions: the keywords of sweep, over SweepOptions.
+void BindSweepOptions(py::module_& module, const SweepOptions& defaults) {
+  OptionSetBinding<SweepOptions>(defaults)
+      .Field("parameter", &SweepOptions::parameter,
+             "The swept parameter: a name of System.parameter_names().")
+      .Field("from_", &SweepOptions::from, "One end of the range.")
+      .Field("to", &SweepOptions::to, "The other end (either order).")
+      .Field("steps", &SweepOptions::steps, "K >= 1 values, both ends included (K = 1: from_).")
+      .Field("transient_periods", &SweepOptions::transient_periods,
+             "Forcing periods run and discarded at each value (>= 0).")
+      .Field("recorded_periods", &SweepOptions::recorded_periods,
+             "Forcing periods recorded at each value (>= 1).")
+      .Field("threads", &SweepOptions::threads,
+             "Worker threads (>= 1); results do not depend on it.")
+      .Converted(
+          "each_from", [](const SweepOptions& o) { return StartName(o.start); },
+          [](SweepOptions& o, const std::string& name) { o.start = StartFromName(name); },
+          "Where each value starts: 'previous' (the previous value's final state) or "
+          "'rest'.")
+      .Field("chunk_values", &SweepOptions::chunk_values,
+             "Consecutive values per chunk (>= 0; 0: one chunk). Part of the result's "
+             "definition: change it and the chunk boundaries move.")
+      .Bind(module, "SweepOptions",
+            "The keywords of impactkit.sweep (but system), with its defaults: the library's "
+            "SweepOptions (analysis/sweep.hpp). impactkit.sweep(system, "
+            "**impactkit.SweepOptions(steps=11)) passes a set.");
+}
+
 }  // namespace
 
+SweepStart StartFromName(const std::string& each_from) {
+  if (each_from == "previous") return SweepStart::kPrevious;
+  if (each_from == "rest") return SweepStart::kFixed;
+  throw InvalidInput("each_from must be 'previous' or 'rest', got '" + each_from + "'");
+}
+
+std::string StartName(SweepStart start) {
+  return start == SweepStart::kPrevious ? "previous" : "rest";
+}
+
 void BindAnalysis(py::module_& module) {
-  const SweepOptions kSweep;  // the defaults are the library's, as the command line's are
-  module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(),
-             py::arg("parameter") = kSweep.parameter, py::arg("from_") = kSweep.from,
-             py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
-             py::arg("transient_periods") = kSweep.transient_periods,
-             py::arg("recorded_periods") = kSweep.recorded_periods, py::arg("threads") = 1,
-             py::arg("each_from") = "previous", py::arg("chunk_values") = kSweep.chunk_values,
-             R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
+  // The defaults are the library's, as the command line's are: those of the
+  // function's keywords and of SweepOptions, from the same struct.
+  const SweepOptions kSweep;
+  BindSweepOptions(module, kSweep);
+  module.def(
+      "sweep", &SweepPy, py::arg("system"), py::kw_only(), py::arg("parameter") = kSweep.parameter,
+      py::arg("from_") = kSweep.from, py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
+      py::arg("transient_periods") = kSweep.transient_periods,
+      py::arg("recorded_periods") = kSweep.recorded_periods, py::arg("threads") = kSweep.threads,
+      py::arg("each_from") = StartName(kSweep.start), py::arg("chunk_values") = kSweep.chunk_values,
+      R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
 from_ to to, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,
 p, q (0 where undefined; a sticking motion has its q and p = 0, its kind
@@ -143,7 +179,9 @@ delimited by range_offsets, K + 1) and every recorded impact (impact_t,
 impact_phase, impact_velocity, delimited by impact_offsets); termination
 ('completed') and report. each_from: 'previous' (each value from the previous final
 state) or 'rest'. Releases the GIL; Ctrl-C raises
-KeyboardInterrupt.)");
+KeyboardInterrupt.
+Its keywords are impactkit.SweepOptions's: `sweep(system, **impactkit.SweepOptions(...))`
+passes a set.)");
   module.def("lyapunov", &LyapunovPy, py::arg("system"), py::arg("eta"), py::kw_only(),
              py::arg("impacts") = 2000, py::arg("transient_impacts") = 200,
              R"(Lyapunov exponents of the impact map from the impact state eta, per unit

@@ -12,9 +12,11 @@
 #include <exception>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
 
 namespace impactkit::python {
@@ -67,6 +69,12 @@ auto WithoutGil(Call&& call) {
 /// each call takes it, and the last copy of a callable lets it go holding
 /// it. An exception the callable raises ends the library call with it.
 std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests);
+
+/// The `each_from` keyword of sweep and parameter_map (and of their option
+/// sets): 'previous' or 'rest' (kFixed: Python gives no fixed state, so it
+/// is rest). StartFromName throws InvalidInput (ValueError) for another name.
+SweepStart StartFromName(const std::string& each_from);
+std::string StartName(SweepStart start);
 
 /// The values of `data` as a numpy array of the given shape, without a
 /// copy: the vector moves to the heap and the array's base owns it.

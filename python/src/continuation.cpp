@@ -12,6 +12,7 @@
 
 #include "bindings.hpp"
 #include "impactkit/io/branch_output.hpp"
+#include "option_sets.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -21,6 +22,18 @@ ContinuationDirection DirectionFromName(const std::string& name) {
   if (name == "decreasing") return ContinuationDirection::kDecreasing;
   if (name == "both") return ContinuationDirection::kBoth;
   throw InvalidInput("direction must be 'increasing', 'decreasing' or 'both', got '" + name + "'");
+}
+
+std::string DirectionName(ContinuationDirection direction) {
+  switch (direction) {
+    case ContinuationDirection::kIncreasing:
+      return "increasing";
+    case ContinuationDirection::kDecreasing:
+      return "decreasing";
+    case ContinuationDirection::kBoth:
+      return "both";
+  }
+  return "increasing";  // not reached: every direction has its name above
 }
 
 ContinuationOptions MakeOptions(const std::string& parameter, double from, double to,
@@ -89,6 +102,41 @@ std::vector<GrazingSeed> GrazingSeeds(const System& system, const Branch& branch
           "seeds_at_grazing needs a grazing or sticking point, got " + ToString(graze.type));
   return WithoutGil(
       [&] { return SeedsAtGrazing(system, branch, graze, SwitchingOptions(branch), offset); });
+}
+
+/// impactkit.ContinuationOptions: the keywords of continue_branch (but the
+/// start and user_tests), over ContinuationOptions.
+void BindContinuationOptions(py::module_& module, const ContinuationOptions& defaults) {
+  OptionSetBinding<ContinuationOptions>(defaults)
+      .Field("parameter", &ContinuationOptions::parameter,
+             "The continued parameter: a name of System.parameter_names().")
+      .Required("from_", &ContinuationOptions::from,
+                "One end of the parameter's range (either order): the branch stays within it "
+                "and ends on reaching an end.")
+      .Required("to", &ContinuationOptions::to, "The other end of the parameter's range.")
+      .Converted(
+          "direction", [](const ContinuationOptions& o) { return DirectionName(o.direction); },
+          [](ContinuationOptions& o, const std::string& name) {
+            o.direction = DirectionFromName(name);
+          },
+          "Initial sense of the parameter from the start: 'increasing', 'decreasing', or "
+          "'both' (follows the branch both ways).")
+      .Field("initial_step", &ContinuationOptions::initial_step,
+             "Arclength step in (eta, parameter) space: the first.")
+      .Field("min_step", &ContinuationOptions::min_step,
+             "Arclength step in (eta, parameter) space: the floor.")
+      .Field("max_step", &ContinuationOptions::max_step,
+             "Arclength step in (eta, parameter) space: the ceiling.")
+      .Field("max_points", &ContinuationOptions::max_points, "Points at most, per direction.")
+      .Field("locate_bifurcations", &ContinuationOptions::locate_bifurcations,
+             "Locate fold, period doubling and Neimark-Sacker points (grazing and sticking are "
+             "always watched: they end the branch).")
+      .Bind(module, "ContinuationOptions",
+            "The keywords of impactkit.continue_branch (but the start and user_tests), with "
+            "its defaults: the library's ContinuationOptions "
+            "(continuation/continuation.hpp). from_ and to have none: "
+            "impactkit.continue_branch(system, orbit, **impactkit.ContinuationOptions(from_=1.5, "
+            "to=1.8)) passes a set.");
 }
 
 }  // namespace
@@ -267,20 +315,25 @@ direction, when it has one, takes precedence). user_tests: {name:
 function(Orbit) -> float}, test functions of your own whose zeros are
 located like the bifurcations' (special points 'user_test' with that name).
 Returns a Branch. Raises ValueError for bad input, and what a user test
-raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)";
-  const ContinuationOptions kBranch;  // the defaults are the library's, as the command line's are
+raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+Its keywords are impactkit.ContinuationOptions's (but user_tests):
+`continue_branch(system, orbit, **impactkit.ContinuationOptions(...))` passes a set.)";
+  // The defaults are the library's, as the command line's are: those of the
+  // function's keywords and of ContinuationOptions, from the same struct.
+  const ContinuationOptions kBranch;
+  BindContinuationOptions(module, kBranch);
   module.def("continue_branch", &ContinueFromOrbit, py::arg("system"), py::arg("orbit"),
-             py::kw_only(), py::arg("parameter") = "omega", py::arg("from_"), py::arg("to"),
-             py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
-             py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
-             py::arg("max_points") = kBranch.max_points,
+             py::kw_only(), py::arg("parameter") = kBranch.parameter, py::arg("from_"),
+             py::arg("to"), py::arg("direction") = DirectionName(kBranch.direction),
+             py::arg("initial_step") = kBranch.initial_step, py::arg("min_step") = kBranch.min_step,
+             py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
              py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
              py::arg("user_tests") = py::none(), continue_doc);
   module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
-             py::arg("parameter") = "omega", py::arg("from_"), py::arg("to"),
-             py::arg("direction") = "increasing", py::arg("initial_step") = kBranch.initial_step,
-             py::arg("min_step") = kBranch.min_step, py::arg("max_step") = kBranch.max_step,
-             py::arg("max_points") = kBranch.max_points,
+             py::arg("parameter") = kBranch.parameter, py::arg("from_"), py::arg("to"),
+             py::arg("direction") = DirectionName(kBranch.direction),
+             py::arg("initial_step") = kBranch.initial_step, py::arg("min_step") = kBranch.min_step,
+             py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
              py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
              py::arg("user_tests") = py::none(), continue_doc);
   module.def("doubled_branch_start", &DoubledStart, py::arg("system"), py::arg("branch"),

@@ -13,6 +13,7 @@
 #include "bindings.hpp"
 #include "impactkit/io/curve_output.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "option_sets.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -132,15 +133,47 @@ void BindCurveClass(py::module_& module) {
       });
 }
 
+/// impactkit.CurveOptions: the keywords of continue_curve (but the
+/// positional ones and user_tests), over CurveOptions.
+void BindCurveOptions(py::module_& module, const CurveOptions& defaults) {
+  OptionSetBinding<CurveOptions>(defaults)
+      .Field("parameter2", &CurveOptions::parameter2,
+             "mu2, the second parameter (mu1 is the branch's): a name of "
+             "System.parameter_names().")
+      .Required("from_", &CurveOptions::from,
+                "One end of mu1's range (either order): the curve stays within the ranges and "
+                "ends on reaching one.")
+      .Required("to", &CurveOptions::to, "The other end of mu1's range.")
+      .Required("from2", &CurveOptions::from2, "One end of mu2's range (either order).")
+      .Required("to2", &CurveOptions::to2, "The other end of mu2's range.")
+      .Field("initial_step", &CurveOptions::initial_step,
+             "Arclength step in X = (eta, [t*], mu1, mu2): the first.")
+      .Field("min_step", &CurveOptions::min_step,
+             "Arclength step in X = (eta, [t*], mu1, mu2): the floor.")
+      .Field("max_step", &CurveOptions::max_step,
+             "Arclength step in X = (eta, [t*], mu1, mu2): the ceiling.")
+      .Field("max_points", &CurveOptions::max_points, "Points at most, per direction.")
+      .Field("locate_codim2", &CurveOptions::locate_codim2,
+             "Locate codimension-two points (the curve's end is always located).")
+      .Bind(module, "CurveOptions",
+            "The keywords of impactkit.continue_curve (but the positional ones and user_tests), "
+            "with its defaults: the library's CurveOptions (continuation/curve.hpp). The ranges "
+            "have none: impactkit.continue_curve(system, branch, point, "
+            "**impactkit.CurveOptions(from_=0.5, to=3.0, from2=0.3, to2=0.95)) passes a set.");
+}
+
 }  // namespace
 
 void BindCurve(py::module_& module) {
   BindCodim2(module);
   BindCurveClass(module);
-  const CurveOptions kCurve;  // the defaults are the library's, as the command line's are
+  // The defaults are the library's, as the command line's are: those of the
+  // function's keywords and of CurveOptions, from the same struct.
+  const CurveOptions kCurve;
+  BindCurveOptions(module, kCurve);
   module.def("continue_curve", &ContinueCurvePy, py::arg("system"), py::arg("branch"),
-             py::arg("special_point"), py::kw_only(), py::arg("parameter2") = "r", py::arg("from_"),
-             py::arg("to"), py::arg("from2"), py::arg("to2"),
+             py::arg("special_point"), py::kw_only(), py::arg("parameter2") = kCurve.parameter2,
+             py::arg("from_"), py::arg("to"), py::arg("from2"), py::arg("to2"),
              py::arg("initial_step") = kCurve.initial_step, py::arg("min_step") = kCurve.min_step,
              py::arg("max_step") = kCurve.max_step, py::arg("max_points") = kCurve.max_points,
              py::arg("locate_codim2") = kCurve.locate_codim2, py::arg("user_tests") = py::none(),
@@ -151,7 +184,9 @@ ways, locating codimension-two points (`impactkit curve`), and the zeros
 of user_tests ({name: function(Orbit) -> float}) as 'user_test' points.
 Returns a Curve.
 Raises ValueError for bad input or a point the curve cannot start from.
-Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
+Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+Its keywords are impactkit.CurveOptions's (but user_tests):
+`continue_curve(system, branch, special_point, **impactkit.CurveOptions(...))` passes a set.)");
 }
 
 }  // namespace impactkit::python

@@ -12,6 +12,7 @@
 
 #include "bindings.hpp"
 #include "impactkit/io/diagram_output.hpp"
+#include "option_sets.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -146,25 +147,72 @@ void BindGraph(py::module_& module) {
            [](const Diagram& d) { return "impactkit.Diagram(" + d.BriefReport() + ")"; });
 }
 
+/// impactkit.DiagramOptions: the keywords of trace_diagram (but the seeds
+/// and user_tests), over DiagramOptions (the branches' in its continuation).
+void BindDiagramOptions(py::module_& module, const DiagramOptions& defaults) {
+  OptionSetBinding<DiagramOptions>(defaults)
+      .Field(
+          "parameter", [](auto& o) -> auto& { return o.continuation.parameter; },
+          "The continued parameter: a name of System.parameter_names().")
+      .Required(
+          "from_", [](auto& o) -> auto& { return o.continuation.from; },
+          "One end of the parameter's range (either order): every branch stays within it and "
+          "ends on reaching an end.")
+      .Required(
+          "to", [](auto& o) -> auto& { return o.continuation.to; },
+          "The other end of the parameter's range.")
+      .Field(
+          "initial_step", [](auto& o) -> auto& { return o.continuation.initial_step; },
+          "Arclength step of every branch in (eta, parameter) space: the first.")
+      .Field(
+          "max_step", [](auto& o) -> auto& { return o.continuation.max_step; },
+          "Arclength step of every branch in (eta, parameter) space: the ceiling.")
+      .Field(
+          "max_points", [](auto& o) -> auto& { return o.continuation.max_points; },
+          "Points at most of every branch, per direction.")
+      .Field("max_depth", &DiagramOptions::max_depth,
+             "Switches from a seed's branch at most (0: the seeds' branches only).")
+      .Field("max_branches", &DiagramOptions::max_branches, "Branches traced at most.")
+      .Field("threads", &DiagramOptions::threads,
+             "Branches of one generation traced at once (>= 1); the result does not depend on "
+             "it.")
+      .Field("switch_period_doubling", &DiagramOptions::switch_period_doubling,
+             "Start the doubled branch at each period doubling.")
+      .Field("switch_grazing", &DiagramOptions::switch_grazing,
+             "Start the orbit with one impact more or fewer at each grazing.")
+      .Field("switch_branch_points", &DiagramOptions::switch_branch_points,
+             "Start the shorter orbit at a branch point.")
+      .Field("switch_pitchforks", &DiagramOptions::switch_pitchforks,
+             "Start both halves of the crossing branch at a pitchfork.")
+      .Bind(module, "DiagramOptions",
+            "The keywords of impactkit.trace_diagram (but the seeds and user_tests), with its "
+            "defaults: the library's DiagramOptions (continuation/diagram.hpp). from_ and to "
+            "have none: impactkit.trace_diagram(seeds, **impactkit.DiagramOptions(from_=1.5, "
+            "to=1.8)) passes a set.");
+}
+
 }  // namespace
 
 void BindDiagram(py::module_& module) {
   BindNode(module);
   BindBranch(module);
   BindGraph(module);
-  // The defaults are the library's, as the command line's are.
-  const ContinuationOptions kBranch;
+  // The defaults are the library's, as the command line's are: those of the
+  // function's keywords and of DiagramOptions, from the same struct.
   const DiagramOptions kNetwork;
-  module.def(
-      "trace_diagram", &Trace, py::arg("seeds"), py::kw_only(), py::arg("parameter") = "omega",
-      py::arg("from_"), py::arg("to"), py::arg("initial_step") = kBranch.initial_step,
-      py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
-      py::arg("max_depth") = kNetwork.max_depth, py::arg("max_branches") = kNetwork.max_branches,
-      py::arg("threads") = 1, py::arg("switch_period_doubling") = kNetwork.switch_period_doubling,
-      py::arg("switch_grazing") = kNetwork.switch_grazing,
-      py::arg("switch_branch_points") = kNetwork.switch_branch_points,
-      py::arg("switch_pitchforks") = kNetwork.switch_pitchforks, py::arg("user_tests") = py::none(),
-      R"(Traces the connected bifurcation diagram through `seeds`, a list of
+  const ContinuationOptions& kBranch = kNetwork.continuation;
+  BindDiagramOptions(module, kNetwork);
+  module.def("trace_diagram", &Trace, py::arg("seeds"), py::kw_only(),
+             py::arg("parameter") = kBranch.parameter, py::arg("from_"), py::arg("to"),
+             py::arg("initial_step") = kBranch.initial_step, py::arg("max_step") = kBranch.max_step,
+             py::arg("max_points") = kBranch.max_points, py::arg("max_depth") = kNetwork.max_depth,
+             py::arg("max_branches") = kNetwork.max_branches, py::arg("threads") = kNetwork.threads,
+             py::arg("switch_period_doubling") = kNetwork.switch_period_doubling,
+             py::arg("switch_grazing") = kNetwork.switch_grazing,
+             py::arg("switch_branch_points") = kNetwork.switch_branch_points,
+             py::arg("switch_pitchforks") = kNetwork.switch_pitchforks,
+             py::arg("user_tests") = py::none(),
+             R"(Traces the connected bifurcation diagram through `seeds`, a list of
 (system, orbit) pairs: each seed's branch is followed both ways in the named
 parameter between from_ and to, and at every period doubling, grazing,
 branch point and pitchfork the branch that starts there, each branch once (the library's
@@ -173,7 +221,9 @@ threads: branches of one generation traced at once; the result does not
 depend on it. user_tests: {name: function(Orbit) -> float}, located on
 every branch as nodes 'user_test' (called from the tracing threads, each
 call taking the GIL). Raises ValueError for bad input, and what a user test
-raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
+raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+Its keywords are impactkit.DiagramOptions's (but user_tests):
+`trace_diagram(seeds, **impactkit.DiagramOptions(...))` passes a set.)");
 }
 
 }  // namespace impactkit::python

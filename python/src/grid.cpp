@@ -11,6 +11,7 @@
 #include "bindings.hpp"
 #include "impactkit/analysis/basins.hpp"
 #include "impactkit/analysis/parameter_map.hpp"
+#include "option_sets.hpp"
 
 namespace impactkit::python {
 namespace {
@@ -67,12 +68,6 @@ py::dict CellArrays(const std::vector<GridCell>& cells, py::ssize_t rows, py::ss
   out["range_xN"] = MoveToArray(std::move(range), shape);
   out["lyapunov"] = MoveToArray(std::move(lyapunov), shape);
   return out;
-}
-
-SweepStart StartFromName(const std::string& each_from) {
-  if (each_from == "previous") return SweepStart::kPrevious;
-  if (each_from == "rest") return SweepStart::kFixed;
-  throw InvalidInput("each_from must be 'previous' or 'rest', got '" + each_from + "'");
 }
 
 py::dict ParameterMapPy(const System& system, const std::string& parameter, double from, double to,
@@ -143,38 +138,142 @@ py::dict BasinsPy(const System& system, const std::string& coordinate1, double f
   return out;
 }
 
+/// The defaults of basins and BasinsOptions: the library's, but for the
+/// coordinates, which are the command line's (`impactkit basins` --coord
+/// x2 --coord2 v2, the paper's contact mass) rather than BasinsOptions' x1
+/// and v1, so that a call without them computes what the command line does.
+BasinsOptions BasinsDefaults() {
+  BasinsOptions options;
+  options.coordinate1 = "x2";
+  options.coordinate2 = "v2";
+  return options;
+}
+
+/// impactkit.MapOptions: the keywords of parameter_map (but system), over
+/// ParameterMapOptions (the row's sweep in its `row`).
+void BindMapOptions(py::module_& module, const ParameterMapOptions& defaults) {
+  OptionSetBinding<ParameterMapOptions>(defaults)
+      .Field(
+          "parameter", [](auto& o) -> auto& { return o.row.parameter; },
+          "The row parameter, swept along each row: a name of System.parameter_names().")
+      .Required(
+          "from_", [](auto& o) -> auto& { return o.row.from; }, "One end of its range.")
+      .Required(
+          "to", [](auto& o) -> auto& { return o.row.to; }, "The other end (either order).")
+      .Required(
+          "steps", [](auto& o) -> auto& { return o.row.steps; },
+          "K >= 1 values per row, both ends included.")
+      .Field("parameter2", &ParameterMapOptions::parameter2,
+             "The column parameter, one value per row: not the row parameter.")
+      .Required("from2", &ParameterMapOptions::from2, "One end of its range.")
+      .Required("to2", &ParameterMapOptions::to2, "The other (either order; ascending rows).")
+      .Required("steps2", &ParameterMapOptions::steps2, "L >= 1 rows, both ends included.")
+      .Field(
+          "transient_periods", [](auto& o) -> auto& { return o.row.transient_periods; },
+          "Forcing periods run and discarded at each value (>= 0).")
+      .Field(
+          "recorded_periods", [](auto& o) -> auto& { return o.row.recorded_periods; },
+          "Forcing periods recorded at each value (>= 1).")
+      .Field(
+          "threads", [](auto& o) -> auto& { return o.row.threads; },
+          "Worker threads (>= 1); the result does not depend on it.")
+      .Converted(
+          "each_from", [](const ParameterMapOptions& o) { return StartName(o.row.start); },
+          [](ParameterMapOptions& o, const std::string& name) {
+            o.row.start = StartFromName(name);
+          },
+          "Where each value of a row starts: 'previous' (the previous value's final state) "
+          "or 'rest'.")
+      .Field(
+          "chunk_values", [](auto& o) -> auto& { return o.row.chunk_values; },
+          "Consecutive values per chunk of a row (>= 0; 0: one chunk). Part of the result's "
+          "definition: change it and the chunk boundaries move.")
+      .Bind(module, "MapOptions",
+            "The keywords of impactkit.parameter_map (but system), with its defaults: the "
+            "library's ParameterMapOptions (analysis/parameter_map.hpp). The ranges and steps "
+            "have none: impactkit.parameter_map(system, **impactkit.MapOptions(from_=1.7, "
+            "to=1.9, steps=3, from2=0.6, to2=0.8, steps2=2)) passes a set.");
+}
+
+/// impactkit.BasinsOptions: the keywords of basins (but system), over
+/// BasinsOptions (the cells' run in its `run`).
+void BindBasinsOptions(py::module_& module, const BasinsOptions& defaults) {
+  OptionSetBinding<BasinsOptions>(defaults)
+      .Field("coordinate", &BasinsOptions::coordinate1,
+             "The state coordinate that varies along a row: 'x1'..'xN' or 'v1'..'vN' (the "
+             "others at rest).")
+      .Required("from_", &BasinsOptions::from1, "One end of its range.")
+      .Required("to", &BasinsOptions::to1, "The other end (either order).")
+      .Required("steps", &BasinsOptions::steps1, "K >= 1 values per row.")
+      .Field("coordinate2", &BasinsOptions::coordinate2,
+             "The state coordinate that varies from row to row (ascending).")
+      .Required("from2", &BasinsOptions::from2, "One end of its range.")
+      .Required("to2", &BasinsOptions::to2, "The other end (either order).")
+      .Required("steps2", &BasinsOptions::steps2, "L >= 1 rows.")
+      .Field(
+          "transient_periods", [](auto& o) -> auto& { return o.run.transient_periods; },
+          "Forcing periods run and discarded from each start (>= 0).")
+      .Field(
+          "recorded_periods", [](auto& o) -> auto& { return o.run.recorded_periods; },
+          "Forcing periods recorded from each start (>= 1).")
+      .Field(
+          "threads", [](auto& o) -> auto& { return o.run.threads; },
+          "Worker threads (>= 1); the result does not depend on it.")
+      .Field("orbit_tolerance", &BasinsOptions::orbit_tolerance,
+             "Relative distance under which two impacts are the same: phases within "
+             "tolerance * T, speeds within tolerance * max(1, |v|).")
+      .Bind(module, "BasinsOptions",
+            "The keywords of impactkit.basins (but system), with its defaults: the library's "
+            "BasinsOptions (analysis/basins.hpp), but for the coordinates, the command line's. "
+            "The ranges and steps have none: impactkit.basins(system, "
+            "**impactkit.BasinsOptions(from_=-0.5, to=0.1, steps=4, from2=-0.5, to2=0.5, "
+            "steps2=3)) passes a set.");
+}
+
 }  // namespace
 
 void BindGrid(py::module_& module) {
   // The defaults are the library's (a map's rows are sweeps), as the
-  // command line's are.
-  const SweepOptions kRun;
-  module.def("parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
-             py::arg("parameter") = "omega", py::arg("from_"), py::arg("to"), py::arg("steps"),
-             py::arg("parameter2") = "r", py::arg("from2"), py::arg("to2"), py::arg("steps2"),
-             py::arg("transient_periods") = kRun.transient_periods,
-             py::arg("recorded_periods") = kRun.recorded_periods, py::arg("threads") = 1,
-             py::arg("each_from") = "previous", py::arg("chunk_values") = kRun.chunk_values,
-             R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
+  // command line's are: those of the functions' keywords and of MapOptions
+  // and BasinsOptions, from the same structs.
+  const ParameterMapOptions kMap;
+  const SweepOptions& kRow = kMap.row;
+  const BasinsOptions kBasins = BasinsDefaults();
+  BindMapOptions(module, kMap);
+  BindBasinsOptions(module, kBasins);
+  module.def(
+      "parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
+      py::arg("parameter") = kRow.parameter, py::arg("from_"), py::arg("to"), py::arg("steps"),
+      py::arg("parameter2") = kMap.parameter2, py::arg("from2"), py::arg("to2"), py::arg("steps2"),
+      py::arg("transient_periods") = kRow.transient_periods,
+      py::arg("recorded_periods") = kRow.recorded_periods, py::arg("threads") = kRow.threads,
+      py::arg("each_from") = StartName(kRow.start), py::arg("chunk_values") = kRow.chunk_values,
+      R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
 of `parameter` (steps values from from_ to to) at one of the steps2
 values of `parameter2` (ascending), each cell's motion classified. Returns
 a dict of arrays of shape (steps2, steps): 'kind' (names), 'kind_code'
 (index into 'kinds'), 'p', 'q' (0 where undefined), 'max_v', 'range_xN',
 'lyapunov' (NaN where undefined), and 'values', 'values2'. threads does not
-change the result. Releases the GIL; Ctrl-C raises KeyboardInterrupt.)");
-  module.def("basins", &BasinsPy, py::arg("system"), py::kw_only(), py::arg("coordinate") = "x2",
-             py::arg("from_"), py::arg("to"), py::arg("steps"), py::arg("coordinate2") = "v2",
-             py::arg("from2"), py::arg("to2"), py::arg("steps2"),
-             py::arg("transient_periods") = kRun.transient_periods,
-             py::arg("recorded_periods") = kRun.recorded_periods, py::arg("threads") = 1,
-             py::arg("orbit_tolerance") = BasinsOptions{}.orbit_tolerance,
+change the result. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+Its keywords are impactkit.MapOptions's: `parameter_map(system, **impactkit.MapOptions(...))`
+passes a set.)");
+  module.def("basins", &BasinsPy, py::arg("system"), py::kw_only(),
+             py::arg("coordinate") = kBasins.coordinate1, py::arg("from_"), py::arg("to"),
+             py::arg("steps"), py::arg("coordinate2") = kBasins.coordinate2, py::arg("from2"),
+             py::arg("to2"), py::arg("steps2"),
+             py::arg("transient_periods") = kBasins.run.transient_periods,
+             py::arg("recorded_periods") = kBasins.run.recorded_periods,
+             py::arg("threads") = kBasins.run.threads,
+             py::arg("orbit_tolerance") = kBasins.orbit_tolerance,
              R"(Basins of attraction, as `impactkit basins` computes them: a grid of
 starts over two state coordinates ('x1'..'xN', 'v1'..'vN'; the others at
 rest), each run to its attractor and the attractors identified by their
 orbits. Returns the cell arrays of parameter_map (shape (steps2, steps))
 and 'attractor' (index into 'attractors', a list of dicts with kind, p,
 q, cells, and the orbit's impact 'phases' and 'speeds'). Releases the GIL;
-Ctrl-C raises KeyboardInterrupt.)");
+Ctrl-C raises KeyboardInterrupt.
+Its keywords are impactkit.BasinsOptions's: `basins(system, **impactkit.BasinsOptions(...))`
+passes a set.)");
 }
 
 }  // namespace impactkit::python
