@@ -18,7 +18,7 @@
 
 #include "commands.hpp"
 #include "common/branches.hpp"
-#include "common/grid_output.hpp"
+#include "common/grid_flags.hpp"
 #include "common/limits.hpp"
 #include "common/orbit_seed.hpp"
 #include "common/output.hpp"
@@ -27,6 +27,7 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
+#include "impactkit/io/grid_output.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/swept_diagram.hpp"

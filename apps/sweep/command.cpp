@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "common/grid_output.hpp"
 #include "common/limits.hpp"
 #include "common/output.hpp"
 #include "common/plot.hpp"
@@ -26,6 +25,7 @@
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/io/csv.hpp"
 #include "impactkit/io/output_set.hpp"
+#include "impactkit/io/sweep_output.hpp"
 #include "sweep/chart.hpp"
 
 namespace impactkit::cli {
@@ -75,34 +75,6 @@ std::string ProvenanceText(const SweepRequest& request, const System& system,
   return MakeProvenance(request.system, system, std::move(text)).Text();
 }
 
-/// A number as the CSV files write it: shortest round-trip form; an
-/// undefined value (NaN here) is an empty field — gnuplot and pandas read it
-/// as missing, and no NaN reaches a file.
-std::string Number(double value) { return std::isnan(value) ? "" : fmt::format("{}", value); }
-
-std::string SummaryRow(const SweepPoint& point) {
-  const Classification& c = point.classification;
-  const PeriodLabels period = LabelsOf(CellOf(0, point));
-  auto extreme = [](const std::vector<double>& values, bool largest) {
-    if (values.empty()) return std::nan("");
-    return largest ? *std::max_element(values.begin(), values.end())
-                   : *std::min_element(values.begin(), values.end());
-  };
-  double v_min = std::nan(""), v_max = std::nan("");
-  for (const SweepImpact& i : point.impacts) {
-    v_min = std::isnan(v_min) ? i.velocity : std::min(v_min, i.velocity);
-    v_max = std::isnan(v_max) ? i.velocity : std::max(v_max, i.velocity);
-  }
-  const double lyapunov =
-      c.lyapunov_computed && c.lyapunov.valid ? c.lyapunov.largest : std::nan("");
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", Number(point.value), period.kind,
-                     period.p, period.q, Number(extreme(point.range_contact, true)),
-                     Number(extreme(point.range_first, true)),
-                     Number(extreme(point.range_contact, false)),
-                     Number(extreme(point.range_first, false)), point.impacts.size(), Number(v_min),
-                     Number(v_max), Number(lyapunov), point.restarted ? 1 : 0);
-}
-
 void RunSweepCommand(const SweepRequest& request) {
   const System system = ResolveSystem(request.system);
   const SweepOptions options = OptionsOf(request, system);
@@ -113,8 +85,7 @@ void RunSweepCommand(const SweepRequest& request) {
   OutputSet outputs;
   CsvWriter* out = nullptr;
   if (!request.out.empty()) {
-    out = &outputs.AddCsv(request.out, provenance,
-                          std::vector<std::string>{options.parameter, "t", "phase", "v", "stop"});
+    out = &outputs.AddCsv(request.out, provenance, SweepImpactColumns(options.parameter));
   }
   AtomicOutputFile* summary = AddIfAsked(outputs, request.summary);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
@@ -133,20 +104,10 @@ void RunSweepCommand(const SweepRequest& request) {
       options.transient_periods, options.recorded_periods, ToString(options.start),
       options.threads);
   fmt::print("result:  {}\n", result.BriefReport());
-  if (out) {
-    for (const SweepPoint& point : result.points) {
-      for (const SweepImpact& i : point.impacts) {
-        // Stops count from 1 in files, as in the system file.
-        const double row[] = {point.value, i.t, i.phase, i.velocity, i.stop + 1.0};
-        out->WriteRow(row);
-      }
-    }
-  }
+  if (out) WriteSweepImpactRows(*out, result);
   if (summary) {
-    summary->Write(CsvHead({options.parameter, "kind", "p", "q", "range_xN", "range_x1", "range_xN_min",
-                            "range_x1_min", "impacts", "v_min", "v_max", "lyapunov", "restarted"},
-                           provenance));
-    for (const SweepPoint& point : result.points) summary->Write(SummaryRow(point));
+    summary->Write(CsvHead(SweepSummaryColumns(options.parameter), provenance));
+    for (const SweepPoint& point : result.points) summary->Write(SweepSummaryRow(point));
   }
   if (plot)
     plot->Write(RenderStacked(SweepCharts(system, options, result), 1000, 900,

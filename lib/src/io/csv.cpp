@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 
@@ -12,6 +13,10 @@ namespace {
 constexpr std::size_t kFlushBytes = 1 << 16;
 
 }  // namespace
+
+std::string CsvField(double value) {
+  return std::isnan(value) ? "" : fmt::format("{}", value);
+}
 
 std::string CsvHead(const std::vector<std::string>& columns, std::string_view provenance) {
   if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");

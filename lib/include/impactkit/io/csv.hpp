@@ -34,6 +34,11 @@ namespace impactkit {
 /// std::invalid_argument for a carriage return in `provenance` or no columns.
 std::string CsvHead(const std::vector<std::string>& columns, std::string_view provenance);
 
+/// A number as a text field of a table: the shortest form that reads back
+/// to the same double; an undefined value (NaN) is an empty field, which
+/// gnuplot and pandas read as missing, so that no NaN reaches a file.
+std::string CsvField(double value);
+
 class CsvWriter {
  public:
   /// `columns` are the header names; `provenance` is what produced the

@@ -1,53 +1,14 @@
-#include "common/grid_output.hpp"
+#include "common/grid_flags.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <thread>
 
 #include "common/limits.hpp"
 #include "impactkit/core/errors.hpp"
 
 namespace impactkit::cli {
-namespace {
-
-/// Shortest round-trip form; NaN (undefined) as an empty field.
-std::string Number(double value) { return std::isnan(value) ? "" : fmt::format("{}", value); }
-
-}  // namespace
-
-PeriodLabels LabelsOf(const GridCell& cell) {
-  PeriodLabels labels{ToString(cell.kind), "", ""};
-  if (cell.q > 0) {
-    labels.p = std::to_string(cell.p);  // 0 when sticking: GridCell::p
-    labels.q = std::to_string(cell.q);
-  }
-  return labels;
-}
-
-std::string CellFields(const GridCell& cell) {
-  const PeriodLabels labels = LabelsOf(cell);
-  return fmt::format("{},{},{},{},{},{}", labels.kind, labels.p, labels.q, Number(cell.max_v),
-                     Number(cell.range_xN), Number(cell.lyapunov));
-}
-
-std::string MotionLabel(const GridCell& cell) {
-  switch (cell.kind) {
-    case MotionKind::kPeriodic:
-      return fmt::format("P({},{})", cell.p, cell.q);
-    case MotionKind::kSticking:
-      return fmt::format("P(inf,{})", cell.q);
-    case MotionKind::kNonImpacting:
-      return "non-impacting";
-    case MotionKind::kChaotic:
-      return "chaotic";
-    case MotionKind::kUnresolved:
-      return "unresolved";
-  }
-  return "unresolved";
-}
-
 void AddGridRunOptions(CLI::App& command, std::optional<int>& threads, std::string& checkpoint) {
   const std::string group = "Run";
   command
