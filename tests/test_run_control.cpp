@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "curve_plane.hpp"
+#include "impactkit/analysis/parameter_map.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/continuation/curve.hpp"
@@ -91,6 +92,45 @@ TEST_CASE("a cancelled sweep returns its leading chunks, as the whole sweep has 
     CHECK(stopped.points[k].value == whole.points[k].value);
     CHECK(stopped.points[k].classification.kind == whole.points[k].classification.kind);
     CHECK(stopped.points[k].impacts.size() == whole.points[k].impacts.size());
+  }
+}
+
+TEST_CASE("a cancelled grid returns the cells of its finished units, as the whole grid has them",
+          "[run_control]") {
+  ParameterMapOptions options;
+  options.row.from = 1.0;
+  options.row.to = 2.0;
+  options.row.steps = 6;
+  options.row.transient_periods = 40;
+  options.row.recorded_periods = 20;
+  options.row.chunk_values = 3;
+  options.from2 = 0.6;
+  options.to2 = 0.8;
+  options.steps2 = 3;
+  const ParameterMapTask task(PaperSystem(), options);
+  REQUIRE(task.Units() == 6);
+  std::vector<std::int64_t> done;
+  const RunControl control([&](const Progress& progress) {
+    CHECK(progress.stage == "grid");
+    CHECK(progress.total == 18);
+    done.push_back(progress.done);
+    control.Cancel();
+  });
+  const GridResult stopped = RunGrid(task, 2, control);
+  const GridResult whole = RunGrid(task, 2);
+  CHECK(whole.termination == Termination::kCompleted);
+  REQUIRE(whole.cells.size() == 18);
+  REQUIRE(stopped.termination == Termination::kStopped);
+  // One unit per thread was running when cancelled: one or two finish.
+  CHECK((stopped.iterations == 1 || stopped.iterations == 2));
+  CHECK(stopped.cells.size() == 3 * static_cast<std::size_t>(stopped.iterations));
+  CHECK(done.back() == static_cast<std::int64_t>(stopped.cells.size()));
+  for (const GridCell& cell : stopped.cells) {
+    const GridCell& same = whole.cells[static_cast<std::size_t>(cell.index)];
+    CHECK(cell.kind == same.kind);
+    CHECK(cell.p == same.p);
+    CHECK(cell.q == same.q);
+    CHECK(cell.max_v == same.max_v);
   }
 }
 

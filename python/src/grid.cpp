@@ -19,22 +19,7 @@ namespace {
 /// Every unit of `task` on `threads` threads, the cells in index order.
 /// Ctrl-C is checked after each unit.
 std::vector<GridCell> RunAll(const GridTask& task, int threads) {
-  Require(threads >= 1, "threads must be >= 1, got " + std::to_string(threads));
-  return WithoutGil([&] {
-    std::atomic<int> next{0};
-    std::vector<GridCell> cells;
-    RunUnits(
-        task, threads,
-        [&] {
-          const int unit = next++;
-          return unit < task.Units() ? unit : -1;
-        },
-        [&](int, std::vector<GridCell>& done) {
-          cells.insert(cells.end(), done.begin(), done.end());
-          CheckInterrupt();
-        });
-    return InIndexOrder(std::move(cells), task.Cells());
-  });
+  return WithoutGil([&] { return RunGrid(task, threads, InterruptibleRun()).cells; });
 }
 
 /// The cells as (rows, columns) arrays: the kind by name and by its index in

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -39,6 +40,33 @@ void RunUnits(const GridTask& task, int threads, const NextUnit& next, const Uni
   worker();
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+}
+
+GridResult RunGrid(const GridTask& task, int threads, const RunControl& control) {
+  const auto start = std::chrono::steady_clock::now();
+  GridResult result;
+  int next = 0;  // RunUnits calls `next` and `done` one at a time
+  RunUnits(
+      task, threads, [&] { return next < task.Units() && !control.Cancelled() ? next++ : -1; },
+      [&](int, std::vector<GridCell>& cells) {
+        result.cells.insert(result.cells.end(), cells.begin(), cells.end());
+        ++result.iterations;
+        control.Report({.stage = "grid",
+                        .done = static_cast<std::int64_t>(result.cells.size()),
+                        .total = task.Cells()});
+      });
+  if (result.iterations == task.Units()) {
+    result.cells = InIndexOrder(std::move(result.cells), task.Cells());
+    result.termination = Termination::kCompleted;
+  } else {
+    std::sort(result.cells.begin(), result.cells.end(),
+              [](const GridCell& a, const GridCell& b) { return a.index < b.index; });
+    result.termination = Termination::kStopped;
+    result.message = fmt::format("{} after {} of {} units", Describe(result.termination),
+                                 result.iterations, task.Units());
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
 }
 
 namespace {

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "impactkit/analysis/grid_cell.hpp"
+#include "impactkit/core/run_control.hpp"
+#include "impactkit/core/termination.hpp"
 #include "impactkit/model/system.hpp"
 
 namespace impactkit {
@@ -40,6 +42,19 @@ using UnitDone = std::function<void(int unit, std::vector<GridCell>& cells)>;
 /// among them) until it returns -1. The first exception of any unit stops
 /// the others at their next unit and is rethrown here.
 void RunUnits(const GridTask& task, int threads, const NextUnit& next, const UnitDone& done);
+
+/// Summary::termination kCompleted (`cells` holds every cell, in index
+/// order) or kStopped (cancelled: the units running finished, no other
+/// started; `cells` holds theirs, in index order); iterations counts the
+/// units done.
+struct GridResult : Summary {
+  std::vector<GridCell> cells;
+};
+
+/// The whole grid on `threads` threads, its units in order. Progress: stage
+/// "grid", cells done of the task's. Throws InvalidInput for threads < 1,
+/// and what a unit throws.
+GridResult RunGrid(const GridTask& task, int threads, const RunControl& control = {});
 
 /// Every number of `system` (M, C, K, A, omega, xs, r, the contact mass) in
 /// shortest round-trip form, for identities.
