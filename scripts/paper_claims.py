@@ -75,7 +75,7 @@ class Run:
         sys.exit(f"paper_claims: no regime at {omega}")
 
     def lyapunov_at(self, omega):
-        row = min(self.fig3, key=lambda r: abs(float(r["param"]) - omega))
+        row = min(self.fig3, key=lambda r: abs(float(r["omega"]) - omega))
         return float(row["lyapunov"]) if row["lyapunov"] else None
 
     def range_peaks(self, count):
@@ -86,8 +86,8 @@ class Run:
         return sorted(sorted(peaks, key=lambda x: -x[1])[:count])
 
     def speed_peak(self):
-        top = max(self.main, key=lambda r: float(r["v1"]))
-        return float(top["omega"]), float(top["v1"])
+        top = max(self.main, key=lambda r: float(r["impact_v1"]))
+        return float(top["omega"]), float(top["impact_v1"])
 
 
 def rows(run):
