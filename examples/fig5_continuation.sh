@@ -41,7 +41,7 @@ echo "Brute-force sweeps for the overlay:"
 "$impactkit" sweep --from 1.55 --to 1.75 --steps 201 --transient 300 --record 30 \
   --out "$data/sweep-155-175.csv"
 
-# Columns of the branch CSVs: omega, arclength, impact_phase1..p, impact_v1..p, ..., stable.
+# Columns of the branch CSVs: omega, arclength, impact_phase1..p, impact_velocity1..p, ..., stable.
 plot_branch() {  # file p color -> gnuplot plot clauses (solid stable, dashed unstable)
   local file=$1 p=$2 color=$3 clauses="" i
   local stable=$((2 + 2 * p + 1 + 2 * 2 + 1))  # omega, arclength, phases, vs, range, 4 moduli

@@ -48,9 +48,9 @@ for start in 0.307 0.308 0.309 0.31 0.316 0.32 0.33 0.35 0.4 0.45 0.5 0.55; do
 done
 # One gnuplot term per impact-speed column v1, v2, ... of each branch file.
 terms="'$data/fig7-impacts.csv' using 1:4 with points pt 7 ps 0.25 lc rgb '#555555' title 'simulation (sweep)'"
-# Its columns impact_v1 (the first impact after the release) and stable, by name.
+# Its columns impact_velocity1 (the first impact after the release) and stable, by name.
 sticking_columns=$(grep -m1 -v '^#' "$data/fig7-sticking-branch.csv" | tr ',' '\n' | grep -n '')
-v1=$(grep ':impact_v1$' <<<"$sticking_columns" | cut -d: -f1)
+v1=$(grep ':impact_velocity1$' <<<"$sticking_columns" | cut -d: -f1)
 stable=$(grep ':stable$' <<<"$sticking_columns" | cut -d: -f1)
 terms+=", '$data/fig7-sticking-branch.csv' using 1:(\$$stable > 0 ? \$$v1 : 1/0) with lines lw 2"
 terms+=" lc rgb '#d62728' title 'sticking P(inf,1): first impact'"

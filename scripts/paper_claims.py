@@ -86,8 +86,8 @@ class Run:
         return sorted(sorted(peaks, key=lambda x: -x[1])[:count])
 
     def speed_peak(self):
-        top = max(self.main, key=lambda r: float(r["impact_v1"]))
-        return float(top["omega"]), float(top["impact_v1"])
+        top = max(self.main, key=lambda r: float(r["impact_velocity1"]))
+        return float(top["omega"]), float(top["impact_velocity1"])
 
 
 def rows(run):

@@ -22,10 +22,10 @@
 #include "common/provenance.hpp"
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
-#include "impactkit/io/grid_output.hpp"
 #include "impactkit/analysis/basins.hpp"
 #include "impactkit/io/class_colors.hpp"
 #include "impactkit/io/csv.hpp"
+#include "impactkit/io/grid_output.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -278,9 +278,10 @@ void AddBasinsCommand(CLI::App& app) {
   AddGridRunOptions(*command, request->threads, request->checkpoint);
   const std::string output = "Output (each written only if asked for, and only whole)";
   command
-      ->add_option("--out", request->out,
-                   "One row per start: COORD,COORD2,attractor,kind,p,q,max_v,range_xN,lyapunov "
-                   "(attractor numbered from 1 as in --json)")
+      ->add_option(
+          "--out", request->out,
+          "One row per start: COORD,COORD2,attractor,kind,p,q,max_velocity,range_xN,lyapunov "
+          "(attractor numbered from 1 as in --json)")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group(output);

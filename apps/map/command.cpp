@@ -24,10 +24,10 @@
 #include "common/provenance.hpp"
 #include "common/sweep_flags.hpp"
 #include "common/system_options.hpp"
-#include "impactkit/io/grid_output.hpp"
 #include "impactkit/analysis/parameter_map.hpp"
 #include "impactkit/io/class_colors.hpp"
 #include "impactkit/io/csv.hpp"
+#include "impactkit/io/grid_output.hpp"
 
 namespace impactkit::cli {
 namespace {
@@ -251,8 +251,8 @@ void AddMapCommand(CLI::App& app) {
   const std::string output = "Output (each written only if asked for, and only whole)";
   command
       ->add_option("--out", request->out,
-                   "One row per cell: PARAM,PARAM2,kind,p,q,max_v,range_xN,lyapunov (p = 0 "
-                   "when sticking; max_v the largest impact speed, range_xN the largest "
+                   "One row per cell: PARAM,PARAM2,kind,p,q,max_velocity,range_xN,lyapunov (p "
+                   "= 0 when sticking; max_velocity the largest impact speed, range_xN the largest "
                    "per-period max - min of the contact mass; empty where undefined)")
       ->type_name("FILE.csv")
       ->check(OutputPath())

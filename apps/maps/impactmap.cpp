@@ -37,7 +37,8 @@ void RunImpactMap(const ImpactMapRequest& request) {
   OutputSet outputs;  // created first: a bad path fails before the work
   CsvWriter* csv = nullptr;
   if (!request.out.empty()) {
-    csv = &outputs.AddCsv(request.out, provenance, std::vector<std::string>{"t", "phase", "v"});
+    csv = &outputs.AddCsv(request.out, provenance,
+                          std::vector<std::string>{"t", "phase", "velocity"});
   }
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
   const RecordedRun recorded = RecordImpacts(system, request.run);
@@ -81,7 +82,7 @@ void AddImpactMapCommand(CLI::App& app) {
       "against its speed, from rest after a discarded transient.");
   AddSystemOptions(*command, request->system);
   AddRunOptions(*command, request->run, 5000);
-  command->add_option("--out", request->out, "Write the impacts as CSV: t,phase,v")
+  command->add_option("--out", request->out, "Write the impacts as CSV: t,phase,velocity")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group("Output");

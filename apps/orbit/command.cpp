@@ -77,7 +77,7 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
   j["impacts"] = nlohmann::json::array();
   for (const OrbitImpact& i : orbit.impacts) {
     j["impacts"].push_back(
-        {{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}, {"stop", i.stop + 1}});
+        {{"t", i.t}, {"phase", i.phase}, {"velocity", i.velocity}, {"stop", i.stop + 1}});
   }
   j["multipliers"] = nlohmann::json::array();
   for (const std::complex<double>& m : orbit.multipliers) {

@@ -106,7 +106,8 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
   for (std::size_t k = 0; k < orbit.stuck.size(); ++k) {
     nlohmann::json impacts = nlohmann::json::array();
     for (const OrbitImpact& i : FastImpacts(orbit, k, min_speed)) {
-      impacts.push_back({{"t", i.t}, {"phase", i.phase}, {"v", i.velocity}, {"stop", i.stop + 1}});
+      impacts.push_back(
+          {{"t", i.t}, {"phase", i.phase}, {"velocity", i.velocity}, {"stop", i.stop + 1}});
     }
     j["chatter"].push_back({{"stop", orbit.stuck[k].stop + 1},
                             {"impacts", orbit.stuck[k].impacts},

@@ -79,8 +79,8 @@ void AddOutputOptions(CLI::App& command, SimulateRequest& request) {
       ->group(group);
   command
       .add_option("--impacts", request.impacts,
-                  "Impacts CSV of the window: columns t,phase,v,x1..xN,v1..vN; v is the impact "
-                  "speed of the contact mass, x and v the state just before impact")
+                  "Impacts CSV of the window: columns t,phase,velocity,x1..xN,v1..vN; velocity is "
+                  "the impact speed of the contact mass, x and v the state just before impact")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group(group);

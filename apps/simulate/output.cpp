@@ -91,7 +91,7 @@ SimulateOutputs::SimulateOutputs(const SimulateRequest& request, const System& s
   }
   if (!request.impacts.empty()) {
     impacts_ = &set_.AddCsv(request.impacts, provenance_.Text(),
-                            StateColumns({"t", "phase", "v"}, dof, {"stop"}));
+                            StateColumns({"t", "phase", "velocity"}, dof, {"stop"}));
   }
   plot_ = AddIfAsked(set_, request.plot);
   json_ = AddIfAsked(set_, request.json);

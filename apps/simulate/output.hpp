@@ -3,7 +3,7 @@
 /// The files `impactkit simulate` writes:
 ///
 ///     --series   t,x1..xN,v1..vN,stuck    one row per sample of the window
-///     --impacts  t,phase,v,x1..xN,v1..vN  one row per impact (v: speed of
+///     --impacts  t,phase,velocity,x1..xN,v1..vN  one row per impact (velocity: speed of
 ///                                         the contact mass just before it;
 ///                                         x, v: the state just before it)
 ///     --plot     x1..xN against t, the contact mass solid, the stop dotted

@@ -141,16 +141,18 @@ void AddSweepCommand(CLI::App& app) {
   const std::string output = "Output (each written only if asked for, and only whole)";
   command
       ->add_option("--out", request->out,
-                   "Every recorded impact: columns param,t,phase,v,stop (t from the start of "
-                   "that value's run, phase = t mod T, v the impact speed)")
+                   "Every recorded impact: columns PARAM,t,phase,velocity,stop (PARAM the "
+                   "parameter's name; t from the start of that value's run, phase = t mod T, "
+                   "velocity the impact speed)")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group(output);
   command
-      ->add_option("--summary", request->summary,
-                   "One row per value: param,kind,p,q,range_xN,range_x1,range_xN_min,"
-                   "range_x1_min,impacts,v_min,v_max,lyapunov,restarted (range_*: largest and "
-                   "smallest per-period max - min; p = 0 when sticking; empty where undefined)")
+      ->add_option(
+          "--summary", request->summary,
+          "One row per value: param,kind,p,q,range_xN,range_x1,range_xN_min,"
+          "range_x1_min,impacts,velocity_min,velocity_max,lyapunov,restarted (range_*: largest and "
+          "smallest per-period max - min; p = 0 when sticking; empty where undefined)")
       ->type_name("FILE.csv")
       ->check(OutputPath())
       ->group(output);

@@ -23,7 +23,7 @@ std::vector<GridCell> RunAll(const GridTask& task, int threads) {
 }
 
 /// The cells as (rows, columns) arrays: the kind by name and by its index in
-/// `kinds`, and p, q, max_v, range_xN, lyapunov (NaN where undefined).
+/// `kinds`, and p, q, max_velocity, range_xN, lyapunov (NaN where undefined).
 py::dict CellArrays(const std::vector<GridCell>& cells, py::ssize_t rows, py::ssize_t columns) {
   const std::array<py::ssize_t, 2> shape{rows, columns};
   std::vector<std::int64_t> kind, p, q;
@@ -49,7 +49,7 @@ py::dict CellArrays(const std::vector<GridCell>& cells, py::ssize_t rows, py::ss
   out["kind"] = py::module_::import("numpy").attr("array")(names).attr("reshape")(rows, columns);
   out["p"] = MoveToArray(std::move(p), shape);
   out["q"] = MoveToArray(std::move(q), shape);
-  out["max_v"] = MoveToArray(std::move(max_v), shape);
+  out["max_velocity"] = MoveToArray(std::move(max_v), shape);
   out["range_xN"] = MoveToArray(std::move(range), shape);
   out["lyapunov"] = MoveToArray(std::move(lyapunov), shape);
   return out;
@@ -237,7 +237,7 @@ void BindGrid(py::module_& module) {
 of `parameter` (steps values from from_ to to) at one of the steps2
 values of `parameter2` (ascending), each cell's motion classified. Returns
 a dict of arrays of shape (steps2, steps): 'kind' (names), 'kind_code'
-(index into 'kinds'), 'p', 'q' (0 where undefined), 'max_v', 'range_xN',
+(index into 'kinds'), 'p', 'q' (0 where undefined), 'max_velocity', 'range_xN',
 'lyapunov' (NaN where undefined), and 'values', 'values2'. threads does not
 change the result. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
 Its keywords are impactkit.MapOptions's: `parameter_map(system, **impactkit.MapOptions(...))`

@@ -56,7 +56,7 @@ def test_a_sweep_with_its_defaults_equals_the_command_line(tmp_path):
     impacts = rows(out)
     assert [float(i["t"]) for i in impacts] == list(run["impact_t"])
     assert [float(i["phase"]) for i in impacts] == list(run["impact_phase"])
-    assert [float(i["v"]) for i in impacts] == list(run["impact_velocity"])
+    assert [float(i["velocity"]) for i in impacts] == list(run["impact_velocity"])
 
 
 def test_sweep_classifies_the_known_orbits_and_ignores_threads():

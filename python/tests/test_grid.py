@@ -30,7 +30,7 @@ def check_cells(rows, result, names):
         assert float(row[names[0]]) == result["values"][j] and float(row[names[1]]) == result["values2"][i]
         assert row["kind"] == result["kind"][i, j]
         assert result["kinds"][result["kind_code"][i, j]] == row["kind"]
-        for key in ("max_v", "range_xN", "lyapunov"):
+        for key in ("max_velocity", "range_xN", "lyapunov"):
             assert same_number(row[key], result[key][i, j]), (index, key)
 
 

@@ -21,11 +21,11 @@ for field in '"special_points":[{' '"type":"grazing"' '"type":"period_doubling"'
   [[ $json == *"$field"* ]] || fail "JSON lacks $field"
 done
 run_line_of "$work/b.csv" | grep -q '^continue --param omega' || fail "CSV provenance missing"
-columns_of "$work/b.csv" | grep -q '^omega,arclength,impact_phase1,impact_v1,range_xN,mod1,mod2,mod3,mod4,stable' ||
+columns_of "$work/b.csv" | grep -q '^omega,arclength,impact_phase1,impact_velocity1,range_xN,mod1,mod2,mod3,mod4,stable' ||
   fail "unexpected CSV header: $(columns_of "$work/b.csv")"
 (($(wc -l <"$work/b.csv") > 50)) || fail "too few CSV rows"
 [[ -s "$work/b.pd1.csv" ]] || fail "the period-doubled branch's CSV is missing"
-columns_of "$work/b.pd1.csv" | grep -q '^omega,arclength,impact_phase1,impact_phase2,impact_v1,impact_v2,' || fail "P(2,2) CSV header"
+columns_of "$work/b.pd1.csv" | grep -q '^omega,arclength,impact_phase1,impact_phase2,impact_velocity1,impact_velocity2,' || fail "P(2,2) CSV header"
 
 # --follow-grazing where the branch meets no grazing says so, and what to try.
 "$impactkit" continue --from 1.0 --to 1.2 --start 1.1 --follow-grazing >"$work/stdout" ||

@@ -24,7 +24,7 @@ for field in '"section":"release"' '"releases":1' '"end_reason":"no_sticking"' \
   [[ $json == *"$field"* ]] || fail "JSON lacks $field"
 done
 columns_of "$work/b.csv" |
-  grep -q '^omega,arclength,stick_phase1,release_phase1,stuck1,impact_phase1,impact_v1,range_xN,mod1,mod2,stable,clearance,contact_margin,special' ||
+  grep -q '^omega,arclength,stick_phase1,release_phase1,stuck1,impact_phase1,impact_velocity1,range_xN,mod1,mod2,stable,clearance,contact_margin,special' ||
   fail "unexpected CSV header: $(columns_of "$work/b.csv")"
 end=$(sed -n 's/^  no sticking at omega = \([0-9.]*\).*/\1/p' "$work/stdout")
 awk -v e="$end" 'BEGIN { exit !(e > 0.305 && e < 0.308) }' || fail "end at omega = $end"

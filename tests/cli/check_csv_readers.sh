@@ -97,7 +97,7 @@ with open(sys.argv[2]) as f:
     drawn = np.array([[float(v) for v in line.split()[:2]] for line in f
                       if line.strip() and not line.startswith("#")])
 assert drawn.shape == (len(table), 2), f"gnuplot drew {drawn.shape[0]} points of {len(table)}"
-np.testing.assert_allclose(drawn, table[["phase", "v"]].to_numpy(), rtol=1e-5)
+np.testing.assert_allclose(drawn, table[["phase", "velocity"]].to_numpy(), rtol=1e-5)
 print(f"ok: gnuplot drew the {len(table)} impacts")
 PY
 echo "ok: every kind of CSV reads with pandas, numpy and gnuplot"

@@ -50,8 +50,8 @@ case $mode in
     "$impactkit" "${grid[@]}" --out "$work/map.csv" >/dev/null || fail "map failed"
     "$impactkit" sweep --set r=0.7 --from 0.6 --to 2.4 --steps 13 --transient 200 --record 40 \
       --chunk 5 --summary "$work/sweep.csv" >/dev/null || fail "sweep failed"
-    # map: omega,r,kind,p,q,max_v,range_xN,lyapunov; sweep summary:
-    # omega,kind,p,q,range_xN,...,v_max (11),lyapunov (12).
+    # map: omega,r,kind,p,q,max_velocity,range_xN,lyapunov; sweep summary:
+    # omega,kind,p,q,range_xN,...,velocity_max (11),lyapunov (12).
     awk -F, '!/^#/ && ++row > 1 && $2 == "0.7" { print $1","$3","$4","$5","$6","$7","$8 }' "$work/map.csv" \
       >"$work/map-row"
     awk -F, '!/^#/ && ++row > 1 { print $1","$2","$3","$4","$11","$5","$12 }' "$work/sweep.csv" \
@@ -67,7 +67,7 @@ case $mode in
     done
     same_but_command "$work/map1.csv" "$work/map2.csv" || fail "CSV differs between 1 and 2 threads"
     same_but_command "$work/map1.json" "$work/map2.json" || fail "JSON differs between 1 and 2 threads"
-    [[ $(columns_of "$work/map1.csv") == omega,r,kind,p,q,max_v,range_xN,lyapunov ]] ||
+    [[ $(columns_of "$work/map1.csv") == omega,r,kind,p,q,max_velocity,range_xN,lyapunov ]] ||
       fail "columns: $(columns_of "$work/map1.csv")"
     grep -q '"cells": 65' "$work/map1.json" || fail "JSON lacks the cell count"
     echo ok
@@ -198,7 +198,7 @@ JSON
     # JSON values "key": number, one per line, as both commands write them.
     value() { awk -F': ' -v key="\"$2\"" '$1 ~ key"$" { gsub(/,/, "", $2); print $2; exit }' "$1"; }
     awk -v a="$(value "$work/basins.json" phase)" -v b="$(value "$work/orbit.json" phase)" \
-      -v c="$(value "$work/basins.json" velocity)" -v d="$(value "$work/orbit.json" v)" \
+      -v c="$(value "$work/basins.json" velocity)" -v d="$(value "$work/orbit.json" velocity)" \
       'BEGIN { e1 = a - b; e2 = c - d; exit !(a != "" && c != "" && e1 * e1 < 1e-12 && e2 * e2 < 1e-12) }' ||
       fail "orbit of the attractor differs from the orbit's fixed point by more than 1e-6"
     echo ok

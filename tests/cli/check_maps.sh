@@ -5,7 +5,7 @@
 #  - `lyapunov` writes JSON with 4 negative exponents on the P(1,1) at 1.2,
 #    a positive largest one at 1.77, and in chatter valid = false, the
 #    reason on stdout and stderr, and exit status 1;
-#  - `impactmap` writes a provenance line, t,phase,v rows (as many as it
+#  - `impactmap` writes a provenance line, t,phase,velocity rows (as many as it
 #    reports, phases in [0, T)); `returnmap --fit` writes pairs below the
 #    bound and the fit as JSON;
 #  - bad input exits 2 with one line on stderr and writes nothing.

@@ -15,7 +15,7 @@ json=$(tr -d ' \n' <"$work/orbit.json")
 for field in '"p":2' '"q":1' '"omega":0.6' '"stable":true' '"impacts":[{"phase":' '"multipliers":[[' '"residual":'; do
   [[ $json == *"$field"* ]] || fail "JSON lacks $field: $json"
 done
-[[ $(grep -c '"v":' "$work/orbit.json") -eq 2 ]] || fail "expected 2 impacts with v"
+[[ $(grep -c '"velocity":' "$work/orbit.json") -eq 2 ]] || fail "expected 2 impacts with velocity"
 residual=$(sed -n 's/.*"residual": *\([^,]*\).*/\1/p' "$work/orbit.json")
 awk -v r="$residual" 'BEGIN { exit !(r <= 1e-11) }' || fail "residual $residual above 1e-11"
 

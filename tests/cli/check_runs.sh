@@ -71,7 +71,7 @@ run_outputs() {
   impact_rows=$(grep -c ',impact_' "$work/series.csv" || true)
   ((impact_rows == 40)) || fail "series: $impact_rows impact rows, expected 40"
 
-  check_provenance_and_header "$work/impacts.csv" "$(state_header t,phase,v, ,stop)"
+  check_provenance_and_header "$work/impacts.csv" "$(state_header t,phase,velocity, ,stop)"
   awk -F, -v n="$dof" -v xs="$xs" '!/^#/ && ++row > 1 && $(3 + n) != xs { print "row " NR ": x" n " = " $(3 + n); bad = 1 }
     END { exit bad }' "$work/impacts.csv" || fail "impacts: contact mass not at the stop"
   # The speeds must be the library's, bit for bit (both shortest round-trip).

@@ -16,7 +16,7 @@ systems=$2/examples/systems
 
 "$impactkit" simulate --system "$systems/paper-two-stops.toml" --omega 0.8 \
   --impacts "$work/impacts.csv" >/dev/null || fail "simulate failed"
-[[ $(columns_of "$work/impacts.csv") == "t,phase,v,x1,x2,v1,v2,stop" ]] ||
+[[ $(columns_of "$work/impacts.csv") == "t,phase,velocity,x1,x2,v1,v2,stop" ]] ||
   fail "impact columns: $(columns_of "$work/impacts.csv")"
 awk -F, '!/^#/ && ++row > 1 {
            n[$8]++

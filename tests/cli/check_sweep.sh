@@ -45,7 +45,7 @@ case $mode in
       run_line_of "$work/$file.csv" | grep -q "^sweep param=omega from=0.6 to=0.9 steps=2 transient=300 record=20 start=previous" ||
         fail "$file.csv: bad provenance line: $(run_line_of "$work/$file.csv")"
     done
-    [[ $(columns_of "$work/impacts1.csv") == "omega,t,phase,v,stop" ]] || fail "impact columns: $(columns_of "$work/impacts1.csv")"
+    [[ $(columns_of "$work/impacts1.csv") == "omega,t,phase,velocity,stop" ]] || fail "impact columns: $(columns_of "$work/impacts1.csv")"
     [[ $(columns_of "$work/summary1.csv") == omega,kind,p,q,range_xN,range_x1,* ]] ||
       fail "summary columns: $(columns_of "$work/summary1.csv")"
     # 20 periods: 40 impacts of P(2,1) at 0.6, 20 of P(1,1) at 0.9.

@@ -42,10 +42,10 @@ grep -qx 'P(2,1) at omega = 0.6, stable' "$work/stdout" || fail "consumer printe
 if [[ -x $prefix/bin/impactkit ]]; then
   "$prefix/bin/impactkit" orbit --omega 0.6 --json "$work/orbit.json" >/dev/null ||
     fail "the installed impactkit orbit failed"
-  # Each impact is an object {"phase": ..., "t": ..., "v": ...} (any key order).
+  # Each impact is an object {"phase": ..., "t": ..., "velocity": ...} (any key order).
   tr -d ' \n' <"$work/orbit.json" | grep -o '{[^{}]*"phase"[^{}]*}' >"$work/impacts"
   sed 's/.*"phase":\([^,}]*\).*/\1/' "$work/impacts" >"$work/phases"
-  sed 's/.*"v":\([^,}]*\).*/\1/' "$work/impacts" >"$work/speeds"
+  sed 's/.*"velocity":\([^,}]*\).*/\1/' "$work/impacts" >"$work/speeds"
   paste -d' ' "$work/phases" "$work/speeds" >"$work/expected"
   awk '$1 == "impact" { print $2, $3 }' "$work/stdout" >"$work/actual"
   paste -d' ' "$work/expected" "$work/actual" | awk '

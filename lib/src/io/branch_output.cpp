@@ -53,7 +53,7 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
   }
   j["impacts"] = nlohmann::json::array();
   for (const OrbitImpact& i : LeadingImpacts(s.point.orbit)) {
-    j["impacts"].push_back({{"phase", i.phase}, {"v", i.velocity}});
+    j["impacts"].push_back({{"phase", i.phase}, {"velocity", i.velocity}});
   }
   if (s.point.orbit.Sticks()) j.update(StuckJson(s.point.orbit));
   return j;
@@ -72,7 +72,7 @@ std::vector<std::string> BranchColumns(const Branch& branch) {
   const int impacts = branch.section == OrbitSection::kRelease ? branch.releases : branch.p;
   // Prefixed: v1..vN name the masses' velocities in every other table.
   for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("impact_phase{}", i));
-  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("impact_v{}", i));
+  for (int i = 1; i <= impacts; ++i) columns.push_back(fmt::format("impact_velocity{}", i));
   columns.push_back("range_xN");
   const Eigen::Index multipliers = branch.points.front().orbit.multipliers.size();
   for (Eigen::Index i = 1; i <= multipliers; ++i) columns.push_back(fmt::format("mod{}", i));

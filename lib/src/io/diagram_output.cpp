@@ -43,7 +43,7 @@ nlohmann::json EdgeJson(const Diagram& diagram, const DiagramEdge& edge) {
     for (const OrbitImpact& impact : LeadingImpacts(orbit)) v.push_back(impact.velocity);
     points.push_back({{"param", branch.points[i].parameter},
                       {"stable", orbit.stable},
-                      {"v", v},
+                      {"velocity", v},
                       {"range_xN", orbit.contacts.Range()}});
   }
   return {{"from", edge.from},

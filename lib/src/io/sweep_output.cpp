@@ -21,8 +21,19 @@ double Extreme(const std::vector<double>& values, bool largest) {
 }  // namespace
 
 std::vector<std::string> SweepSummaryColumns(const std::string& parameter) {
-  return {parameter, "kind",         "p",      "q",     "range_xN", "range_x1", "range_xN_min",
-          "range_x1_min", "impacts", "v_min", "v_max", "lyapunov", "restarted"};
+  return {parameter,
+          "kind",
+          "p",
+          "q",
+          "range_xN",
+          "range_x1",
+          "range_xN_min",
+          "range_x1_min",
+          "impacts",
+          "velocity_min",
+          "velocity_max",
+          "lyapunov",
+          "restarted"};
 }
 
 std::string SweepSummaryRow(const SweepPoint& point) {
@@ -32,9 +43,8 @@ std::string SweepSummaryRow(const SweepPoint& point) {
   for (const SweepImpact& i : point.impacts) speeds.push_back(i.velocity);
   const double lyapunov =
       c.lyapunov_computed && c.lyapunov.valid ? c.lyapunov.largest : std::nan("");
-  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", CsvField(point.value),
-                     period.kind, period.p, period.q,
-                     CsvField(Extreme(point.range_contact, true)),
+  return fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", CsvField(point.value), period.kind,
+                     period.p, period.q, CsvField(Extreme(point.range_contact, true)),
                      CsvField(Extreme(point.range_first, true)),
                      CsvField(Extreme(point.range_contact, false)),
                      CsvField(Extreme(point.range_first, false)), point.impacts.size(),
@@ -43,7 +53,7 @@ std::string SweepSummaryRow(const SweepPoint& point) {
 }
 
 std::vector<std::string> SweepImpactColumns(const std::string& parameter) {
-  return {parameter, "t", "phase", "v", "stop"};
+  return {parameter, "t", "phase", "velocity", "stop"};
 }
 
 void WriteSweepImpactRows(CsvWriter& csv, const SweepResult& result) {

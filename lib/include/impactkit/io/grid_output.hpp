@@ -20,7 +20,7 @@ PeriodLabels LabelsOf(const GridCell& cell);
 
 /// The CSV columns of a cell after its coordinates (kind, p and q as
 /// LabelsOf), and its fields.
-inline constexpr const char* kCellColumns = "kind,p,q,max_v,range_xN,lyapunov";
+inline constexpr const char* kCellColumns = "kind,p,q,max_velocity,range_xN,lyapunov";
 std::string CellFields(const GridCell& cell);
 
 /// "P(2,1)", "P(inf,1)", "non-impacting", "chaotic", "unresolved".
