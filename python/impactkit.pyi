@@ -20,6 +20,15 @@ Termination = Literal[
     "branch_point", "max_points", "corrector_failed", "closed"
 ]
 
+class ProgressReport(TypedDict):
+    stage: Literal["sweep", "branch", "curve", "diagram", "grid"]
+    done: int
+    total: int
+    parameter: Optional[float]
+    parameter2: Optional[float]
+
+Progress = bool | Callable[[ProgressReport], None]
+
 class NumericalError(RuntimeError): ...
 
 # Stub only (no such class at run time): the mapping protocol every option
@@ -324,6 +333,7 @@ def continue_branch(
     max_points: int = 10000,
     locate_bifurcations: bool = True,
     user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
+    progress: Progress = False,
 ) -> Branch: ...
 @overload
 def continue_branch(
@@ -339,6 +349,7 @@ def continue_branch(
     max_points: int = 10000,
     locate_bifurcations: bool = True,
     user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
+    progress: Progress = False,
 ) -> Branch: ...
 def doubled_branch_start(
     system: System, branch: Branch, period_doubling: SpecialPoint, *, offset: float = 1e-3
@@ -399,6 +410,7 @@ def sweep(
     threads: int = 1,
     each_from: Literal["previous", "rest"] = "previous",
     chunk_values: int = 100,
+    progress: Progress = False,
 ) -> Sweep: ...
 
 class Lyapunov(TypedDict):
@@ -537,6 +549,7 @@ def trace_diagram(
     switch_branch_points: bool = True,
     switch_pitchforks: bool = True,
     user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
+    progress: Progress = False,
 ) -> Diagram: ...
 
 class MapOptions(_OptionSet):
@@ -587,6 +600,7 @@ def parameter_map(
     threads: int = 1,
     each_from: Literal["previous", "rest"] = "previous",
     chunk_values: int = 100,
+    progress: Progress = False,
 ) -> dict[str, Any]: ...
 def basins(
     system: System,
@@ -603,6 +617,7 @@ def basins(
     recorded_periods: int = 100,
     threads: int = 1,
     orbit_tolerance: float = 1e-4,
+    progress: Progress = False,
 ) -> dict[str, Any]: ...
 
 class BasinsOptions(_OptionSet):
@@ -725,4 +740,5 @@ def continue_curve(
     max_points: int = 2000,
     locate_codim2: bool = True,
     user_tests: Optional[dict[str, Callable[[Orbit], float]]] = None,
+    progress: Progress = False,
 ) -> Curve: ...

@@ -12,7 +12,7 @@ packages=(
   clang-format
   openmpi-bin libopenmpi-dev
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
-  python3-pandas python3-yaml
+  python3-pandas python3-yaml python3-tqdm
 )
 
 missing=()

@@ -63,7 +63,7 @@ py::dict SweepArrays(const SweepResult& result) {
 
 py::dict SweepPy(const System& system, const std::string& parameter, double from, double to,
                  int steps, int transient_periods, int recorded_periods, int threads,
-                 const std::string& each_from, int chunk_values) {
+                 const std::string& each_from, int chunk_values, const py::object& progress) {
   SweepOptions options;
   options.parameter = parameter;
   options.from = from;
@@ -74,8 +74,8 @@ py::dict SweepPy(const System& system, const std::string& parameter, double from
   options.threads = threads;
   options.chunk_values = chunk_values;
   options.start = StartFromName(each_from);
-  const SweepResult result =
-      WithoutGil([&] { return RunSweep(system, options, InterruptibleRun()); });
+  const InterruptibleRun run(progress);
+  const SweepResult result = WithoutGil([&] { return RunSweep(system, options, run); });
   return SweepArrays(result);
 }
 
@@ -163,13 +163,14 @@ void BindAnalysis(py::module_& module) {
   // function's keywords and of SweepOptions, from the same struct.
   const SweepOptions kSweep;
   BindSweepOptions(module, kSweep);
-  module.def(
-      "sweep", &SweepPy, py::arg("system"), py::kw_only(), py::arg("parameter") = kSweep.parameter,
-      py::arg("from_") = kSweep.from, py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
-      py::arg("transient_periods") = kSweep.transient_periods,
-      py::arg("recorded_periods") = kSweep.recorded_periods, py::arg("threads") = kSweep.threads,
-      py::arg("each_from") = StartName(kSweep.start), py::arg("chunk_values") = kSweep.chunk_values,
-      R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
+  module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(),
+             py::arg("parameter") = kSweep.parameter, py::arg("from_") = kSweep.from,
+             py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
+             py::arg("transient_periods") = kSweep.transient_periods,
+             py::arg("recorded_periods") = kSweep.recorded_periods,
+             py::arg("threads") = kSweep.threads, py::arg("each_from") = StartName(kSweep.start),
+             py::arg("chunk_values") = kSweep.chunk_values, py::arg("progress") = false,
+             R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
 from_ to to, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,
 p, q (0 where undefined; a sticking motion has its q and p = 0, its kind
@@ -180,6 +181,8 @@ impact_phase, impact_velocity, delimited by impact_offsets); termination
 ('completed') and report. each_from: 'previous' (each value from the previous final
 state) or 'rest'. Releases the GIL; Ctrl-C raises
 KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.
 Its keywords are impactkit.SweepOptions's: `sweep(system, **impactkit.SweepOptions(...))`
 passes a set.)");
   module.def("lyapunov", &LyapunovPy, py::arg("system"), py::arg("eta"), py::kw_only(),

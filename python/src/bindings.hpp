@@ -46,11 +46,28 @@ struct Interrupted : std::exception {};
 /// the signal handlers and throws Interrupted if one raised. Only Python's
 /// main thread sees signals; elsewhere it returns.
 void CheckInterrupt();
-/// The control of a library run called from Python: Ctrl-C, checked at
-/// each progress report, raises KeyboardInterrupt (through Interrupted).
+/// The control of a library run called from Python. At each progress
+/// report Ctrl-C raises KeyboardInterrupt (through Interrupted), and the
+/// caller's `progress` is shown: True draws a tqdm bar (tqdm.auto: a widget
+/// in Jupyter) where tqdm is installed, nothing where it is not; a callable
+/// is called with {stage, done, total, parameter, parameter2} (None where
+/// the run has no point), and what it raises reaches the caller. Made and
+/// destroyed holding the GIL (outside WithoutGil); each report takes it.
 class InterruptibleRun : public RunControl {
  public:
-  InterruptibleRun() : RunControl([](const Progress&) { CheckInterrupt(); }) {}
+  explicit InterruptibleRun(const py::object& progress);
+  /// Closes the bar.
+  ~InterruptibleRun();
+  InterruptibleRun(const InterruptibleRun&) = delete;
+  InterruptibleRun& operator=(const InterruptibleRun&) = delete;
+
+ private:
+  void Show(const Progress& progress);
+
+  py::object callback_ = py::none();   ///< the caller's callable, or None
+  py::object bar_class_ = py::none();  ///< tqdm.auto.tqdm when a bar is asked for and installed
+  py::object bar_ = py::none();        ///< the bar of the stage running
+  std::string bar_stage_;
 };
 /// Runs `call` without the GIL; an Interrupted from it becomes the pending
 /// Python exception.

@@ -55,7 +55,7 @@ ContinuationOptions MakeOptions(const std::string& parameter, double from, doubl
 Branch ContinueFromStart(const BranchStart& start, const std::string& parameter, double from,
                          double to, const std::string& direction, double initial_step,
                          double min_step, double max_step, int max_points, bool locate_bifurcations,
-                         const std::optional<py::dict>& user_tests) {
+                         const std::optional<py::dict>& user_tests, const py::object& progress) {
   ContinuationOptions options = MakeOptions(parameter, from, to, direction, initial_step, min_step,
                                             max_step, max_points, locate_bifurcations);
   options.user_tests = UserTestsFrom(user_tests);
@@ -63,16 +63,18 @@ Branch ContinueFromStart(const BranchStart& start, const std::string& parameter,
     options.orbit.p = start.orbit.p;
     options.orbit.q = start.orbit.q;
   }
-  return WithoutGil([&] { return ContinueBranch(start, options, InterruptibleRun()); });
+  const InterruptibleRun run(progress);
+  return WithoutGil([&] { return ContinueBranch(start, options, run); });
 }
 
 Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,
                          const std::string& parameter, double from, double to,
                          const std::string& direction, double initial_step, double min_step,
                          double max_step, int max_points, bool locate_bifurcations,
-                         const std::optional<py::dict>& user_tests) {
+                         const std::optional<py::dict>& user_tests, const py::object& progress) {
   return ContinueFromStart({system, orbit, {}}, parameter, from, to, direction, initial_step,
-                           min_step, max_step, max_points, locate_bifurcations, user_tests);
+                           min_step, max_step, max_points, locate_bifurcations, user_tests,
+                           progress);
 }
 
 /// The library's switching functions need only the orbit and corrector
@@ -316,6 +318,8 @@ function(Orbit) -> float}, test functions of your own whose zeros are
 located like the bifurcations' (special points 'user_test' with that name).
 Returns a Branch. Raises ValueError for bad input, and what a user test
 raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.
 Its keywords are impactkit.ContinuationOptions's (but user_tests):
 `continue_branch(system, orbit, **impactkit.ContinuationOptions(...))` passes a set.)";
   // The defaults are the library's, as the command line's are: those of the
@@ -328,14 +332,14 @@ Its keywords are impactkit.ContinuationOptions's (but user_tests):
              py::arg("initial_step") = kBranch.initial_step, py::arg("min_step") = kBranch.min_step,
              py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
              py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
-             py::arg("user_tests") = py::none(), continue_doc);
+             py::arg("user_tests") = py::none(), py::arg("progress") = false, continue_doc);
   module.def("continue_branch", &ContinueFromStart, py::arg("start"), py::kw_only(),
              py::arg("parameter") = kBranch.parameter, py::arg("from_"), py::arg("to"),
              py::arg("direction") = DirectionName(kBranch.direction),
              py::arg("initial_step") = kBranch.initial_step, py::arg("min_step") = kBranch.min_step,
              py::arg("max_step") = kBranch.max_step, py::arg("max_points") = kBranch.max_points,
              py::arg("locate_bifurcations") = kBranch.locate_bifurcations,
-             py::arg("user_tests") = py::none(), continue_doc);
+             py::arg("user_tests") = py::none(), py::arg("progress") = false, continue_doc);
   module.def("doubled_branch_start", &DoubledStart, py::arg("system"), py::arg("branch"),
              py::arg("period_doubling"), py::kw_only(), py::arg("offset") = 1e-3,
              R"(A first point on the P(2p, 2q) branch born at a period doubling of

@@ -21,8 +21,8 @@ namespace {
 Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialPoint& special,
                       const std::string& parameter2, double from, double to, double from2,
                       double to2, double initial_step, double min_step, double max_step,
-                      int max_points, bool locate_codim2,
-                      const std::optional<py::dict>& user_tests) {
+                      int max_points, bool locate_codim2, const std::optional<py::dict>& user_tests,
+                      const py::object& progress) {
   CurveOptions options;
   options.user_tests = UserTestsFrom(user_tests);
   options.parameter = branch.parameter;
@@ -40,7 +40,8 @@ Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialP
   options.orbit.q = branch.q;
   System at = system;
   SetParameter(at, branch.parameter, special.parameter);
-  return WithoutGil([&] { return ContinueCurve({at, special}, options, InterruptibleRun()); });
+  const InterruptibleRun run(progress);
+  return WithoutGil([&] { return ContinueCurve({at, special}, options, run); });
 }
 
 void BindCodim2(py::module_& module) {
@@ -177,6 +178,7 @@ void BindCurve(py::module_& module) {
              py::arg("initial_step") = kCurve.initial_step, py::arg("min_step") = kCurve.min_step,
              py::arg("max_step") = kCurve.max_step, py::arg("max_points") = kCurve.max_points,
              py::arg("locate_codim2") = kCurve.locate_codim2, py::arg("user_tests") = py::none(),
+             py::arg("progress") = false,
              R"(Follows a fold, period doubling, Neimark-Sacker or grazing point of
 `branch` (continued for `system`) as the branch's parameter (mu1, within
 between from_ and to) and `parameter2` (mu2, between from2 and to2) move, both
@@ -185,6 +187,8 @@ of user_tests ({name: function(Orbit) -> float}) as 'user_test' points.
 Returns a Curve.
 Raises ValueError for bad input or a point the curve cannot start from.
 Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.
 Its keywords are impactkit.CurveOptions's (but user_tests):
 `continue_curve(system, branch, special_point, **impactkit.CurveOptions(...))` passes a set.)");
 }

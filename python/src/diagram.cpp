@@ -46,7 +46,8 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
               const std::string& parameter, double from, double to, double initial_step,
               double max_step, int max_points, int max_depth, int max_branches, int threads,
               bool switch_period_doubling, bool switch_grazing, bool switch_branch_points,
-              bool switch_pitchforks, const std::optional<py::dict>& user_tests) {
+              bool switch_pitchforks, const std::optional<py::dict>& user_tests,
+              const py::object& progress) {
   std::vector<DiagramSeed> seeds;
   for (std::size_t i = 0; i < starts.size(); ++i) {
     seeds.push_back({starts[i].first, starts[i].second, "seed " + std::to_string(i + 1),
@@ -56,7 +57,8 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
                                         max_depth, max_branches, threads, switch_period_doubling,
                                         switch_grazing, switch_branch_points, switch_pitchforks});
   options.continuation.user_tests = UserTestsFrom(user_tests);
-  return WithoutGil([&] { return TraceDiagram(seeds, options, InterruptibleRun()); });
+  const InterruptibleRun run(progress);
+  return WithoutGil([&] { return TraceDiagram(seeds, options, run); });
 }
 
 void BindNode(py::module_& module) {
@@ -211,7 +213,7 @@ void BindDiagram(py::module_& module) {
              py::arg("switch_grazing") = kNetwork.switch_grazing,
              py::arg("switch_branch_points") = kNetwork.switch_branch_points,
              py::arg("switch_pitchforks") = kNetwork.switch_pitchforks,
-             py::arg("user_tests") = py::none(),
+             py::arg("user_tests") = py::none(), py::arg("progress") = false,
              R"(Traces the connected bifurcation diagram through `seeds`, a list of
 (system, orbit) pairs: each seed's branch is followed both ways in the named
 parameter between from_ and to, and at every period doubling, grazing,
@@ -222,6 +224,8 @@ depend on it. user_tests: {name: function(Orbit) -> float}, located on
 every branch as nodes 'user_test' (called from the tracing threads, each
 call taking the GIL). Raises ValueError for bad input, and what a user test
 raises. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.
 Its keywords are impactkit.DiagramOptions's (but user_tests):
 `trace_diagram(seeds, **impactkit.DiagramOptions(...))` passes a set.)");
 }

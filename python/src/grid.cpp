@@ -17,9 +17,10 @@ namespace impactkit::python {
 namespace {
 
 /// Every unit of `task` on `threads` threads, the cells in index order.
-/// Ctrl-C is checked after each unit.
-std::vector<GridCell> RunAll(const GridTask& task, int threads) {
-  return WithoutGil([&] { return RunGrid(task, threads, InterruptibleRun()).cells; });
+/// Ctrl-C is checked and `progress` shown after each unit.
+std::vector<GridCell> RunAll(const GridTask& task, int threads, const py::object& progress) {
+  const InterruptibleRun run(progress);
+  return WithoutGil([&] { return RunGrid(task, threads, run).cells; });
 }
 
 /// The cells as (rows, columns) arrays: the kind by name and by its index in
@@ -58,7 +59,8 @@ py::dict CellArrays(const std::vector<GridCell>& cells, py::ssize_t rows, py::ss
 py::dict ParameterMapPy(const System& system, const std::string& parameter, double from, double to,
                         int steps, const std::string& parameter2, double from2, double to2,
                         int steps2, int transient_periods, int recorded_periods, int threads,
-                        const std::string& each_from, int chunk_values) {
+                        const std::string& each_from, int chunk_values,
+                        const py::object& progress) {
   ParameterMapOptions options;
   options.row.parameter = parameter;
   options.row.from = from;
@@ -73,7 +75,7 @@ py::dict ParameterMapPy(const System& system, const std::string& parameter, doub
   options.to2 = to2;
   options.steps2 = steps2;
   const ParameterMapTask task(system, options);
-  const std::vector<GridCell> cells = RunAll(task, threads);
+  const std::vector<GridCell> cells = RunAll(task, threads, progress);
   py::dict out = CellArrays(cells, static_cast<py::ssize_t>(task.Values2().size()),
                             static_cast<py::ssize_t>(task.Values1().size()));
   out["values"] = MoveToArray(std::vector<double>(task.Values1()));
@@ -83,8 +85,8 @@ py::dict ParameterMapPy(const System& system, const std::string& parameter, doub
 
 py::dict BasinsPy(const System& system, const std::string& coordinate1, double from1, double to1,
                   int steps1, const std::string& coordinate2, double from2, double to2, int steps2,
-                  int transient_periods, int recorded_periods, int threads,
-                  double orbit_tolerance) {
+                  int transient_periods, int recorded_periods, int threads, double orbit_tolerance,
+                  const py::object& progress) {
   BasinsOptions options;
   options.run.transient_periods = transient_periods;
   options.run.recorded_periods = recorded_periods;
@@ -98,7 +100,7 @@ py::dict BasinsPy(const System& system, const std::string& coordinate1, double f
   options.steps2 = steps2;
   options.orbit_tolerance = orbit_tolerance;
   const BasinsTask task(system, options);
-  const std::vector<GridCell> cells = RunAll(task, threads);
+  const std::vector<GridCell> cells = RunAll(task, threads, progress);
   const auto rows = static_cast<py::ssize_t>(task.Values2().size());
   const auto columns = static_cast<py::ssize_t>(task.Values1().size());
   py::dict out = CellArrays(cells, rows, columns);
@@ -226,20 +228,23 @@ void BindGrid(py::module_& module) {
   const BasinsOptions kBasins = BasinsDefaults();
   BindMapOptions(module, kMap);
   BindBasinsOptions(module, kBasins);
-  module.def(
-      "parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
-      py::arg("parameter") = kRow.parameter, py::arg("from_"), py::arg("to"), py::arg("steps"),
-      py::arg("parameter2") = kMap.parameter2, py::arg("from2"), py::arg("to2"), py::arg("steps2"),
-      py::arg("transient_periods") = kRow.transient_periods,
-      py::arg("recorded_periods") = kRow.recorded_periods, py::arg("threads") = kRow.threads,
-      py::arg("each_from") = StartName(kRow.start), py::arg("chunk_values") = kRow.chunk_values,
-      R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
+  module.def("parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
+             py::arg("parameter") = kRow.parameter, py::arg("from_"), py::arg("to"),
+             py::arg("steps"), py::arg("parameter2") = kMap.parameter2, py::arg("from2"),
+             py::arg("to2"), py::arg("steps2"),
+             py::arg("transient_periods") = kRow.transient_periods,
+             py::arg("recorded_periods") = kRow.recorded_periods, py::arg("threads") = kRow.threads,
+             py::arg("each_from") = StartName(kRow.start),
+             py::arg("chunk_values") = kRow.chunk_values, py::arg("progress") = false,
+             R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
 of `parameter` (steps values from from_ to to) at one of the steps2
 values of `parameter2` (ascending), each cell's motion classified. Returns
 a dict of arrays of shape (steps2, steps): 'kind' (names), 'kind_code'
 (index into 'kinds'), 'p', 'q' (0 where undefined), 'max_velocity', 'range_xN',
 'lyapunov' (NaN where undefined), and 'values', 'values2'. threads does not
 change the result. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.
 Its keywords are impactkit.MapOptions's: `parameter_map(system, **impactkit.MapOptions(...))`
 passes a set.)");
   module.def("basins", &BasinsPy, py::arg("system"), py::kw_only(),
@@ -249,7 +254,7 @@ passes a set.)");
              py::arg("transient_periods") = kBasins.run.transient_periods,
              py::arg("recorded_periods") = kBasins.run.recorded_periods,
              py::arg("threads") = kBasins.run.threads,
-             py::arg("orbit_tolerance") = kBasins.orbit_tolerance,
+             py::arg("orbit_tolerance") = kBasins.orbit_tolerance, py::arg("progress") = false,
              R"(Basins of attraction, as `impactkit basins` computes them: a grid of
 starts over two state coordinates ('x1'..'xN', 'v1'..'vN'; the others at
 rest), each run to its attractor and the attractors identified by their
@@ -257,6 +262,8 @@ orbits. Returns the cell arrays of parameter_map (shape (steps2, steps))
 and 'attractor' (index into 'attractors', a list of dicts with kind, p,
 q, cells, and the orbit's impact 'phases' and 'speeds'). Releases the GIL;
 Ctrl-C raises KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.
 Its keywords are impactkit.BasinsOptions's: `basins(system, **impactkit.BasinsOptions(...))`
 passes a set.)");
 }

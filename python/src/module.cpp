@@ -6,6 +6,8 @@
 // that cannot be written (OutputError) raises OSError.
 #include <Python.h>
 
+#include <cmath>
+
 #include "bindings.hpp"
 #include "impactkit/io/output_file.hpp"
 
@@ -33,6 +35,48 @@ void ThrowNumericalError(const std::string& message) {
 void CheckInterrupt() {
   py::gil_scoped_acquire acquire;
   if (PyErr_CheckSignals() != 0) throw Interrupted();
+}
+
+InterruptibleRun::InterruptibleRun(const py::object& progress)
+    : RunControl([this](const Progress& report) { Show(report); }) {
+  if (PyCallable_Check(progress.ptr()) != 0) {
+    callback_ = progress;
+  } else if (!progress.is_none() && progress.cast<bool>()) {
+    try {
+      bar_class_ = py::module_::import("tqdm.auto").attr("tqdm");
+    } catch (const py::error_already_set&) {
+      // No tqdm: the run goes without a bar, as promised.
+    }
+  }
+}
+
+InterruptibleRun::~InterruptibleRun() {
+  if (!bar_.is_none()) bar_.attr("close")();
+}
+
+void InterruptibleRun::Show(const Progress& report) {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw Interrupted();
+  const std::string stage(report.stage);
+  if (!callback_.is_none()) {
+    // Where the run is, None where it is not a point's (a sweep's values).
+    auto where = [](double value) {
+      return std::isfinite(value) ? py::object(py::float_(value)) : py::object(py::none());
+    };
+    callback_(py::dict(py::arg("stage") = stage, py::arg("done") = report.done,
+                       py::arg("total") = report.total,
+                       py::arg("parameter") = where(report.parameter),
+                       py::arg("parameter2") = where(report.parameter2)));
+  }
+  if (bar_class_.is_none()) return;
+  if (bar_.is_none() || bar_stage_ != stage) {  // a new stage (a swept diagram's) has its bar
+    if (!bar_.is_none()) bar_.attr("close")();
+    bar_ = bar_class_(py::arg("total") = report.total > 0 ? py::object(py::int_(report.total))
+                                                          : py::object(py::none()),
+                      py::arg("desc") = stage, py::arg("leave") = false);
+    bar_stage_ = stage;
+  }
+  bar_.attr("update")(report.done - bar_.attr("n").cast<std::int64_t>());
 }
 
 std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests) {

@@ -18,13 +18,14 @@ import impactkit
 # Each option set, its function, and the function's arguments that are not
 # in the set.
 SETS = [
-    (impactkit.SweepOptions, "sweep", {"system"}),
-    (impactkit.ContinuationOptions, "continue_branch", {"system", "orbit", "start", "user_tests"}),
+    (impactkit.SweepOptions, "sweep", {"system", "progress"}),
+    (impactkit.ContinuationOptions, "continue_branch",
+     {"system", "orbit", "start", "user_tests", "progress"}),
     (impactkit.CurveOptions, "continue_curve",
-     {"system", "branch", "special_point", "user_tests"}),
-    (impactkit.DiagramOptions, "trace_diagram", {"seeds", "user_tests"}),
-    (impactkit.MapOptions, "parameter_map", {"system"}),
-    (impactkit.BasinsOptions, "basins", {"system"}),
+     {"system", "branch", "special_point", "user_tests", "progress"}),
+    (impactkit.DiagramOptions, "trace_diagram", {"seeds", "user_tests", "progress"}),
+    (impactkit.MapOptions, "parameter_map", {"system", "progress"}),
+    (impactkit.BasinsOptions, "basins", {"system", "progress"}),
 ]
 IDS = [cls.__name__ for cls, _, _ in SETS]
 
