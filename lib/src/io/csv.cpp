@@ -14,9 +14,7 @@ constexpr std::size_t kFlushBytes = 1 << 16;
 
 }  // namespace
 
-std::string CsvField(double value) {
-  return std::isnan(value) ? "" : fmt::format("{}", value);
-}
+std::string CsvField(double value) { return std::isnan(value) ? "" : fmt::format("{}", value); }
 
 std::string CsvHead(const std::vector<std::string>& columns, std::string_view provenance) {
   if (columns.empty()) throw std::invalid_argument("a CSV table needs at least one column");
