@@ -41,7 +41,11 @@ InterruptibleRun::InterruptibleRun(const py::object& progress)
     : RunControl([this](const Progress& report) { Show(report); }) {
   if (PyCallable_Check(progress.ptr()) != 0) {
     callback_ = progress;
-  } else if (!progress.is_none() && progress.cast<bool>()) {
+    return;
+  }
+  Require(progress.is_none() || py::isinstance<py::bool_>(progress),
+          "progress must be True, False or a callable, got " + std::string(py::repr(progress)));
+  if (!progress.is_none() && progress.cast<bool>()) {
     try {
       bar_class_ = py::module_::import("tqdm.auto").attr("tqdm");
     } catch (const py::error_already_set&) {

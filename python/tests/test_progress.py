@@ -51,6 +51,13 @@ def test_true_draws_a_tqdm_bar(start, capfd):
     assert "branch" in capfd.readouterr().err
 
 
+@pytest.mark.parametrize("progress", ["yes", 3])
+def test_progress_that_is_no_flag_or_callable_is_a_value_error(progress):
+    with pytest.raises(ValueError, match="progress must be True, False or a callable"):
+        impactkit.sweep(impactkit.System.paper(), from_=0.6, to=0.62, steps=2,
+                        transient_periods=10, recorded_periods=5, progress=progress)
+
+
 def test_what_the_callable_raises_stops_the_run(start):
     system, orbit = start
 

@@ -54,7 +54,7 @@ TerminationText TextOf(Termination termination) {
     case Termination::kBranchPoint:
       return {"branch_point", "met the branch of a shorter orbit traversed several times"};
     case Termination::kMaxPoints:
-      return {"max_points", "the bound on points reached"};
+      return {"max_points", "a bound on points, branches or depth reached"};
     case Termination::kCorrectorFailed:
       return {"corrector_failed", "no convergence even with the smallest step"};
     case Termination::kClosed:

@@ -58,7 +58,7 @@ enum class Termination {
   // Continuation: branches, curves, diagrams.
   kParameterBound,   ///< reached an end of the parameter's range
   kBranchPoint,      ///< met the branch of a shorter orbit traversed several times
-  kMaxPoints,        ///< the bound on points (or branches) reached
+  kMaxPoints,        ///< a bound on points (a diagram's: on branches or depth) reached
   kCorrectorFailed,  ///< no convergence even with the smallest step
   kClosed,           ///< the curve came back to its start: a closed loop
 };
