@@ -356,6 +356,6 @@ TEST_CASE(
   CHECK_NOTHROW(SplitMonodromy(system, {first, late}, 2));
   CHECK_THROWS_WITH(SplitMonodromy(system, {first, {late.state, 1}}, 2),
                     Catch::Contains("a contact's stop must be one of the system's 1 stops"));
-  CHECK_THROWS_WITH(ResponseTouchMonodromy(system, 1, -1),
+  CHECK_THROWS_WITH(ResponseTouch(system, -1),
                     Catch::Contains("the stop touched must be one of the system's 1 stops"));
 }

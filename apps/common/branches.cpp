@@ -201,7 +201,11 @@ void PrintBranch(const TracedBranch& traced) {
              FamilyName(b), traced.origin, b.points.size(), b.parameter, b.points.front().parameter,
              b.points.back().parameter, b.seconds);
   if (b.begin) fmt::print("  begins: {} ({})\n", ToString(*b.begin), b.begin_message);
-  for (const SpecialPoint& s : b.special_points) fmt::print("  {}\n", s.Describe(b.parameter));
+  for (const SpecialPoint& s : b.special_points) {
+    fmt::print("  {}\n", s.Describe(b.parameter));
+    if (s.normal_form) fmt::print("    {}\n", s.normal_form->Describe());
+    if (!s.normal_form_note.empty()) fmt::print("    no normal form: {}\n", s.normal_form_note);
+  }
   fmt::print("  ends:   {} ({})\n", ToString(b.end), b.end_message);
 }
 

@@ -679,6 +679,24 @@ bool ContinuationOptions::IsValid(std::string* error) const {
   return orbit.IsValid(error);
 }
 
+namespace {
+
+/// Each grazing's normal form, or why there is none.
+void DescribeGrazings(const System& system, const ContinuationOptions& options, Branch* branch) {
+  if (branch->section != OrbitSection::kImpact) return;
+  for (SpecialPoint& special : branch->special_points) {
+    if (special.type != SpecialPointType::kGrazing) continue;
+    try {
+      special.normal_form = ComputeGrazingNormalForm(
+          GrazingOrbitAt(system, *branch, special, options), branch->parameter);
+    } catch (const InvalidInput& error) {
+      special.normal_form_note = error.what();
+    }
+  }
+}
+
+}  // namespace
+
 Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& options,
                       const RunControl& control) {
   const auto clock_start = std::chrono::steady_clock::now();
@@ -761,6 +779,7 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
                                forward.special_points.end());
   branch.end = forward.end;
   branch.end_message = forward.end_message;
+  DescribeGrazings(start.system, family, &branch);
   branch.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
   return branch;

@@ -98,6 +98,8 @@ int DiagramBuilder::SpecialNode(int index, const SpecialPoint& s) {
   node.monitor = s.monitor;
   node.vanishing_impact = s.vanishing_impact;
   node.user_test = s.user_test;
+  node.normal_form = s.normal_form;
+  node.normal_form_note = s.normal_form_note;
   node.p = branch.p;
   node.q = branch.q;
   node.branch = index;

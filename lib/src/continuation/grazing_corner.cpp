@@ -65,7 +65,7 @@ std::optional<GrazingCorner> ResponseCorner(const CurveProblem& problem, double 
       const System system = problem.SystemAt(mu(0), mu(1));
       g->resize(2);
       *g << NonImpactingClearance(system, stop),
-          ResponseTouchMonodromy(system, q, stop).GrazingLimit(lambda);
+          SplitMonodromy(system, {ResponseTouch(system, stop)}, q).GrazingLimit(lambda);
     } catch (const InvalidInput&) {
       return false;  // outside a parameter's range
     }
@@ -124,11 +124,12 @@ std::optional<GrazingCorner> ReducedCorner(const CurveProblem& problem, double l
     try {
       const ImpactMap map(grazing.SystemAt(CurveProblem::Mu1(x), CurveProblem::Mu2(x)),
                           options.orbit.map);
-      const std::optional<SpeedSplitMonodromy> m =
-          TouchMonodromy(map, grazing.Eta(x), options.orbit.p, options.orbit.q, flight,
-                         grazing.ContactTime(x), touched);
-      if (!m) return false;
-      *g = Eigen::VectorXd::Constant(1, kLimitRowWeight * m->GrazingLimit(lambda));
+      const std::optional<std::vector<StopContact>> contacts =
+          TouchContacts(map, grazing.Eta(x), options.orbit.p, options.orbit.q, flight,
+                        grazing.ContactTime(x), touched);
+      if (!contacts) return false;
+      const SpeedSplitMonodromy m = SplitMonodromy(map.GetSystem(), *contacts, options.orbit.q);
+      *g = Eigen::VectorXd::Constant(1, kLimitRowWeight * m.GrazingLimit(lambda));
     } catch (const InvalidInput&) {
       return false;  // outside a parameter's range, or no longer an impact state
     }

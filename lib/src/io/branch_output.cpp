@@ -6,6 +6,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "io/normal_form_json.hpp"
+
 namespace impactkit {
 namespace {
 
@@ -46,6 +48,7 @@ nlohmann::json SpecialJson(const SpecialPoint& s, const std::string& parameter) 
   if (s.type == SpecialPointType::kGrazing || s.type == SpecialPointType::kSticking) {
     j["vanishing_impact"] =
         s.vanishing_impact < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.vanishing_impact + 1);
+    if (s.type == SpecialPointType::kGrazing) AddNormalForm(s.normal_form, s.normal_form_note, &j);
   } else if (s.type == SpecialPointType::kUserTest) {
     j["user_test"] = s.user_test;
   } else if (s.type != SpecialPointType::kNoSticking && s.type != SpecialPointType::kEarlyRelease) {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "impactkit/io/branch_output.hpp"
+#include "io/normal_form_json.hpp"
 
 namespace impactkit {
 namespace {
@@ -30,6 +31,9 @@ nlohmann::json NodeJson(const DiagramNode& node, std::size_t id) {
   if (node.special == SpecialPointType::kGrazing || node.special == SpecialPointType::kSticking) {
     j["vanishing_impact"] = node.vanishing_impact < 0 ? nlohmann::json(nullptr)
                                                       : nlohmann::json(node.vanishing_impact + 1);
+  }
+  if (node.special == SpecialPointType::kGrazing) {
+    AddNormalForm(node.normal_form, node.normal_form_note, &j);
   }
   return j;
 }

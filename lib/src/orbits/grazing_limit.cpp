@@ -33,7 +33,8 @@ SpeedSplitMonodromy SplitSaltation(const HybridSystem& hybrid, const StopContact
   };
   const Eigen::MatrixXd at_1 = saltation(1.0), at_2 = saltation(2.0);
   const Eigen::MatrixXd singular = 2.0 * (at_1 - at_2);
-  return {at_1 - singular, singular * normal.transpose(), normal};
+  const Eigen::VectorXd jump = singular * normal.transpose();  // d0 (|n| = 1)
+  return {at_1 - singular, jump, normal, Eigen::MatrixXd::Identity(2 * n, 2 * n), jump};
 }
 
 }  // namespace
@@ -80,10 +81,10 @@ SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<StopC
     t = state.t;
   }
   rest = flow.Transition(end - t) * rest;
-  return {rest * split.regular, rest * split.singular, split.normal};
+  return {rest * split.regular, rest * split.singular, split.normal, rest, split.jump};
 }
 
-SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q, int stop_index) {
+StopContact ResponseTouch(const System& system, int stop_index) {
   Require(stop_index >= 0 && stop_index < system.StopCount(),
           fmt::format("the stop touched must be one of the system's {} stops (0 to {}), got {}",
                       system.StopCount(), system.StopCount() - 1, stop_index));
@@ -100,11 +101,12 @@ SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q, int stop
   const double b = stop.Sign() * touch.x(stop.Dof());
   touch.t = std::atan2(b, a) / (2.0 * std::numbers::pi) * period;
   flow.SteadyState(touch.t, &touch.x, &touch.v);
-  return SplitMonodromy(system, {{touch, stop_index}}, q);
+  return {touch, stop_index};
 }
 
-std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
-                                                  int p, int q, int flight, double t, int stop) {
+std::optional<std::vector<StopContact>> TouchContacts(const ImpactMap& map,
+                                                      const Eigen::VectorXd& eta, int p, int q,
+                                                      int flight, double t, int stop) {
   const MapResult path = map.Apply(eta, p, false);
   if (path.termination != Termination::kCompleted) return std::nullopt;
   // The impact that starts the flight, and its stop.
@@ -120,7 +122,7 @@ std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Ei
     if (k >= p) impact.t += shift;
     contacts.push_back({impact, path.stops[at]});
   }
-  return SplitMonodromy(map.GetSystem(), contacts, q);
+  return contacts;
 }
 
 }  // namespace impactkit

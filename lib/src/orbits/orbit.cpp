@@ -69,14 +69,13 @@ JacobianComparison CompareJacobians(const ImpactMap& map, const Eigen::VectorXd&
   return comparison;
 }
 
-namespace {
-
-/// Sorted largest first.
-Eigen::VectorXcd SortedByModulus(Eigen::VectorXcd lambda) {
-  std::sort(lambda.begin(), lambda.end(),
+Eigen::VectorXcd SortedByModulus(Eigen::VectorXcd values) {
+  std::sort(values.begin(), values.end(),
             [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
-  return lambda;
+  return values;
 }
+
+namespace {
 
 /// The finite eigenvalues of the pencil [A u; n −v] − λ diag(I, 0), largest
 /// first: by the matrix determinant lemma those of M(v) = A + u n / v,
@@ -407,26 +406,6 @@ void AcceptShooting(const ShootingProblem& problem, const ImpactMap& map,
   *orbit = OrbitThrough(map, etas, stops, options.q, std::move(jacobian), summary->residual);
 }
 
-/// Newton steps beyond the solver's tolerance while max |W| falls: W is
-/// regular, so its zero is determined to W's rounding, ~ε‖y‖, and the map
-/// check magnifies what a tolerance leaves (1e-11 in W, ~1e-14 in v) by
-/// ‖D P_I‖ (~1/v). Returns max |W| at *z.
-double Polish(const ShootingProblem& problem, Eigen::VectorXd* z) {
-  constexpr int kMaxSteps = 3;  // quadratic convergence: one or two suffice
-  Eigen::VectorXd w, next_w;
-  Eigen::MatrixXd jacobian;
-  problem.Residual(*z, &w);
-  double norm = w.cwiseAbs().maxCoeff();
-  for (int step = 0; step < kMaxSteps && problem.Jacobian(*z, &jacobian); ++step) {
-    const Eigen::VectorXd next = *z - jacobian.partialPivLu().solve(w);
-    if (!problem.Residual(next, &next_w) || !(next_w.cwiseAbs().maxCoeff() < norm)) break;
-    *z = next;
-    w = next_w;
-    norm = w.cwiseAbs().maxCoeff();
-  }
-  return norm;
-}
-
 /// Newton on W = 0 (orbit_shooting.hpp) from the guess's impacts.
 OrbitSummary SolveByShooting(const HybridSystem& hybrid, const ImpactMap& map,
                              const OrbitOptions& options, const Eigen::VectorXd& guess,
@@ -440,20 +419,13 @@ OrbitSummary SolveByShooting(const HybridSystem& hybrid, const ImpactMap& map,
     return summary;
   }
   const ShootingProblem problem(hybrid, map, stops, options.q);
-  const Residual residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd* w) {
-    return problem.Residual(x, w);
-  };
-  const Jacobian jacobian = [&](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
-    return problem.Jacobian(x, j);
-  };
   Eigen::VectorXd z = problem.Pack(*etas);
-  const SolveSummary solve = SolveNewton(residual, jacobian, options.newton, &z);
+  const SolveSummary solve = problem.Solve(options.newton, &z);
   summary.iterations = solve.iterations;
   summary.termination = solve.termination;
   summary.message = "fixed-time formulation: " + solve.message;
   summary.shooting_residual = solve.residual_norm;
   if (summary.termination != Termination::kConverged) return summary;
-  summary.shooting_residual = Polish(problem, &z);
   summary.used_shooting = true;
   AcceptShooting(problem, map, options, problem.WithPhase(z), &summary, orbit);
   return summary;

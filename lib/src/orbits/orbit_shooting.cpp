@@ -75,6 +75,31 @@ bool ShootingProblem::Jacobian(const Eigen::VectorXd& z, Eigen::MatrixXd* jacobi
   return jacobian->allFinite();
 }
 
+SolveSummary ShootingProblem::Solve(const NewtonOptions& options, Eigen::VectorXd* z) const {
+  const impactkit::Residual residual = [this](const Eigen::VectorXd& x, Eigen::VectorXd* w) {
+    return Residual(x, w);
+  };
+  const impactkit::Jacobian jacobian = [this](const Eigen::VectorXd& x, Eigen::MatrixXd* j) {
+    return Jacobian(x, j);
+  };
+  SolveSummary summary = SolveNewton(residual, jacobian, options, z);
+  if (summary.termination != Termination::kConverged) return summary;
+  constexpr int kMaxPolishSteps = 3;  // quadratic convergence: one or two suffice
+  Eigen::VectorXd w, next_w;
+  Eigen::MatrixXd j;
+  Residual(*z, &w);
+  double norm = w.cwiseAbs().maxCoeff();
+  for (int step = 0; step < kMaxPolishSteps && Jacobian(*z, &j); ++step) {
+    const Eigen::VectorXd next = *z - j.partialPivLu().solve(w);
+    if (!Residual(next, &next_w) || !(next_w.cwiseAbs().maxCoeff() < norm)) break;
+    *z = next;
+    w = next_w;
+    norm = w.cwiseAbs().maxCoeff();
+  }
+  summary.residual_norm = norm;
+  return summary;
+}
+
 Eigen::MatrixXd ShootingProblem::MapJacobian(const Eigen::VectorXd& z) const {
   Eigen::MatrixXd product = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
   for (int k = 0; k < Impacts(); ++k) {

@@ -23,6 +23,7 @@
 
 #include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/orbits/impact_map.hpp"
+#include "impactkit/solvers/nonlinear_solve.hpp"
 
 namespace impactkit {
 
@@ -43,6 +44,12 @@ class ShootingProblem {
   bool Residual(const Eigen::VectorXd& z, Eigen::VectorXd* w) const;
   /// ∂W/∂z into *jacobian; false if it is not finite.
   bool Jacobian(const Eigen::VectorXd& z, Eigen::MatrixXd* jacobian) const;
+  /// Newton on W = 0 from *z (SolveNewton), then, once converged, Newton
+  /// steps beyond the solver's tolerance while max |W| falls: W is
+  /// regular, so its zero is determined to W's rounding, ~ε‖y‖, and a map
+  /// check magnifies what a tolerance leaves (1e-11 in W, ~1e-14 in v) by
+  /// ‖D P_I‖ (~1/v). residual_norm is max |W| at the returned *z.
+  SolveSummary Solve(const NewtonOptions& options, Eigen::VectorXd* z) const;
   /// D P_I^p at η_0 along the impacts of z (at their known times, where an
   /// event search at speeds ~ε‖x‖ could not place them): per flight the
   /// saltation of impact_map.hpp, dt' = −e_cᵀ G dη / v_c, dy = G + f dt'.

@@ -37,9 +37,7 @@ Eigen::VectorXcd SectionMultipliers(const StickingMap& map, const Eigen::VectorX
     const Eigen::MatrixXd restricted = basis.transpose() * jacobian * basis;
     lambda = Eigen::EigenSolver<Eigen::MatrixXd>(restricted).eigenvalues();
   }
-  std::sort(lambda.begin(), lambda.end(),
-            [](const auto& a, const auto& b) { return std::abs(a) > std::abs(b); });
-  return lambda;
+  return SortedByModulus(lambda);
 }
 
 PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorXd& s, int releases,

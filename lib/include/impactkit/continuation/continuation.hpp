@@ -51,6 +51,7 @@
 #include "impactkit/core/run_control.hpp"
 #include "impactkit/core/termination.hpp"
 #include "impactkit/model/system.hpp"
+#include "impactkit/orbits/grazing_normal_form.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "impactkit/orbits/sticking_map.hpp"
 
@@ -127,6 +128,12 @@ struct SpecialPoint {
   int vanishing_impact = -1;
   /// A user test's zero: the test's name (UserTest::name).
   std::string user_test;
+  /// A grazing of an impacting family: the local map there
+  /// (grazing_normal_form.hpp), unfolded in the branch's parameter. Empty
+  /// for other types, a sticking family's grazing, or where the grazing
+  /// orbit could not be resolved (normal_form_note says why).
+  std::optional<GrazingNormalForm> normal_form;
+  std::string normal_form_note;
   /// One line: "period doubling at omega = 1.6123 (multiplier -1.000000)".
   std::string Describe(const std::string& parameter_name) const;
 };
@@ -216,6 +223,15 @@ struct GrazingSeed {
   OrbitOptions orbit;  ///< p ± 1 (or the k releases of a sticking family), q
   Eigen::VectorXd eta;
 };
+/// The grazing orbit at the grazing point `graze` of `branch`, touching
+/// its stop: at a new contact the located orbit itself; where an impact
+/// vanishes the orbit without it — P(p − 1, q), found at the located
+/// parameter, or for p = 1 the non-impacting response. Throws InvalidInput
+/// for another type of point, a sticking family, or a reduced orbit that
+/// cannot be found or does not touch.
+GrazingOrbit GrazingOrbitAt(const System& system, const Branch& branch, const SpecialPoint& graze,
+                            const ContinuationOptions& options);
+
 std::vector<GrazingSeed> SeedsAtGrazing(const System& system, const Branch& branch,
                                         const SpecialPoint& graze,
                                         const ContinuationOptions& options, double offset = 1e-3);

@@ -42,6 +42,9 @@ struct DiagramNode {
   double monitor = 0.0;
   int vanishing_impact = -1;  ///< grazing/sticking: the impact that vanishes (-1: a new contact)
   std::string user_test;      ///< a user test's zero: the test's name
+  /// A grazing's normal form, or why there is none (SpecialPoint's).
+  std::optional<GrazingNormalForm> normal_form;
+  std::string normal_form_note;
   int p = 0, q = 0;   ///< of the branch the node was first located on (p = 0: sticking, P(inf,q))
   int branch = 0;     ///< that branch (index into Diagram::branches)
   BranchPoint point;  ///< the located point on that branch

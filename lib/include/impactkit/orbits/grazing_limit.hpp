@@ -41,9 +41,16 @@ namespace impactkit {
 
 /// M(ε) = regular + singular · normal / ε.
 struct SpeedSplitMonodromy {
-  Eigen::MatrixXd regular;    ///< Φ (R + d1 nᵀ)
-  Eigen::VectorXd singular;   ///< Φ d0
+  Eigen::MatrixXd regular;    ///< G (R + d1 nᵀ)
+  Eigen::VectorXd singular;   ///< G d0
   Eigen::RowVectorXd normal;  ///< n, the gap's gradient in (x, v)
+  /// G itself: the monodromy of the orbit that only touches where the split
+  /// contact is (its flights and other impacts, from that contact round):
+  /// the grazing orbit's own, the linear part of its normal form.
+  Eigen::MatrixXd smooth;
+  /// d0 = (I − R) f at a touch (R x = x there, so f⁺ = f⁻ = f): the jump
+  /// of the state across the contact per unit speed of arrival.
+  Eigen::VectorXd jump;
 
   /// M(speed), speed > 0.
   Eigen::MatrixXd At(double speed) const;
@@ -70,19 +77,22 @@ struct StopContact {
 SpeedSplitMonodromy SplitMonodromy(const System& system, const std::vector<StopContact>& contacts,
                                    int q);
 
-/// The same at the non-impacting response's closest approach to `stop`:
-/// on the curve where P(1, q)'s impact vanishes (the response touches that
-/// stop there: the one it comes closest to), the limit of the orbit's
-/// monodromy as ε → 0. Throws InvalidInput for a stop the system lacks.
-SpeedSplitMonodromy ResponseTouchMonodromy(const System& system, int q, int stop);
+/// The non-impacting response's closest approach to `stop`, as a touch
+/// (speed 0): on the curve where P(1, q)'s impact vanishes (the response
+/// touches that stop there: the one it comes closest to), the contact whose
+/// SplitMonodromy is the limit of that orbit's monodromy as ε → 0. Throws
+/// InvalidInput for a stop the system lacks.
+StopContact ResponseTouch(const System& system, int stop);
 
-/// The same at time t in flight `flight` (0: the one after η) of the orbit
-/// of `map` with p impacts through η (at the map's section stop), q
-/// periods, touching stop `stop` at t: where P(p + 1, q)'s impact there
-/// vanishes, the limit of that orbit's monodromy. The orbit's impacts keep
-/// the stops the map finds them at (MapResult::stops). Empty if the map
-/// fails along the orbit.
-std::optional<SpeedSplitMonodromy> TouchMonodromy(const ImpactMap& map, const Eigen::VectorXd& eta,
-                                                  int p, int q, int flight, double t, int stop);
+/// The contacts of the orbit of `map` with p impacts through η (at the
+/// map's section stop), q periods, touching stop `stop` at time t in flight
+/// `flight` (0: the one after η): the touch first, then the p impacts
+/// after it (the orbit's first ones a period on), each at the stop the map
+/// finds it at (MapResult::stops). Where P(p + 1, q)'s impact there
+/// vanishes, their SplitMonodromy is the limit of that orbit's monodromy.
+/// Empty if the map fails along the orbit.
+std::optional<std::vector<StopContact>> TouchContacts(const ImpactMap& map,
+                                                      const Eigen::VectorXd& eta, int p, int q,
+                                                      int flight, double t, int stop);
 
 }  // namespace impactkit

@@ -77,6 +77,9 @@ struct OrbitOptions {
 /// "impact", "release".
 std::string ToString(OrbitSection section);
 
+/// `values` sorted by decreasing modulus: multipliers as orbits list them.
+Eigen::VectorXcd SortedByModulus(Eigen::VectorXcd values);
+
 /// One impact of the orbit.
 struct OrbitImpact {
   double t = 0.0;

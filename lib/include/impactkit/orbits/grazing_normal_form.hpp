@@ -1,0 +1,97 @@
+#pragma once
+/// \file grazing_normal_form.hpp
+/// The local map at a grazing orbit: Nordmark's discontinuity-map normal
+/// form (Nordmark 1991; Fredriksson & Nordmark 1997; di Bernardo, Budd,
+/// Champneys & Kowalczyk 2008, §2.5 and ch. 4), from the exact flow.
+///
+/// A grazing orbit touches stop c at time t* with speed 0 and turns back
+/// (a = −s ẍ_c > 0, s the stop's side). On the stroboscopic section at t*
+/// (every q forcing periods), a state x* + z whose flight would pass the
+/// stop by δ = n · z + μ (to first order: n picks s x_c; μ the penetration
+/// of the family's smooth orbit at the parameter, its clearance's
+/// negative) meets it at speed √(2 a δ) and leaves with the jump
+///
+///     z ↦ z + W √δ,   W = (I − R) f(x*) √(2 / a)
+///
+/// (the zero-time discontinuity map, to O(δ): R the impact law's
+/// Jacobian, f the vector field). Measured from the smooth orbit's point,
+/// the grazing orbit's Poincaré map is then
+///
+///     z ↦ A z                     δ <= 0 (no contact)
+///     z ↦ A z + A W √δ            δ >  0,   δ = n · z + μ,
+///
+/// with A the grazing orbit's monodromy (its flights and other impacts;
+/// grazing_limit.hpp's SpeedSplitMonodromy::smooth) and μ = m (p − p*),
+/// m the unfolding: the rate at which the family's smooth orbit (the one
+/// that ignores the new contact, continued past it) penetrates the stop.
+///
+/// Where one real multiplier λ of A dominates, with right and left
+/// eigenvectors v, w (w · v = 1), the penetration y = δ obeys, once the
+/// others have decayed,
+///
+///     y ↦ λ y + (1 − λ) μ + κ √y [y > 0],   κ = λ (n · v)(w · W),
+///
+/// and X = d − y / κ², d = μ / κ², turns it into the paper's Eq. 18
+/// (X ↦ λ X + s √(d − X) for X <= d, λ X beyond) with s = −sign κ: its λ,
+/// s and d (d grows at m / κ² per unit parameter). docs/theory.md §6c.
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "impactkit/model/system.hpp"
+#include "impactkit/orbits/grazing_limit.hpp"
+
+namespace impactkit {
+
+/// A periodic orbit of `system` that touches a stop: its contacts in q
+/// forcing periods from the touch, in time order — the touch (speed 0,
+/// turning back) first, then its impacts, each at its stop.
+struct GrazingOrbit {
+  System system;
+  int q = 1;
+  std::vector<StopContact> contacts;
+};
+
+/// The one-dimensional reduction, where it holds.
+struct SquareRootReduction {
+  double lambda = 0.0;      ///< the dominant multiplier (real)
+  double kappa = 0.0;       ///< y ↦ λ y + (1 − λ) μ + κ √y, y the penetration
+  double s = 1.0;           ///< Eq. 18's s in its scaling: −sign κ
+  double break_rate = 0.0;  ///< Eq. 18's d per unit parameter past the grazing, m / κ²
+  double dominance = 0.0;   ///< |λ₂| / |λ|: how fast the other directions decay
+};
+
+struct GrazingNormalForm {
+  std::string parameter;         ///< the unfolding's parameter
+  double parameter_value = 0.0;  ///< p*, the grazing
+  int stop = 0;                  ///< the stop touched
+  double time = 0.0;             ///< t*, the touch: the section's time
+  double phase = 0.0;            ///< t* mod T, in [0, T)
+  Eigen::VectorXd touch;         ///< x* = (x, v) at t*
+  Eigen::MatrixXd linear;        ///< A
+  Eigen::VectorXcd eigenvalues;  ///< A's, by decreasing modulus
+  Eigen::RowVectorXd normal;     ///< n: δ = n · z + μ
+  double curvature = 0.0;        ///< a = −s ẍ_c at the touch (> 0)
+  Eigen::VectorXd root;          ///< W: the jump per √δ
+  double unfolding = 0.0;        ///< m = dμ/dp
+  std::optional<SquareRootReduction> reduced;
+  std::string reduction_note;  ///< why there is no reduction, when there is none
+
+  /// The normal form's map at z (measured from the smooth orbit's point)
+  /// for the penetration μ of the smooth orbit.
+  Eigen::VectorXd Map(const Eigen::VectorXd& z, double mu) const;
+  /// One line: "grazing normal form at t* = ...: multipliers ..., √ term ..."
+  std::string Describe() const;
+};
+
+/// The normal form at `orbit`, unfolded in `parameter` (a name of
+/// ParameterNames). Throws InvalidInput for an orbit whose first contact is
+/// no touch (speed or gap not 0 to 1e-8, or pressed into the stop rather
+/// than turning back), contacts SplitMonodromy refuses, a parameter the
+/// system lacks, or a parameter at the end of its range (the unfolding
+/// differences it on both sides).
+GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit, const std::string& parameter);
+
+}  // namespace impactkit

@@ -1,0 +1,207 @@
+#include "impactkit/orbits/grazing_normal_form.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <memory>
+
+#include "impactkit/core/errors.hpp"
+#include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/orbit.hpp"
+#include "orbits/orbit_shooting.hpp"
+
+namespace impactkit {
+namespace {
+
+/// A touch must have speed and gap 0 to this (relative to the orbit's
+/// scale): a located grazing holds them to ~1e-12.
+constexpr double kTouchTolerance = 1e-8;
+/// The unfolding's central-difference step, relative to max(1, |p*|):
+/// the smooth orbit's penetration is smooth in p on both sides of the
+/// grazing, so the error is ~h² p''' ~ 1e-10 plus the orbit's rounding
+/// over h, ~1e-15 / h ~ 1e-10.
+constexpr double kUnfoldingStep = 1e-5;
+/// A multiplier counts as real when its imaginary part is below this
+/// (relative to its modulus).
+constexpr double kRealTolerance = 1e-10;
+
+void RequireTouch(const GrazingOrbit& orbit, const HybridSystem& hybrid) {
+  Require(!orbit.contacts.empty(), "a grazing orbit needs its touch among its contacts");
+  const StopContact& touch = orbit.contacts.front();
+  Require(touch.stop >= 0 && touch.stop < orbit.system.StopCount(),
+          fmt::format("the stop touched must be one of the system's {} stops (0 to {}), got {}",
+                      orbit.system.StopCount(), orbit.system.StopCount() - 1, touch.stop));
+  const Stop& stop = hybrid.GetStop(touch.stop);
+  const double scale = std::max(1.0, touch.state.v.cwiseAbs().maxCoeff());
+  const double speed = stop.SpeedTowards(touch.state.v(stop.Dof()));
+  const double gap = stop.GapOf(touch.state.x);
+  Require(std::abs(speed) <= kTouchTolerance * scale &&
+              std::abs(gap) <= kTouchTolerance * std::max(1.0, std::abs(stop.Position())),
+          fmt::format("a grazing orbit's first contact must touch its stop (speed and gap 0), "
+                      "got speed {:.3g} and gap {:.3g}",
+                      speed, gap));
+}
+
+/// The penetration s (x_c − xs) at time t of the orbit of `orbit`'s
+/// family at `system` that keeps the grazing orbit's impacts and ignores
+/// the touched stop — past the grazing a virtual orbit, which is what the
+/// unfolding measures. Without impacts it is the non-impacting response.
+double SmoothOrbitPenetration(const GrazingOrbit& orbit, const System& system, double t) {
+  const auto hybrid = std::make_shared<const HybridSystem>(system);
+  const Stop& stop = hybrid->GetStop(orbit.contacts.front().stop);
+  HybridState state;
+  if (orbit.contacts.size() == 1) {
+    hybrid->FreeFlow().SteadyState(t, &state.x, &state.v);
+    return stop.GapOf(state.x);
+  }
+  std::vector<int> stops;
+  for (std::size_t k = 1; k < orbit.contacts.size(); ++k) stops.push_back(orbit.contacts[k].stop);
+  ImpactMapOptions map_options;
+  map_options.stop = stops.front();
+  const ImpactMap map(hybrid, map_options);
+  std::vector<Eigen::VectorXd> etas;
+  for (std::size_t k = 1; k < orbit.contacts.size(); ++k) {
+    const HybridState& at = orbit.contacts[k].state;
+    etas.push_back(map.ToEta(at.t, at.x, at.v, orbit.contacts[k].stop));
+  }
+  const ShootingProblem problem(*hybrid, map, stops, orbit.q);
+  Eigen::VectorXd z = problem.Pack(etas);
+  const SolveSummary solve = problem.Solve(NewtonOptions{}, &z);
+  Require(solve.termination == Termination::kConverged,
+          "the grazing orbit's smooth family could not be followed for its unfolding: " +
+              solve.message);
+  // The touch lies in the flight after the last impact, a period earlier.
+  const int last = problem.Impacts() - 1;
+  state = map.FlightState(problem.Eta(z, last), t + orbit.q * system.ForcingPeriod(),
+                          problem.Stop(last));
+  return stop.GapOf(state.x);
+}
+
+/// m = dμ/dp: the smooth orbit's penetration at the touch's time, by
+/// central differences. At fixed time suffices: the penetration is a
+/// maximum there, so its time's shift changes it only to second order.
+double Unfolding(const GrazingOrbit& orbit, const NamedParameter& parameter, double t) {
+  const double value = parameter.Get(orbit.system);
+  const double h = kUnfoldingStep * std::max(1.0, std::abs(value));
+  auto penetration_at = [&](double p) {
+    System system = orbit.system;
+    parameter.Set(system, p);
+    try {
+      return SmoothOrbitPenetration(orbit, system, t);
+    } catch (const InvalidInput& error) {
+      throw InvalidInput(fmt::format("the unfolding needs {} = {} on both sides of the grazing: {}",
+                                     parameter.Name(), p, error.what()));
+    }
+  };
+  return (penetration_at(value + h) - penetration_at(value - h)) / (2.0 * h);
+}
+
+/// The eigenvector of `matrix` for its real eigenvalue `lambda`.
+Eigen::VectorXd RealEigenvector(const Eigen::MatrixXd& matrix, double lambda) {
+  const Eigen::Index n = matrix.rows();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(matrix - lambda * Eigen::MatrixXd::Identity(n, n),
+                                              Eigen::ComputeFullV);
+  return svd.matrixV().col(n - 1);
+}
+
+/// The reduction to y ↦ λ y + (1 − λ) μ + κ √y, or why there is none.
+void Reduce(GrazingNormalForm* form) {
+  const Eigen::VectorXcd& lambda = form->eigenvalues;
+  const std::complex<double> leading = lambda(0);
+  if (std::abs(leading.imag()) > kRealTolerance * std::abs(leading)) {
+    form->reduction_note =
+        "the leading multipliers are a complex pair: no one-dimensional reduction";
+    return;
+  }
+  const double dominance = lambda.size() > 1 ? std::abs(lambda(1)) / std::abs(leading) : 0.0;
+  if (!(dominance < 1.0 - kRealTolerance)) {
+    form->reduction_note =
+        "two leading multipliers have the same modulus: no one-dimensional reduction";
+    return;
+  }
+  const Eigen::VectorXd right = RealEigenvector(form->linear, leading.real());
+  Eigen::VectorXd left = RealEigenvector(form->linear.transpose(), leading.real());
+  left /= left.dot(right);
+  SquareRootReduction reduced;
+  reduced.lambda = leading.real();
+  reduced.kappa = reduced.lambda * form->normal.dot(right) * left.dot(form->root);
+  reduced.dominance = dominance;
+  if (!(std::abs(reduced.kappa) > 0.0)) {
+    form->reduction_note =
+        "the square-root term does not reach the leading direction: no one-dimensional reduction";
+    return;
+  }
+  reduced.s = reduced.kappa < 0 ? 1.0 : -1.0;
+  reduced.break_rate = form->unfolding / (reduced.kappa * reduced.kappa);
+  form->reduced = reduced;
+}
+
+}  // namespace
+
+Eigen::VectorXd GrazingNormalForm::Map(const Eigen::VectorXd& z, double mu) const {
+  const double depth = normal.dot(z) + mu;
+  if (!(depth > 0)) return linear * z;
+  return linear * (z + root * std::sqrt(depth));
+}
+
+std::string GrazingNormalForm::Describe() const {
+  std::string multipliers;
+  for (Eigen::Index k = 0; k < eigenvalues.size(); ++k) {
+    const std::complex<double> m = eigenvalues(k);
+    multipliers += k ? ", " : "";
+    multipliers += std::abs(m.imag()) > kRealTolerance * std::abs(m)
+                       ? fmt::format("{:.6g}{:+.6g}i", m.real(), m.imag())
+                       : fmt::format("{:.6g}", m.real());
+  }
+  std::string line = fmt::format(
+      "grazing normal form at stop {}, phase {:.6g}: multipliers {}; |W| = {:.6g}, "
+      "penetration {:.6g} per unit {}",
+      stop + 1, phase, multipliers, root.norm(), unfolding, parameter);
+  if (reduced) {
+    line += fmt::format("; one-dimensional: lambda = {:.6g}, kappa = {:.6g}", reduced->lambda,
+                        reduced->kappa);
+  } else {
+    line += "; " + reduction_note;
+  }
+  return line;
+}
+
+GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit,
+                                           const std::string& parameter) {
+  const HybridSystem hybrid(orbit.system);
+  RequireTouch(orbit, hybrid);
+  const NamedParameter named(orbit.system, parameter);
+  const SpeedSplitMonodromy split = SplitMonodromy(orbit.system, orbit.contacts, orbit.q);
+  const StopContact& touch = orbit.contacts.front();
+  const Stop& stop = hybrid.GetStop(touch.stop);
+  const int n = orbit.system.Dof();
+
+  GrazingNormalForm form;
+  form.parameter = parameter;
+  form.parameter_value = named.Get(orbit.system);
+  form.stop = touch.stop;
+  form.time = touch.state.t;
+  const double period = orbit.system.ForcingPeriod();
+  form.phase = form.time - std::floor(form.time / period) * period;
+  form.touch.resize(2 * n);
+  form.touch << touch.state.x, touch.state.v;
+  const Eigen::VectorXd field = hybrid.VectorField(touch.state.t, touch.state.x, touch.state.v);
+  form.curvature = -stop.Sign() * field(n + stop.Dof());
+  Require(form.curvature > 0,
+          fmt::format("a grazing orbit's touch must turn back from its stop; the mass is pressed "
+                      "into it (acceleration {:.3g} towards it): a sticking onset",
+                      -form.curvature));
+  form.linear = split.smooth;
+  form.eigenvalues =
+      SortedByModulus(Eigen::EigenSolver<Eigen::MatrixXd>(form.linear).eigenvalues());
+  form.normal = split.normal;
+  form.root = split.jump * std::sqrt(2.0 / form.curvature);
+  form.unfolding = Unfolding(orbit, named, form.time);
+  Reduce(&form);
+  return form;
+}
+
+}  // namespace impactkit

@@ -1,0 +1,225 @@
+// The discontinuity-map normal form at a grazing (orbits/grazing_normal_form.hpp):
+// the single-degree-of-freedom response's against a closed form, the
+// paper's against the multipliers of the impact map and against the true
+// Poincaré map near the grazing, fitted to its √δ and δ terms, and the
+// grazing seen from its two sides (the orbit that touches, the orbit whose
+// impact vanishes) giving one normal form.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+#include "closed_form_sdof.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/orbits/grazing_normal_form.hpp"
+#include "seeded_orbit.hpp"
+#include "system_at.hpp"
+
+using namespace impactkit;
+using testing::SdofParameters;
+
+namespace {
+
+System LibrarySystem(const SdofParameters& p) {
+  return UniformChain({1, p.m, p.k, p.c}, Eigen::VectorXd::Constant(1, p.a), p.omega, p.xs, p.r);
+}
+
+/// X'(Ω) of X = A / sqrt((k − mΩ²)² + (cΩ)²).
+double AmplitudeRate(const SdofParameters& p) {
+  const double w = p.omega, d = p.k - p.m * w * w;
+  const double squared = d * d + p.c * p.c * w * w;
+  return -p.a * (-2.0 * p.m * w * d + p.c * p.c * w) / std::pow(squared, 1.5);
+}
+
+/// The paper's branch through the orbit P(p, q) seeded at `omega`, followed
+/// towards `to` to its grazing.
+Branch PaperBranchToGrazing(double omega, int p, int q, double to) {
+  const System system = PaperSystem(omega);
+  ContinuationOptions options;
+  options.parameter = "omega";
+  options.from = omega;
+  options.to = to;
+  options.direction =
+      to < omega ? ContinuationDirection::kDecreasing : ContinuationDirection::kIncreasing;
+  options.orbit.p = p;
+  options.orbit.q = q;
+  const Branch branch = ContinueBranch({system, testing::SeededOrbit(system, p, q), {}}, options);
+  REQUIRE(branch.end == Termination::kGrazing);
+  REQUIRE(branch.special_points.back().type == SpecialPointType::kGrazing);
+  return branch;
+}
+
+/// The true Poincaré map over q periods from x* + z at t*, the contact
+/// near t* included and the next one not, as the normal form has it: x* +
+/// z, which may lie past the stop (no simulation starts there), is flown
+/// back without the stops to a time t* − Δ after the orbit's previous
+/// impact, simulated to t* + qT − Δ, and flown on without the stops to
+/// t* + qT.
+Eigen::VectorXd TrueMap(const System& system, const GrazingNormalForm& form, int q,
+                        double previous_impact, const Eigen::VectorXd& z) {
+  const int n = system.Dof();
+  const HybridSystem hybrid(system);
+  const LinearFlow& flow = hybrid.FreeFlow();
+  const double margin =
+      std::min(0.02 * system.ForcingPeriod(), 0.5 * (form.time - previous_impact));
+  auto free_flight = [&](HybridState* state, double t) {
+    const Eigen::VectorXd x = state->x, v = state->v;
+    flow.StateFrom(state->t, x, v, flow.Transient(state->t, x, v), t, &state->x, &state->v);
+    state->t = t;
+  };
+  HybridState state;
+  state.t = form.time;
+  state.x = form.touch.head(n) + z.head(n);
+  state.v = form.touch.tail(n) + z.tail(n);
+  free_flight(&state, form.time - margin);
+  const double end = form.time + q * system.ForcingPeriod();
+  const Simulator simulator(system, SimulationOptions{});
+  REQUIRE(simulator.Run(state, end - margin).termination == Termination::kCompleted);
+  free_flight(&state, end);
+  Eigen::VectorXd y(2 * n);
+  y << state.x, state.v;
+  return y - form.touch;
+}
+
+/// The √δ coefficient of the true map's departure from A z along the
+/// penetration z = δ s e_c: least squares of r(δ) = P(z) − A z ≈ c₁ √d +
+/// c₂ d, d = δ + the touch's own gap, over δ from 1e-9 to 1e-6. The
+/// δ^{3/2} terms left out bias c₁ by ~δ_max: 2e-6 to 8e-6 relative here,
+/// ten times less than with δ up to 1e-5 (so the fit converges to A W).
+Eigen::VectorXd FittedRootTerm(const System& system, const GrazingNormalForm& form, int q,
+                               double previous_impact) {
+  const int n = system.Dof();
+  const Stop stop(system, form.stop);
+  const double gap = stop.GapOf(form.touch.head(n));
+  constexpr int kSamples = 6;
+  Eigen::MatrixXd basis(kSamples, 2);
+  Eigen::MatrixXd departures(kSamples, 2 * n);
+  for (int j = 0; j < kSamples; ++j) {
+    const double delta = 1e-9 * std::pow(4.0, j), depth = delta + gap;
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(2 * n);
+    z(stop.Dof()) = stop.Sign() * delta;
+    basis.row(j) << std::sqrt(depth), depth;
+    departures.row(j) =
+        (TrueMap(system, form, q, previous_impact, z) - form.linear * z).transpose();
+  }
+  const Eigen::MatrixXd coefficients = basis.colPivHouseholderQr().solve(departures);
+  return coefficients.row(0).transpose();
+}
+
+/// max |P(z) − A z| / δ on the side without contact, z = −δ s e_c: O(δ)
+/// if A is the map's linear part there.
+double SmoothSideDeparture(const System& system, const GrazingNormalForm& form, int q,
+                           double previous_impact, double delta) {
+  const int n = system.Dof();
+  const Stop stop(system, form.stop);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(2 * n);
+  z(stop.Dof()) = -stop.Sign() * delta;
+  return (TrueMap(system, form, q, previous_impact, z) - form.linear * z).cwiseAbs().maxCoeff() /
+         delta;
+}
+
+/// −d(clearance)/dΩ of the orbit of `branch` on its own side of the
+/// grazing `graze`, where it exists as an orbit of the impact map: FindOrbit
+/// at Ω* + h and Ω* + 2h towards the branch, one-sided second-order
+/// differences with the located point's clearance.
+double ClearanceRate(const Branch& branch, const SpecialPoint& graze) {
+  const double side = branch.points.front().parameter > graze.parameter ? 1.0 : -1.0;
+  const double h = side * 2e-6;
+  OrbitOptions options;
+  options.p = branch.p;
+  options.q = branch.q;
+  auto clearance = [&](double omega) {
+    PeriodicOrbit orbit;
+    REQUIRE(FindOrbit(PaperSystem(omega), graze.point.orbit.eta, options, &orbit).termination ==
+            Termination::kConverged);
+    REQUIRE(orbit.contacts.clearance.has_value());
+    return *orbit.contacts.clearance;
+  };
+  const double c0 = *graze.point.orbit.contacts.clearance;
+  const double slope =
+      (-3.0 * c0 + 4.0 * clearance(graze.parameter + h) - clearance(graze.parameter + 2 * h)) /
+      (2.0 * h);
+  return -slope;
+}
+
+/// The normal form's multipliers against the impact map's at the grazing
+/// orbit, its √δ term against the true map's, its linear part against the
+/// true map without contact, and its unfolding against the orbit's own
+/// clearance.
+void CheckAgainstTrueMap(const Branch& branch) {
+  const SpecialPoint& graze = branch.special_points.back();
+  REQUIRE(graze.normal_form.has_value());
+  const GrazingNormalForm& form = *graze.normal_form;
+  const System system = testing::At(PaperSystem(), "omega", graze.parameter);
+  const Eigen::VectorXcd& multipliers = graze.point.orbit.multipliers;
+  REQUIRE(multipliers.size() == form.eigenvalues.size());
+  for (Eigen::Index k = 0; k < multipliers.size(); ++k) {
+    CHECK(std::abs(multipliers(k) - form.eigenvalues(k)) < 1e-8);
+  }
+  // The orbit's last impact before the touch: its last contact, q periods earlier.
+  ContinuationOptions options;
+  const GrazingOrbit orbit = GrazingOrbitAt(PaperSystem(), branch, graze, options);
+  const double previous_impact = orbit.contacts.back().state.t - branch.q * system.ForcingPeriod();
+  const Eigen::VectorXd expected = form.linear * form.root;
+  const Eigen::VectorXd fitted = FittedRootTerm(system, form, branch.q, previous_impact);
+  INFO("A W = " << expected.transpose() << "\nfitted " << fitted.transpose());
+  CHECK((fitted - expected).norm() < 5e-5 * expected.norm());
+  CHECK(SmoothSideDeparture(system, form, branch.q, previous_impact, 1e-6) < 1e-4);
+  const double rate = ClearanceRate(branch, graze);
+  INFO("unfolding " << form.unfolding << ", clearance rate " << rate);
+  CHECK(std::abs(form.unfolding - rate) < 1e-7 * std::abs(rate));
+}
+
+}  // namespace
+
+TEST_CASE(
+    "normal form: the SDOF response touching its stop matches the closed form (A = Φ(T), "
+    "W = (0, −(1 + r) Ω √(2X)), unfolding X'(Ω) or −1 in xs) to 1e-8",
+    "[grazing][normal-form]") {
+  SdofParameters p;
+  p.omega = 1.2;
+  p.xs = p.SteadyAmplitude();  // the response's maximum touches the stop
+  const System system = LibrarySystem(p);
+  const GrazingOrbit orbit{system, 1, {ResponseTouch(system, 0)}};
+  const GrazingNormalForm form = ComputeGrazingNormalForm(orbit, "omega");
+  const double amplitude = p.SteadyAmplitude();
+  CHECK(std::abs(form.phase - p.SteadyLag() / p.omega) < 1e-12);
+  CHECK((form.linear - testing::SdofTransition(p, p.Period())).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK(std::abs(form.curvature - p.omega * p.omega * amplitude) < 1e-8);
+  CHECK(form.normal.isApprox(Eigen::RowVector2d(1.0, 0.0)));
+  const Eigen::Vector2d root(0.0, -(1.0 + p.r) * p.omega * std::sqrt(2.0 * amplitude));
+  CHECK((form.root - root).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK(std::abs(form.unfolding - AmplitudeRate(p)) < 1e-8 * std::abs(AmplitudeRate(p)));
+  // Φ(T) of an under-damped mass has a complex pair: no 1-D reduction.
+  CHECK_FALSE(form.reduced.has_value());
+  CHECK_THAT(form.reduction_note, Catch::Contains("complex pair"));
+  CHECK(std::abs(ComputeGrazingNormalForm(orbit, "xs").unfolding + 1.0) < 1e-8);
+}
+
+TEST_CASE(
+    "normal form: the paper's grazings of Fig. 5 (P(1,1) at omega = 0.8564, P(3,2) at 0.8322) "
+    "against the impact map's multipliers, the true map's sqrt term and the orbits' clearance",
+    "[grazing][normal-form]") {
+  CheckAgainstTrueMap(PaperBranchToGrazing(0.9, 1, 1, 0.8));
+  CheckAgainstTrueMap(PaperBranchToGrazing(0.84, 3, 2, 0.8));
+}
+
+TEST_CASE(
+    "normal form: the grazing at omega = 0.8564 seen from P(2,1), whose impact vanishes there, "
+    "is the one seen from P(1,1), which touches",
+    "[grazing][normal-form]") {
+  const Branch p11 = PaperBranchToGrazing(0.9, 1, 1, 0.8);
+  const Branch p21 = PaperBranchToGrazing(0.82, 2, 1, 0.9);
+  const SpecialPoint& vanishing = p21.special_points.back();
+  CHECK(vanishing.vanishing_impact >= 0);
+  REQUIRE(vanishing.normal_form.has_value());
+  const GrazingNormalForm& touch = *p11.special_points.back().normal_form;
+  const GrazingNormalForm& reduced = *vanishing.normal_form;
+  CHECK(std::abs(reduced.phase - touch.phase) < 1e-7);
+  CHECK((reduced.touch - touch.touch).cwiseAbs().maxCoeff() < 1e-7);
+  CHECK((reduced.linear - touch.linear).cwiseAbs().maxCoeff() < 1e-7);
+  CHECK((reduced.root - touch.root).cwiseAbs().maxCoeff() < 1e-7);
+  CHECK(std::abs(reduced.unfolding - touch.unfolding) < 1e-6);
+}
