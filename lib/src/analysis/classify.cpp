@@ -24,6 +24,22 @@ std::string ToString(MotionKind kind) {
   return "unknown";
 }
 
+std::string MotionLabel(MotionKind kind, long p, int q) {
+  switch (kind) {
+    case MotionKind::kPeriodic:
+      return fmt::format("P({},{})", p, q);
+    case MotionKind::kSticking:
+      return fmt::format("P(inf,{})", q);
+    case MotionKind::kNonImpacting:
+      return "non-impacting";
+    case MotionKind::kChaotic:
+      return "chaotic";
+    case MotionKind::kUnresolved:
+      return "unresolved";
+  }
+  return "unresolved";
+}
+
 bool ClassifyOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& message) {
     if (error) *error = message;

@@ -21,20 +21,6 @@ std::string CellFields(const GridCell& cell) {
                      CsvField(cell.range_xN), CsvField(cell.lyapunov));
 }
 
-std::string MotionLabel(const GridCell& cell) {
-  switch (cell.kind) {
-    case MotionKind::kPeriodic:
-      return fmt::format("P({},{})", cell.p, cell.q);
-    case MotionKind::kSticking:
-      return fmt::format("P(inf,{})", cell.q);
-    case MotionKind::kNonImpacting:
-      return "non-impacting";
-    case MotionKind::kChaotic:
-      return "chaotic";
-    case MotionKind::kUnresolved:
-      return "unresolved";
-  }
-  return "unresolved";
-}
+std::string MotionLabel(const GridCell& cell) { return MotionLabel(cell.kind, cell.p, cell.q); }
 
 }  // namespace impactkit

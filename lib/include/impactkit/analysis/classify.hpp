@@ -37,6 +37,11 @@ enum class MotionKind {
 /// "periodic", "sticking", "chaotic", "non_impacting", "unresolved".
 std::string ToString(MotionKind kind);
 
+/// The motion's name in tables and predictions: "P(2,1)", "P(inf,1)",
+/// "non-impacting", "chaotic", "unresolved" (p and q of a periodic or
+/// sticking motion).
+std::string MotionLabel(MotionKind kind, long p, int q);
+
 struct ClassifyOptions {
   /// Period search: q up to max_q (64), stroboscopic points equal to a
   /// relative 1e-6.
