@@ -204,6 +204,9 @@ void PrintBranch(const TracedBranch& traced) {
   for (const SpecialPoint& s : b.special_points) {
     fmt::print("  {}\n", s.Describe(b.parameter));
     if (s.normal_form) fmt::print("    {}\n", s.normal_form->Describe());
+    if (s.normal_form && s.normal_form->prediction) {
+      fmt::print("    {}\n", s.normal_form->prediction->Describe());
+    }
     if (!s.normal_form_note.empty()) fmt::print("    no normal form: {}\n", s.normal_form_note);
   }
   fmt::print("  ends:   {} ({})\n", ToString(b.end), b.end_message);

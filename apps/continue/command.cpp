@@ -24,6 +24,7 @@
 #include "common/progress.hpp"
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/continuation/diagram.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/output_set.hpp"
@@ -171,8 +172,10 @@ void RunContinue(const ContinueRequest& request) {
   std::vector<TracedBranch> branches;
   {
     const RunProgress progress(request.parameter);
-    branches = LabelBranches(TraceDiagram({{system, start, "from the start", options.direction}},
-                                          network, progress.Control()));
+    Diagram traced = TraceDiagram({{system, start, "from the start", options.direction}}, network,
+                                  progress.Control());
+    PredictGrazings(system, &traced);
+    branches = LabelBranches(traced);
   }
   for (const TracedBranch& b : branches) PrintBranch(b);
   if (request.follow_grazing) ReportGrazingFollowed(branches);

@@ -25,6 +25,7 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
@@ -140,6 +141,7 @@ void RunDiagram(const DiagramRequest& request) {
     }
     fmt::print("sweep:      {}\n", swept.sweep.BriefReport());
   }
+  PredictGrazings(system, &swept.diagram);
   fmt::print("seeds:      {}\n", swept.seeds.size());
   PrintDiagram(swept.diagram);
   std::vector<std::string> written;

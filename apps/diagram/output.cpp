@@ -244,6 +244,9 @@ void PrintDiagram(const Diagram& diagram) {
                                      : fmt::format(" (impact {} vanishes)", n.vanishing_impact + 1);
     }
     fmt::print("  {}\n", what);
+    if (n.normal_form && n.normal_form->prediction) {
+      fmt::print("    {}\n", n.normal_form->prediction->Describe());
+    }
   }
 }
 

@@ -27,6 +27,7 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "diagram/output.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/swept_diagram.hpp"
@@ -204,6 +205,7 @@ nlohmann::json DiagramStage(const System& paper, const Resolution& resolution, i
     const RunProgress progress("omega");
     swept.diagram = TraceDiagram(swept.seeds, options.diagram, progress.Control());
   }
+  PredictGrazings(paper, &swept.diagram);
   swept.sweep = std::move(sweep);
   PrintDiagram(swept.diagram);
   nlohmann::json j = nlohmann::json::array();

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/io/branch_output.hpp"
 #include "option_sets.hpp"
 
@@ -64,7 +65,11 @@ Branch ContinueFromStart(const BranchStart& start, const std::string& parameter,
     options.orbit.q = start.orbit.q;
   }
   const InterruptibleRun run(progress);
-  return WithoutGil([&] { return ContinueBranch(start, options, run); });
+  return WithoutGil([&] {
+    Branch branch = ContinueBranch(start, options, run);
+    PredictGrazings(start.system, &branch);
+    return branch;
+  });
 }
 
 Branch ContinueFromOrbit(const System& system, const PeriodicOrbit& orbit,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/io/diagram_output.hpp"
 #include "option_sets.hpp"
 
@@ -58,7 +59,11 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
                                         switch_grazing, switch_branch_points, switch_pitchforks});
   options.continuation.user_tests = UserTestsFrom(user_tests);
   const InterruptibleRun run(progress);
-  return WithoutGil([&] { return TraceDiagram(seeds, options, run); });
+  return WithoutGil([&] {
+    Diagram diagram = TraceDiagram(seeds, options, run);
+    if (!starts.empty()) PredictGrazings(starts.front().first, &diagram);
+    return diagram;
+  });
 }
 
 void BindNode(py::module_& module) {

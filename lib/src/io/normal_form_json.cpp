@@ -10,6 +10,29 @@ std::vector<double> Values(const Vector& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
+nlohmann::json PredictionJson(const GrazingPrediction& prediction) {
+  nlohmann::json attractors = nlohmann::json::array();
+  for (const LocalAttractor& a : prediction.attractors) {
+    attractors.push_back({{"distance", a.distance},
+                          {"period", a.period},
+                          {"contacts", a.contacts},
+                          {"extent", a.extent},
+                          {"lyapunov", a.lyapunov},
+                          {"motion", a.motion}});
+  }
+  return {{"side", prediction.side},
+          {"local", prediction.local},
+          {"unstable_grazing_orbit", prediction.unstable_grazing_orbit},
+          {"motion", prediction.motion},
+          {"scenario", prediction.scenario},
+          {"distance", prediction.distance},
+          {"one_dimensional", prediction.one_dimensional.empty()
+                                  ? nlohmann::json(nullptr)
+                                  : nlohmann::json(prediction.one_dimensional)},
+          {"description", prediction.Describe()},
+          {"attractors", attractors}};
+}
+
 }  // namespace
 
 nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
@@ -24,6 +47,8 @@ nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
   nlohmann::json j = {{"parameter", form.parameter},
                       {"param", form.parameter_value},
                       {"stop", form.stop + 1},
+                      {"p", form.p},
+                      {"q", form.q},
                       {"time", form.time},
                       {"phase", form.phase},
                       {"touch", Values(form.touch)},
@@ -44,6 +69,7 @@ nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
     j["reduced"] = nullptr;
     j["reduction_note"] = form.reduction_note;
   }
+  if (form.prediction) j["prediction"] = PredictionJson(*form.prediction);
   return j;
 }
 

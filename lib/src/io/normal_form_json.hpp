@@ -16,7 +16,9 @@ namespace impactkit {
 /// `time`, `phase`, `touch`, `linear` (rows), `eigenvalues` ([re, im]
 /// pairs, by decreasing modulus), `normal`, `curvature`, `root`,
 /// `unfolding`, `reduced` ({lambda, kappa, s, break_rate, dominance} or
-/// null) and, when null, `reduction_note`.
+/// null) and, when null, `reduction_note`; once predicted, `prediction`
+/// (side, local, motion, scenario, distance, one_dimensional or null,
+/// description, and the normal form's attractors at each distance).
 nlohmann::json NormalFormJson(const GrazingNormalForm& form);
 
 /// Adds `normal_form` to a grazing's JSON object `j`: the form, or null and

@@ -169,6 +169,20 @@ std::string GrazingNormalForm::Describe() const {
   return line;
 }
 
+std::string GrazingPrediction::Describe() const {
+  const std::string where =
+      motion.starts_with("P(") ? "jumps to " + motion : "jumps away (simulated: " + motion + ")";
+  std::string what;
+  if (unstable_grazing_orbit) {
+    what = "the grazing orbit is unstable; the motion " + where;
+  } else if (local) {
+    what = fmt::format("{} near the grazing orbit ({})", motion, scenario);
+  } else {
+    what = "no attractor near the grazing orbit; the motion " + where;
+  }
+  return fmt::format("past the grazing ({}): {}", side > 0 ? "increasing" : "decreasing", what);
+}
+
 GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit,
                                            const std::string& parameter) {
   const HybridSystem hybrid(orbit.system);
@@ -183,6 +197,8 @@ GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit,
   form.parameter = parameter;
   form.parameter_value = named.Get(orbit.system);
   form.stop = touch.stop;
+  form.p = static_cast<int>(orbit.contacts.size()) - 1;
+  form.q = orbit.q;
   form.time = touch.state.t;
   const double period = orbit.system.ForcingPeriod();
   form.phase = form.time - std::floor(form.time / period) * period;

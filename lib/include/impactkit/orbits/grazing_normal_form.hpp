@@ -33,7 +33,7 @@
 ///
 /// and X = d − y / κ², d = μ / κ², turns it into the paper's Eq. 18
 /// (X ↦ λ X + s √(d − X) for X <= d, λ X beyond) with s = −sign κ: its λ,
-/// s and d (d grows at m / κ² per unit parameter). docs/theory.md §6c.
+/// s and d (d grows at m / κ² per unit parameter). docs/theory.md §6b.
 
 #include <Eigen/Dense>
 #include <optional>
@@ -63,10 +63,53 @@ struct SquareRootReduction {
   double dominance = 0.0;   ///< |λ₂| / |λ|: how fast the other directions decay
 };
 
+/// What the motion does past a grazing (analysis/grazing_prediction.hpp
+/// computes it). The normal form's attractor at one distance past the grazing.
+struct LocalAttractor {
+  double distance = 0.0;  ///< p − p*, signed
+  /// Its period in iterations of the map and contacts per period (0, 0
+  /// when it has no period up to max_period).
+  int period = 0;
+  int contacts = 0;
+  double extent = 0.0;    ///< max |z| over the recorded iterations
+  double lyapunov = 0.0;  ///< the map's largest exponent along it, per iteration
+  std::string motion;     ///< "P(3,2)", "chaotic", "unresolved"
+};
+
+struct GrazingPrediction {
+  /// The parameter's direction past the grazing: sign(m), where the smooth
+  /// orbit penetrates the stop.
+  double side = 1.0;
+  /// An attractor stays near the grazing orbit past it.
+  bool local = false;
+  /// A multiplier of the grazing orbit lies on or outside the unit circle:
+  /// nothing stays near it on either side.
+  bool unstable_grazing_orbit = false;
+  /// The motion just past the grazing, as the command line names motions:
+  /// the local attractor's at the nearest distance, or the remote one's.
+  std::string motion;
+  /// "periodic" (one orbit at every distance), "period_adding" (its period
+  /// grows towards the grazing), "chaos", or "jump" (no local attractor:
+  /// `motion` is where the system goes).
+  std::string scenario;
+  double distance = 0.0;  ///< p − p* where `motion` was found
+  /// The classical one-dimensional scenario where the map reduces to one
+  /// dimension: "no_local_attractor", "period_adding_hysteresis",
+  /// "period_adding_chaos", "chaos", "unstable_grazing_orbit"; empty where
+  /// it does not reduce.
+  std::string one_dimensional;
+  std::vector<LocalAttractor> attractors;  ///< at each distance, nearest first
+  /// One line: "past the grazing (decreasing): no attractor near the
+  /// grazing orbit; the motion jumps to P(3,2)".
+  std::string Describe() const;
+};
+
 struct GrazingNormalForm {
   std::string parameter;         ///< the unfolding's parameter
   double parameter_value = 0.0;  ///< p*, the grazing
   int stop = 0;                  ///< the stop touched
+  int p = 0;                     ///< the grazing orbit's impacts (the touch not counted) ...
+  int q = 1;                     ///< ... in q forcing periods: the map's period
   double time = 0.0;             ///< t*, the touch: the section's time
   double phase = 0.0;            ///< t* mod T, in [0, T)
   Eigen::VectorXd touch;         ///< x* = (x, v) at t*
@@ -78,6 +121,8 @@ struct GrazingNormalForm {
   double unfolding = 0.0;        ///< m = dμ/dp
   std::optional<SquareRootReduction> reduced;
   std::string reduction_note;  ///< why there is no reduction, when there is none
+  /// What the motion does past it, once predicted (PredictGrazing).
+  std::optional<GrazingPrediction> prediction;
 
   /// The normal form's map at z (measured from the smooth orbit's point)
   /// for the penetration μ of the smooth orbit.

@@ -1,0 +1,67 @@
+#pragma once
+/// \file grazing_prediction.hpp
+/// What the motion does just past a grazing, from its normal form
+/// (orbits/grazing_normal_form.hpp), and where it goes when nothing stays
+/// near the grazing orbit (docs/theory.md §6b).
+///
+/// Past the grazing (the side where the family's smooth orbit penetrates
+/// the stop, μ = m (p − p*) > 0) the normal form's map is iterated from the
+/// smooth orbit's point at a few distances. An attractor that stays near
+/// the grazing orbit shrinks with μ (like √μ: the kicks are W √δ); one that
+/// does not shrink lies outside the normal form's reach, and the motion
+/// leaves the grazing orbit: then the system itself is simulated from the
+/// grazing orbit, just past the grazing, and its steady motion classified.
+/// A periodic attractor of the map with period N and I contacts per
+/// period is the orbit P(N p + I, N q), p and q the grazing orbit's.
+///
+/// Where the map reduces to one dimension (SquareRootReduction), the
+/// classical results for y ↦ λ y + (1 − λ) μ + κ √y (Nordmark 1991; Chin,
+/// Ott, Nusse & Grebogi 1994) are reported beside it: no attractor near
+/// the grazing for κ > 0 or λ < 0; for κ < 0 and 0 < λ < 1/4 a
+/// period-adding sequence with consecutive periods coexisting, for 1/4 <
+/// λ < 2/3 one with chaos between its windows, for 2/3 < λ < 1 chaos.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "impactkit/analysis/classify.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/diagram_graph.hpp"
+#include "impactkit/model/system.hpp"
+#include "impactkit/orbits/grazing_normal_form.hpp"
+
+namespace impactkit {
+
+struct GrazingPredictionOptions {
+  /// Distances past the grazing, relative to max(1, |p*|), at which the
+  /// normal form is iterated, increasing, each 100 times the last (the
+  /// attractor's shrinking is measured between consecutive ones).
+  std::vector<double> distances = {1e-8, 1e-6, 1e-4};
+  int transient_iterations = 4000;  ///< of the map, discarded
+  int recorded_iterations = 1000;   ///< of the map, where its period is sought
+  int max_period = 200;             ///< the longest period sought
+  /// The remote attractor: simulated at this relative distance past the
+  /// grazing, from the grazing orbit, for these forcing periods.
+  double remote_distance = 1e-3;
+  int transient_periods = 500;
+  int recorded_periods = 100;
+  ClassifyOptions classify;
+  bool IsValid(std::string* error) const;
+};
+
+/// The prediction at the grazing whose normal form is `form`, of `system`
+/// (at the grazing: form.parameter = form.parameter_value). Throws
+/// InvalidInput for invalid options.
+GrazingPrediction PredictGrazing(const System& system, const GrazingNormalForm& form,
+                                 const GrazingPredictionOptions& options = {});
+
+/// Each grazing's normal form of `branch` (of `system`'s family) given its
+/// prediction (GrazingNormalForm::prediction).
+void PredictGrazings(const System& system, Branch* branch,
+                     const GrazingPredictionOptions& options = {});
+/// The same for every branch of `diagram` (of `system`) and its grazing nodes.
+void PredictGrazings(const System& system, Diagram* diagram,
+                     const GrazingPredictionOptions& options = {});
+
+}  // namespace impactkit

@@ -1,0 +1,222 @@
+#include "impactkit/analysis/grazing_prediction.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "impactkit/analysis/steady_window.hpp"
+#include "impactkit/core/errors.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/hybrid/stop.hpp"
+#include "impactkit/hybrid/system_flows.hpp"
+#include "impactkit/model/parameters.hpp"
+
+namespace impactkit {
+namespace {
+
+/// An attractor that stays near the grazing orbit shrinks like √μ between
+/// distances 100 apart (a factor 10); one outside the normal form's reach
+/// keeps its size. Between the two: shrinking by at least 100^{1/4}.
+constexpr double kLocalShrink = 0.316;
+/// Iterates equal to this, relative to the attractor's extent, repeat.
+constexpr double kPeriodTolerance = 1e-8;
+/// A largest exponent above this (per iteration) is chaos; periodic
+/// attractors give clearly negative ones.
+constexpr double kChaosThreshold = 1e-3;
+
+/// The normal form's attractor at distance `distance` past the grazing.
+LocalAttractor IterateNormalForm(const GrazingNormalForm& form, double distance,
+                                 const GrazingPredictionOptions& options) {
+  LocalAttractor attractor;
+  attractor.distance = distance;
+  const double mu = form.unfolding * distance;
+  const Eigen::Index n = form.linear.rows();
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+  // A tangent vector for the largest exponent: D map = A (I + W nᵀ / (2 √δ))
+  // where the contact acts, A where it does not.
+  Eigen::VectorXd tangent = Eigen::VectorXd::Ones(n).normalized();
+  double growth = 0.0;
+  const int total = options.transient_iterations + options.recorded_iterations;
+  std::vector<Eigen::VectorXd> recorded;
+  std::vector<bool> contact;
+  for (int k = 0; k < total; ++k) {
+    const double depth = form.normal.dot(z) + mu;
+    const bool hits = depth > 0;
+    if (hits) tangent += form.root * (form.normal.dot(tangent) / (2.0 * std::sqrt(depth)));
+    tangent = form.linear * tangent;
+    z = form.Map(z, mu);
+    const double norm = tangent.norm();
+    tangent /= norm;
+    if (!z.allFinite() || !(norm > 0)) break;
+    if (k >= options.transient_iterations) {
+      growth += std::log(norm);
+      recorded.push_back(z);
+      contact.push_back(hits);
+    }
+  }
+  if (static_cast<int>(recorded.size()) < options.recorded_iterations) {
+    attractor.extent = std::numeric_limits<double>::infinity();
+    attractor.motion = "unresolved";
+    return attractor;
+  }
+  for (const Eigen::VectorXd& y : recorded) {
+    attractor.extent = std::max(attractor.extent, y.cwiseAbs().maxCoeff());
+  }
+  attractor.lyapunov = growth / static_cast<double>(recorded.size());
+  const double tolerance = kPeriodTolerance * std::max(attractor.extent, 1e-300);
+  const int count = static_cast<int>(recorded.size());
+  for (int period = 1; period <= std::min(options.max_period, count / 2); ++period) {
+    bool repeats = true;
+    for (int k = period; k < count && repeats; ++k) {
+      repeats = (recorded[k] - recorded[k - period]).cwiseAbs().maxCoeff() <= tolerance;
+    }
+    if (!repeats) continue;
+    attractor.period = period;
+    attractor.contacts = static_cast<int>(std::count(contact.end() - period, contact.end(), true));
+    const long impacts = static_cast<long>(period) * form.p + attractor.contacts;
+    attractor.motion = MotionLabel(impacts > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting,
+                                   impacts, period * form.q);
+    return attractor;
+  }
+  attractor.motion = MotionLabel(
+      attractor.lyapunov > kChaosThreshold ? MotionKind::kChaotic : MotionKind::kUnresolved, 0, 0);
+  return attractor;
+}
+
+/// The steady motion of `system` past the grazing, simulated from the
+/// grazing orbit (drawn back from the stop by a hair: a simulation cannot
+/// start on it).
+std::string RemoteMotion(const System& system, const GrazingNormalForm& form, double distance,
+                         const GrazingPredictionOptions& options) {
+  System past = system;
+  SetParameter(past, form.parameter, form.parameter_value + distance);
+  Validate(past);
+  const int n = past.Dof();
+  const Stop stop(past, form.stop);
+  HybridState state;
+  state.t = form.time;
+  state.x = form.touch.head(n);
+  state.v = form.touch.tail(n);
+  state.x(stop.Dof()) =
+      stop.Position() - stop.Sign() * 1e-9 * std::max(1.0, std::abs(stop.Position()));
+  const double period = past.ForcingPeriod();
+  const Simulator simulator(past, SimulationOptions{});
+  const double start = std::ceil(form.time / period) * period;
+  simulator.Run(state, start + options.transient_periods * period);
+  SteadyWindowRecorder window(period);
+  const double end = start + (options.transient_periods + options.recorded_periods) * period;
+  if (simulator.Run(state, end, window).termination != Termination::kCompleted) {
+    return "unresolved";
+  }
+  const Classification c = ClassifyMotion(past, window.Strobe(), window.Impacts(),
+                                          window.ChatterEnds(), options.classify);
+  return MotionLabel(c.kind, c.period.p, c.period.q);
+}
+
+/// The classical scenario of y ↦ λ y + (1 − λ) μ + κ √y.
+std::string OneDimensionalScenario(const SquareRootReduction& reduced) {
+  const double lambda = reduced.lambda;
+  if (!(std::abs(lambda) < 1.0)) return "unstable_grazing_orbit";
+  if (reduced.kappa > 0 || lambda < 0) return "no_local_attractor";
+  if (lambda < 0.25) return "period_adding_hysteresis";
+  if (lambda < 2.0 / 3.0) return "period_adding_chaos";
+  return "chaos";
+}
+
+/// The scenario the local attractors show, nearest first.
+std::string LocalScenario(const std::vector<LocalAttractor>& attractors) {
+  const LocalAttractor& nearest = attractors.front();
+  if (nearest.period == 0) return "chaos";
+  for (const LocalAttractor& a : attractors) {
+    if (a.period != nearest.period || a.contacts != nearest.contacts) {
+      return a.period != 0 && a.period < nearest.period ? "period_adding" : "mixed";
+    }
+  }
+  return "periodic";
+}
+
+}  // namespace
+
+bool GrazingPredictionOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& message) {
+    if (error) *error = message;
+    return false;
+  };
+  if (distances.size() < 2) return fail("the prediction needs at least two distances");
+  for (std::size_t k = 0; k < distances.size(); ++k) {
+    if (!(distances[k] > 0) || (k > 0 && !(distances[k] > distances[k - 1]))) {
+      return fail("the prediction's distances must be positive and increasing");
+    }
+  }
+  if (transient_iterations < 0 || recorded_iterations < 2 || max_period < 1) {
+    return fail(
+        "the prediction needs transient_iterations >= 0, recorded_iterations >= 2 and "
+        "max_period >= 1");
+  }
+  if (!(remote_distance > 0) || transient_periods < 0 || recorded_periods < 1) {
+    return fail(
+        "the prediction needs remote_distance > 0, transient_periods >= 0 and "
+        "recorded_periods >= 1");
+  }
+  return classify.IsValid(error);
+}
+
+GrazingPrediction PredictGrazing(const System& system, const GrazingNormalForm& form,
+                                 const GrazingPredictionOptions& options) {
+  std::string error;
+  Require(options.IsValid(&error), error);
+  const Eigen::Index n = form.linear.rows();
+  Require(n > 0 && form.linear.cols() == n && form.eigenvalues.size() == n &&
+              form.normal.size() == n && form.root.size() == n,
+          "a grazing prediction needs a whole normal form: A square, with its eigenvalues, n and "
+          "W of its size");
+  GrazingPrediction prediction;
+  prediction.side = form.unfolding < 0 ? -1.0 : 1.0;
+  prediction.unstable_grazing_orbit = !(std::abs(form.eigenvalues(0)) < 1.0);
+  const double scale = std::max(1.0, std::abs(form.parameter_value));
+  for (double distance : options.distances) {
+    prediction.attractors.push_back(
+        IterateNormalForm(form, prediction.side * distance * scale, options));
+  }
+  const LocalAttractor& nearest = prediction.attractors[0];
+  prediction.local = !prediction.unstable_grazing_orbit && std::isfinite(nearest.extent) &&
+                     nearest.extent <= kLocalShrink * prediction.attractors[1].extent;
+  if (form.reduced) prediction.one_dimensional = OneDimensionalScenario(*form.reduced);
+  if (prediction.local) {
+    prediction.motion = nearest.motion;
+    prediction.distance = nearest.distance;
+    prediction.scenario = LocalScenario(prediction.attractors);
+  } else {
+    prediction.distance = prediction.side * options.remote_distance * scale;
+    prediction.motion = RemoteMotion(system, form, prediction.distance, options);
+    prediction.scenario = "jump";
+  }
+  return prediction;
+}
+
+void PredictGrazings(const System& system, Branch* branch,
+                     const GrazingPredictionOptions& options) {
+  for (SpecialPoint& special : branch->special_points) {
+    if (!special.normal_form) continue;
+    System at = system;
+    SetParameter(at, branch->parameter, special.normal_form->parameter_value);
+    special.normal_form->prediction = PredictGrazing(at, *special.normal_form, options);
+  }
+}
+
+void PredictGrazings(const System& system, Diagram* diagram,
+                     const GrazingPredictionOptions& options) {
+  for (DiagramBranch& branch : diagram->branches) PredictGrazings(system, &branch.branch, options);
+  // A node holds a copy of the special point it was located as.
+  for (DiagramNode& node : diagram->nodes) {
+    if (!node.normal_form) continue;
+    for (const SpecialPoint& s : diagram->branches[node.branch].branch.special_points) {
+      if (s.type == node.special && s.point.arclength == node.point.arclength) {
+        node.normal_form = s.normal_form;
+      }
+    }
+  }
+}
+
+}  // namespace impactkit

@@ -1,0 +1,150 @@
+// What a grazing does (analysis/grazing_prediction.hpp): the normal form's
+// local attractors against the closed-form windows of the one-dimensional
+// square-root map, and the paper's two grazings of Fig. 5, where no
+// attractor stays near the grazing orbit, against the simulator a hair past
+// them.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "impactkit/analysis/grazing_prediction.hpp"
+#include "impactkit/analysis/steady_window.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/hybrid/stop.hpp"
+#include "seeded_orbit.hpp"
+#include "system_at.hpp"
+
+using namespace impactkit;
+
+namespace {
+
+/// The normal form whose penetration obeys y ↦ λ y + (1 − λ) μ − √y past
+/// contact (κ = −1): one dimension, A = λ, n = 1, W = −1/λ, at a grazing
+/// orbit with one impact per period.
+GrazingNormalForm SquareRootForm(double lambda) {
+  GrazingNormalForm form;
+  form.parameter = "omega";
+  form.parameter_value = 0.5;
+  form.p = 1;
+  form.q = 1;
+  form.linear = Eigen::MatrixXd::Constant(1, 1, lambda);
+  form.eigenvalues = Eigen::VectorXcd::Constant(1, lambda);
+  form.normal = Eigen::RowVectorXd::Ones(1);
+  form.root = Eigen::VectorXd::Constant(1, -1.0 / lambda);
+  form.unfolding = 1.0;
+  form.reduced = SquareRootReduction{lambda, -1.0, 1.0, 1.0, 0.0};
+  return form;
+}
+
+/// c_n = (1 − λⁿ) / (1 − λ).
+double C(double lambda, int n) { return (1.0 - std::pow(lambda, n)) / (1.0 - lambda); }
+
+/// The window of ν = (1 − λ) μ where the maximal orbit of period n (one
+/// contact, n − 1 iterations without) of x ↦ λ x + ν − √x [x > 0] is stable,
+/// derived in closed form: with s = √x₀ on the orbit, s² + λⁿ⁻¹ s = c_n ν;
+/// its multiplier −λⁿ⁻¹ / (2 s) is −1 at ν = 3 λ^{2n−2} / (4 c_n) (below:
+/// unstable), and its last iteration without contact reaches the boundary at
+/// ν = λ^{2n−4} / c_{n−1}² (above: not that orbit).
+std::pair<double, double> StableWindow(double lambda, int n) {
+  return {3.0 * std::pow(lambda, 2 * n - 2) / (4.0 * C(lambda, n)),
+          std::pow(lambda, 2 * n - 4) / (C(lambda, n - 1) * C(lambda, n - 1))};
+}
+
+/// The system's steady motion a distance `distance` from the grazing
+/// `form`'s parameter value, simulated from the grazing orbit.
+std::string SimulatedMotion(const System& system, const GrazingNormalForm& form, double distance) {
+  const System past = testing::At(system, form.parameter, form.parameter_value + distance);
+  const int n = past.Dof();
+  const Stop stop(past, form.stop);
+  HybridState state;
+  state.t = form.time;
+  state.x = form.touch.head(n);
+  state.v = form.touch.tail(n);
+  state.x(stop.Dof()) = stop.Position() - stop.Sign() * 1e-9;
+  const double period = past.ForcingPeriod();
+  const Simulator simulator(past, SimulationOptions{});
+  simulator.Run(state, form.time + 1000 * period);
+  SteadyWindowRecorder window(period);
+  simulator.Run(state, form.time + 1200 * period, window);
+  const Classification c =
+      ClassifyMotion(past, window.Strobe(), window.Impacts(), window.ChatterEnds());
+  return MotionLabel(c.kind, c.period.p, c.period.q);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "prediction: the 1-D square-root map's period-adding windows (lambda = 0.3) are the normal "
+    "form's attractors, P(n+1, n) inside the closed-form window of period n",
+    "[grazing][prediction]") {
+  const double lambda = 0.3;
+  const GrazingNormalForm form = SquareRootForm(lambda);
+  for (int n = 3; n <= 6; ++n) {
+    const auto [low, high] = StableWindow(lambda, n);
+    REQUIRE(low < high);
+    const double nu = std::sqrt(low * high);  // the window's geometric middle
+    GrazingPredictionOptions options;
+    options.distances = {nu / (1.0 - lambda), 100.0 * nu / (1.0 - lambda)};
+    const GrazingPrediction prediction = PredictGrazing(PaperSystem(0.5), form, options);
+    INFO("n = " << n << ", nu = " << nu);
+    CHECK(prediction.local);
+    CHECK(prediction.attractors.front().period == n);
+    CHECK(prediction.attractors.front().contacts == 1);
+    CHECK(prediction.motion == "P(" + std::to_string(n + 1) + "," + std::to_string(n) + ")");
+    CHECK(prediction.one_dimensional == "period_adding_chaos");
+    CHECK(prediction.side == 1.0);
+  }
+}
+
+TEST_CASE(
+    "prediction: for lambda = 0.8 the normal form's attractor is chaotic (no maximal orbit is "
+    "stable past lambda = 2/3), and it shrinks with mu",
+    "[grazing][prediction]") {
+  const GrazingPrediction prediction = PredictGrazing(PaperSystem(0.5), SquareRootForm(0.8));
+  CHECK(prediction.local);
+  CHECK(prediction.motion == "chaotic");
+  CHECK(prediction.scenario == "chaos");
+  CHECK(prediction.one_dimensional == "chaos");
+  CHECK(prediction.attractors.front().lyapunov > 0.01);
+}
+
+TEST_CASE("prediction: a normal form without its eigenvalues is refused with a clear error",
+          "[grazing][prediction]") {
+  GrazingNormalForm form = SquareRootForm(0.5);
+  form.eigenvalues.resize(0);
+  CHECK_THROWS_WITH(PredictGrazing(PaperSystem(0.5), form),
+                    Catch::Contains("needs a whole normal form"));
+}
+
+TEST_CASE(
+    "prediction: the paper's grazings of Fig. 5 keep no attractor near them; the motion jumps to "
+    "P(3,2) below omega = 0.8564 and to P(2,1) below 0.8322, as the simulator finds 1e-6 past",
+    "[grazing][prediction]") {
+  struct Case {
+    double from;
+    int p, q;
+    const char* jump;
+  };
+  for (const Case& c : {Case{0.9, 1, 1, "P(3,2)"}, Case{0.84, 3, 2, "P(2,1)"}}) {
+    const System system = PaperSystem(c.from);
+    ContinuationOptions options;
+    options.from = c.from;
+    options.to = 0.8;
+    options.direction = ContinuationDirection::kDecreasing;
+    options.orbit.p = c.p;
+    options.orbit.q = c.q;
+    Branch branch = ContinueBranch({system, testing::SeededOrbit(system, c.p, c.q), {}}, options);
+    PredictGrazings(system, &branch);
+    const SpecialPoint& graze = branch.special_points.back();
+    REQUIRE(graze.normal_form.has_value());
+    REQUIRE(graze.normal_form->prediction.has_value());
+    const GrazingPrediction& prediction = *graze.normal_form->prediction;
+    INFO(prediction.Describe());
+    CHECK(prediction.side == -1.0);  // the orbit penetrates as omega falls
+    CHECK_FALSE(prediction.local);
+    CHECK(prediction.scenario == "jump");
+    CHECK(prediction.motion == c.jump);
+    const System at = testing::At(system, "omega", graze.parameter);
+    CHECK(SimulatedMotion(at, *graze.normal_form, -1e-6) == c.jump);
+  }
+}
