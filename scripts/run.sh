@@ -25,7 +25,7 @@ for script in $(printf '%s\n' examples/fig*.sh | sort -V); do
 done
 # The same Fig. 3 and P(1,1) branch from Python (docs/python.md), when the
 # module was built (it needs pybind11, which setup.sh installs).
-if compgen -G "build/python/impactkit*.so" > /dev/null; then
+if compgen -G "build/python/impactkit/_impactkit*.so" > /dev/null; then
   for script in examples/python/*.py; do
     name=$(basename "$script" .py)
     echo

@@ -1,4 +1,7 @@
-// The `impactkit` Python module: a thin layer over the C++ library.
+// The compiled part of the `impactkit` Python package, `impactkit._impactkit`:
+// a thin layer over the C++ library. impactkit/__init__.py re-exports every
+// name, and the classes and functions say they are impactkit's (their
+// __module__, the names in signatures and messages), as before the package.
 //
 // Errors: the library's InvalidInput is a std::invalid_argument, which
 // pybind11 raises as ValueError with the same message; numerical failures
@@ -106,8 +109,11 @@ std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests) {
 
 }  // namespace impactkit::python
 
-PYBIND11_MODULE(impactkit, module) {
+PYBIND11_MODULE(_impactkit, module) {
   using namespace impactkit::python;
+  // pybind11 names each class and function after the scope's __module__
+  // when it has one: impactkit.System, not impactkit._impactkit.System.
+  module.attr("__module__") = "impactkit";
   module.doc() =
       "impactkit: exact simulation, periodic orbits, continuation and analysis of "
       "multi-degree-of-freedom impact oscillators (Python interface to the C++ library).";

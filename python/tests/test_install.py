@@ -1,5 +1,5 @@
-"""`cmake --install` puts the module where Debian's python3 finds it: the
-installed module imports from <prefix>/lib/python3.X/dist-packages alone
+"""`cmake --install` puts the package where Debian's python3 finds it: the
+installed package imports from <prefix>/lib/python3.X/dist-packages alone
 (a directory on Debian's sys.path for the default /usr/local prefix),
 computes what the built one does, and carries its metadata and license."""
 
@@ -17,7 +17,8 @@ def test_installed_module_imports_and_agrees(tmp_path):
     subprocess.run([os.environ["IMPACTKIT_CMAKE"], "--install", os.environ["IMPACTKIT_BUILD_DIR"],
                     "--prefix", str(prefix)], check=True, capture_output=True)
     site = prefix / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "dist-packages"
-    assert (site / "impactkit.pyi").is_file()
+    for name in ("__init__.py", "__init__.pyi", "py.typed"):
+        assert (site / "impactkit" / name).is_file(), name
     code = ("import impactkit, sys; o = impactkit.find_orbit(impactkit.System.paper(0.6)); "
             "print(impactkit.__file__); print(*[x.hex() for x in o.eta])")
     run = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True,

@@ -182,7 +182,7 @@ def test_the_function_and_the_class_name_each_other(cls, function, outside):
 
 @pytest.mark.parametrize("cls, function, outside", SETS, ids=IDS)
 def test_the_stub_has_the_fields_and_defaults(cls, function, outside):
-    path = os.path.join(os.path.dirname(impactkit.__file__), "impactkit.pyi")
+    path = os.path.join(os.path.dirname(impactkit.__file__), "__init__.pyi")
     stub = next(node for node in ast.parse(open(path).read()).body
                 if isinstance(node, ast.ClassDef) and node.name == cls.__name__)
     init = next(node for node in stub.body

@@ -1,5 +1,6 @@
-"""The type stubs (impactkit.pyi, beside the module) name every public name
-of the module with the same parameters, and every function has a docstring."""
+"""The type stubs (python/impactkit.pyi, the package's __init__.pyi beside
+py.typed) name every public name of the package with the same parameters,
+and every function has a docstring."""
 
 import ast
 import inspect
@@ -9,7 +10,7 @@ import impactkit
 
 
 def stub_tree():
-    path = os.path.join(os.path.dirname(impactkit.__file__), "impactkit.pyi")
+    path = os.path.join(os.path.dirname(impactkit.__file__), "__init__.pyi")
     return ast.parse(open(path).read())
 
 
