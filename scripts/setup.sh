@@ -13,6 +13,8 @@ packages=(
   openmpi-bin libopenmpi-dev
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib
   python3-pandas python3-yaml python3-tqdm
+  python3-xarray python3-nbclient python3-nbformat python3-ipykernel
+  python3-venv python3-setuptools python3-wheel
 )
 
 missing=()
