@@ -1,10 +1,16 @@
-"""Type stubs of the impactkit module (python/src/*.cpp); docstrings there."""
+"""Type stubs of the impactkit package: the compiled module's names
+(python/src/*.cpp) and the tables of python/impactkit/_tables.py;
+docstrings there. Installed as impactkit/__init__.pyi, beside py.typed."""
 
 from os import PathLike
-from typing import Any, Callable, Iterator, Literal, Optional, TypedDict, overload
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Literal, Optional, TypedDict, overload
 
 import numpy as np
 import numpy.typing as npt
+
+if TYPE_CHECKING:  # optional: only the tables need them
+    import pandas
+    import xarray
 
 __version__: str
 
@@ -137,6 +143,13 @@ class Simulation(TypedDict):
     seconds: float
     final_state: State
 
+class SimulationResult(dict[str, Any]):
+    """simulate's result: the keys of Simulation, and its tables."""
+    options: dict[str, Any]
+    provenance: dict[str, str]
+    def samples_to_pandas(self) -> pandas.DataFrame: ...
+    def impacts_to_pandas(self) -> pandas.DataFrame: ...
+
 def simulate(
     system: System,
     t_end: float,
@@ -152,7 +165,7 @@ def simulate(
     max_events_per_period: int = 100_000,
     max_events: int = 200_000_000,
     events: bool = False,
-) -> Simulation: ...
+) -> SimulationResult: ...
 
 class Orbit:
     @property
@@ -274,6 +287,8 @@ class Branch:
     def seconds(self) -> float: ...
     def to_json(self) -> str: ...
     def write_csv(self, path: str | PathLike[str]) -> None: ...
+    def to_pandas(self) -> pandas.DataFrame: ...
+    def special_points_to_pandas(self) -> pandas.DataFrame: ...
     def __len__(self) -> int: ...
 
 class BranchStart:
@@ -371,8 +386,17 @@ class Sweep(TypedDict):
     impact_t: FloatArray
     impact_phase: FloatArray
     impact_velocity: FloatArray
+    impact_stop: IntArray
+    summary_csv: str
     termination: Termination
     report: str
+
+class SweepResult(dict[str, Any]):
+    """sweep's result: the keys of Sweep, and its tables."""
+    options: dict[str, Any]
+    provenance: dict[str, str]
+    def to_pandas(self) -> pandas.DataFrame: ...
+    def impacts_to_pandas(self) -> pandas.DataFrame: ...
 
 class SweepOptions(_OptionSet):
     def __init__(
@@ -411,7 +435,7 @@ def sweep(
     each_from: Literal["previous", "rest"] = "previous",
     chunk_values: int = 100,
     progress: Progress = False,
-) -> Sweep: ...
+) -> SweepResult: ...
 
 class Lyapunov(TypedDict):
     exponents: FloatArray
@@ -499,6 +523,8 @@ class Diagram:
     def seconds(self) -> float: ...
     def to_json(self) -> str: ...
     def brief_report(self) -> str: ...
+    def nodes_to_pandas(self) -> pandas.DataFrame: ...
+    def edges_to_pandas(self) -> pandas.DataFrame: ...
 
 class DiagramOptions(_OptionSet):
     def __init__(
@@ -601,7 +627,22 @@ def parameter_map(
     each_from: Literal["previous", "rest"] = "previous",
     chunk_values: int = 100,
     progress: Progress = False,
-) -> dict[str, Any]: ...
+) -> MapResult: ...
+
+class MapResult(dict[str, Any]):
+    """parameter_map's result: its arrays, and the map as a Dataset or a table."""
+    options: dict[str, Any]
+    provenance: dict[str, str]
+    def to_xarray(self) -> xarray.Dataset: ...
+    def to_pandas(self) -> pandas.DataFrame: ...
+
+class BasinsResult(dict[str, Any]):
+    """basins' result: its arrays, and the picture as a Dataset or a table."""
+    options: dict[str, Any]
+    provenance: dict[str, str]
+    def to_xarray(self) -> xarray.Dataset: ...
+    def to_pandas(self) -> pandas.DataFrame: ...
+
 def basins(
     system: System,
     *,
@@ -618,7 +659,7 @@ def basins(
     threads: int = 1,
     orbit_tolerance: float = 1e-4,
     progress: Progress = False,
-) -> dict[str, Any]: ...
+) -> BasinsResult: ...
 
 class BasinsOptions(_OptionSet):
     def __init__(
@@ -696,6 +737,7 @@ class Curve:
     def seconds(self) -> float: ...
     def to_json(self) -> str: ...
     def write_csv(self, path: str | PathLike[str]) -> None: ...
+    def to_pandas(self) -> pandas.DataFrame: ...
     def __len__(self) -> int: ...
 
 class CurveOptions(_OptionSet):

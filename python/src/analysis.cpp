@@ -10,6 +10,8 @@
 #include "impactkit/analysis/lyapunov.hpp"
 #include "impactkit/analysis/resonance.hpp"
 #include "impactkit/analysis/sweep.hpp"
+#include "impactkit/io/csv.hpp"
+#include "impactkit/io/sweep_output.hpp"
 #include "option_sets.hpp"
 
 namespace impactkit::python {
@@ -18,10 +20,13 @@ namespace {
 /// The sweep's points as columns: one entry per value, and the impacts and
 /// the per-period ranges of all values concatenated, `impact_offsets` and
 /// `range_offsets` (K + 1 each) marking where each value's start (value k
-/// owns entries offsets[k] .. offsets[k+1]).
-py::dict SweepArrays(const SweepResult& result) {
+/// owns entries offsets[k] .. offsets[k+1]); and the table `impactkit sweep
+/// --summary` writes, as CSV text without provenance (the library's columns
+/// and rows, io/sweep_output.hpp), which SweepResult.to_pandas reads.
+py::dict SweepArrays(const SweepResult& result, const std::string& parameter) {
   std::vector<double> value, range_contact, range_first, impact_t, impact_phase, impact_velocity;
-  std::vector<std::int64_t> offsets{0}, range_offsets{0}, p, q;
+  std::vector<std::int64_t> offsets{0}, range_offsets{0}, p, q, impact_stop;
+  std::string summary = CsvHead(SweepSummaryColumns(parameter), "");
   py::list kind, description;
   for (const SweepPoint& point : result.points) {
     value.push_back(point.value);
@@ -33,7 +38,9 @@ py::dict SweepArrays(const SweepResult& result) {
       impact_t.push_back(impact.t);
       impact_phase.push_back(impact.phase);
       impact_velocity.push_back(impact.velocity);
+      impact_stop.push_back(impact.stop);
     }
+    summary += SweepSummaryRow(point);
     offsets.push_back(static_cast<std::int64_t>(impact_t.size()));
     kind.append(ToString(point.classification.kind));
     description.append(point.classification.ToString());
@@ -56,6 +63,8 @@ py::dict SweepArrays(const SweepResult& result) {
   out["impact_t"] = MoveToArray(std::move(impact_t));
   out["impact_phase"] = MoveToArray(std::move(impact_phase));
   out["impact_velocity"] = MoveToArray(std::move(impact_velocity));
+  out["impact_stop"] = MoveToArray(std::move(impact_stop));
+  out["summary_csv"] = summary;
   out["termination"] = ToString(result.termination);
   out["report"] = result.BriefReport();
   return out;
@@ -76,7 +85,7 @@ py::dict SweepPy(const System& system, const std::string& parameter, double from
   options.start = StartFromName(each_from);
   const InterruptibleRun run(progress);
   const SweepResult result = WithoutGil([&] { return RunSweep(system, options, run); });
-  return SweepArrays(result);
+  return SweepArrays(result, parameter);
 }
 
 py::dict LyapunovPy(const System& system, const Eigen::VectorXd& eta, int impacts,
@@ -177,7 +186,9 @@ p, q (0 where undefined; a sticking motion has its q and p = 0, its kind
 says so); of all values concatenated, the max - min of x_c
 and of x_1 in every recorded forcing period (range_contact, range_first,
 delimited by range_offsets, K + 1) and every recorded impact (impact_t,
-impact_phase, impact_velocity, delimited by impact_offsets); termination
+impact_phase, impact_velocity, impact_stop (0-based), delimited by
+impact_offsets); summary_csv, the table `impactkit sweep --summary` writes
+(CSV text, without its provenance); termination
 ('completed') and report. each_from: 'previous' (each value from the previous final
 state) or 'rest'. Releases the GIL; Ctrl-C raises
 KeyboardInterrupt.

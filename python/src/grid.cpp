@@ -16,6 +16,16 @@
 namespace impactkit::python {
 namespace {
 
+/// The motion kinds by name, in the order of their codes (kind_code).
+py::list MotionKindNames() {
+  py::list kinds;
+  for (const MotionKind k : {MotionKind::kPeriodic, MotionKind::kSticking, MotionKind::kChaotic,
+                             MotionKind::kNonImpacting, MotionKind::kUnresolved}) {
+    kinds.append(ToString(k));
+  }
+  return kinds;
+}
+
 /// Every unit of `task` on `threads` threads, the cells in index order.
 /// Ctrl-C is checked and `progress` shown after each unit.
 std::vector<GridCell> RunAll(const GridTask& task, int threads, const py::object& progress) {
@@ -39,13 +49,8 @@ py::dict CellArrays(const std::vector<GridCell>& cells, py::ssize_t rows, py::ss
     range.push_back(cell.range_xN);
     lyapunov.push_back(cell.lyapunov);
   }
-  py::list kinds;
-  for (const MotionKind k : {MotionKind::kPeriodic, MotionKind::kSticking, MotionKind::kChaotic,
-                             MotionKind::kNonImpacting, MotionKind::kUnresolved}) {
-    kinds.append(ToString(k));
-  }
   py::dict out;
-  out["kinds"] = kinds;
+  out["kinds"] = MotionKindNames();
   out["kind_code"] = MoveToArray(std::move(kind), shape);
   out["kind"] = py::module_::import("numpy").attr("array")(names).attr("reshape")(rows, columns);
   out["p"] = MoveToArray(std::move(p), shape);
@@ -228,6 +233,8 @@ void BindGrid(py::module_& module) {
   const BasinsOptions kBasins = BasinsDefaults();
   BindMapOptions(module, kMap);
   BindBasinsOptions(module, kBasins);
+  // The categories of the tables' motion class (impactkit/_tables.py).
+  module.attr("_motion_kinds") = MotionKindNames();
   module.def("parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
              py::arg("parameter") = kRow.parameter, py::arg("from_"), py::arg("to"),
              py::arg("steps"), py::arg("parameter2") = kMap.parameter2, py::arg("from2"),

@@ -17,7 +17,7 @@ def test_installed_module_imports_and_agrees(tmp_path):
     subprocess.run([os.environ["IMPACTKIT_CMAKE"], "--install", os.environ["IMPACTKIT_BUILD_DIR"],
                     "--prefix", str(prefix)], check=True, capture_output=True)
     site = prefix / "lib" / f"python{sys.version_info.major}.{sys.version_info.minor}" / "dist-packages"
-    for name in ("__init__.py", "__init__.pyi", "py.typed"):
+    for name in ("__init__.py", "_tables.py", "__init__.pyi", "py.typed"):
         assert (site / "impactkit" / name).is_file(), name
     code = ("import impactkit, sys; o = impactkit.find_orbit(impactkit.System.paper(0.6)); "
             "print(impactkit.__file__); print(*[x.hex() for x in o.eta])")
