@@ -213,3 +213,19 @@ for convert in (run.impacts_to_pandas, grid.to_xarray):
                              "installed (Debian: apt-get install python3-pandas")
     assert out[1].startswith("MapResult.to_xarray needs xarray")
     assert len(out) == 2
+
+
+def test_curve_table_equals_curve_out(tmp_path):
+    cli("curve", "--type", "period_doubling", "--p", 1, "--q", 1, "--omega", 1.6, "--param",
+        "omega", "--param2", "r", "--from", 0.5, "--to", 3, "--from2", 0.3, "--to2", 0.95,
+        "--out", tmp_path / "c.csv")
+    system = impactkit.System.paper(1.6)
+    p11 = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1), from_=1.5,
+                                    to=1.8, direction="both")
+    flip = next(s for s in p11.special_points if s.type == "period_doubling")
+    curve = impactkit.continue_curve(system, p11, flip, parameter2="r", from_=0.5, to=3.0,
+                                     from2=0.3, to2=0.95)
+    table = curve.to_pandas()
+    assert_same_cells(table, read_cli(tmp_path / "c.csv"))
+    np.testing.assert_array_equal(table["omega"], curve.values)
+    np.testing.assert_array_equal(table["r"], curve.values2)
