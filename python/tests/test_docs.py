@@ -33,3 +33,6 @@ def test_python_md_blocks_run_as_shown(monkeypatch):
     assert count >= 8
     assert "r (coefficient of restitution) must be in [0, 1], got 1.5" in printed
     assert "no convergence: residual 1.28e+00 after 2 iterations" in printed
+    # The tables: the command line's columns.
+    assert "['omega', 'r', 'kind', 'p', 'q', 'max_velocity', 'range_xN', 'lyapunov']" in printed
+    assert "['t', 'phase', 'velocity', 'x1', 'x2', 'v1', 'v2', 'stop']" in printed
