@@ -177,15 +177,20 @@ def test_basins_dataset_and_table_equal_basins_out(tmp_path):
 def test_simulation_tables_equal_simulate_impacts_and_series(tmp_path):
     system = impactkit.System.paper(1.4)
     period = system.forcing_period
+    # The command line's series has every event's rows (events=True) on a
+    # grid of 200 samples per period (its default).
     cli("simulate", "--omega", 1.4, "--transient", 50, "--periods", 5, "--impacts",
-        tmp_path / "i.csv")
-    run = impactkit.simulate(system, 55 * period, record_from=50 * period, dt=period / 200)
+        tmp_path / "i.csv", "--series", tmp_path / "s.csv")
+    run = impactkit.simulate(system, 55 * period, record_from=50 * period, dt=period / 200,
+                             events=True)
     impacts = run.impacts_to_pandas()
     assert_same_cells(impacts, read_cli(tmp_path / "i.csv"))
     np.testing.assert_array_equal(impacts["x2"], run["impacts"]["x"][:, 1])
     np.testing.assert_array_equal(impacts["stop"], run["impacts"]["stop"] + 1)
     samples = run.samples_to_pandas()
-    assert list(samples.columns) == ["t", "x1", "x2", "v1", "v2", "stuck", "event"]
+    assert_same_cells(samples, read_cli(tmp_path / "s.csv"))
+    assert samples["stuck"].dtype == bool
+    assert set(samples["event"]) == {"", "impact_before", "impact_after"}
     np.testing.assert_array_equal(samples["t"], run["samples"]["t"])
     np.testing.assert_array_equal(samples["v1"], run["samples"]["v"][:, 0])
     assert samples.attrs["function"] == "simulate"
