@@ -175,6 +175,17 @@ void BindContinuation(py::module_& module) {
       .def_property_readonly(
           "orbit", [](const SpecialPoint& s) { return s.point.orbit; },
           "The orbit at the located point.")
+      .def_property_readonly(
+          "normal_form",
+          [](const SpecialPoint& s) -> py::object {
+            if (!s.normal_form) return py::none();
+            return py::module_::import("json").attr("loads")(GrazingNormalFormJson(*s.normal_form));
+          },
+          "A grazing's discontinuity-map normal form and, once predicted, what the motion does "
+          "past it (its 'prediction'): the dict files carry under 'normal_form' "
+          "(docs/continuation.md, 'What a grazing will do'); None for other points.")
+      .def_readonly("normal_form_note", &SpecialPoint::normal_form_note,
+                    "Why a grazing has no normal form, when it has none.")
       .def("describe", &SpecialPoint::Describe, py::arg("parameter_name"),
            "One line, as the command line prints it.")
       .def("__repr__", [](const SpecialPoint& s) {

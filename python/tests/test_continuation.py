@@ -205,3 +205,33 @@ def test_a_user_test_of_python_is_located_along_the_branch(branch):
     with pytest.raises(ZeroDivisionError, match="from the user's test"):
         impactkit.continue_branch(system, start, from_=1.5, to=1.8,
                                   user_tests={"broken": broken})
+
+
+def test_a_grazing_carries_its_normal_form_and_prediction_as_the_command_line_writes_them(
+        tmp_path):
+    # P(1,1) grazes the stop at omega = 0.8564 (a new contact). Its normal
+    # form's multipliers are the orbit's, by another computation (the impact
+    # map's Jacobian); past the grazing no attractor stays near it and the
+    # motion jumps to P(3,2) (docs/continuation.md, "What a grazing will do").
+    import os
+    import subprocess
+
+    system = impactkit.System.paper(0.9)
+    branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       from_=0.9, to=0.8, direction="decreasing")
+    graze = branch.special_points[-1]
+    assert graze.type == "grazing"
+    form = graze.normal_form
+    eigenvalues = np.array([complex(re, im) for re, im in form["eigenvalues"]])
+    np.testing.assert_allclose(eigenvalues, graze.multipliers, atol=1e-8)
+    assert form["prediction"]["local"] is False
+    assert form["prediction"]["motion"] == "P(3,2)"
+    assert form["prediction"]["side"] == -1.0
+    assert all(s.normal_form is None for s in branch.special_points if s.type != "grazing")
+    cli_json = tmp_path / "cli.json"
+    subprocess.run([os.environ["IMPACTKIT_CLI"], "continue", "--p", "1", "--q", "1",
+                    "--from", "0.9", "--to", "0.8", "--json", str(cli_json)],
+                   check=True, capture_output=True)
+    with open(cli_json) as f:
+        cli = json.load(f)
+    assert cli["special_points"][-1]["normal_form"] == form

@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "impactkit/io/branch_output.hpp"
+
 namespace impactkit {
 namespace {
 
@@ -71,6 +73,10 @@ nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
   }
   if (form.prediction) j["prediction"] = PredictionJson(*form.prediction);
   return j;
+}
+
+std::string GrazingNormalFormJson(const GrazingNormalForm& form) {
+  return NormalFormJson(form).dump();
 }
 
 void AddNormalForm(const std::optional<GrazingNormalForm>& form, const std::string& note,

@@ -31,4 +31,8 @@ void WriteBranchRows(CsvWriter& csv, const Branch& branch);
 /// message, seconds, `param_range` and `special_points`.
 std::string BranchJson(const Branch& branch, std::string_view label, std::string_view origin);
 
+/// A grazing's normal form, with its prediction once made, as the JSON
+/// object a grazing's `normal_form` holds in these files, as text.
+std::string GrazingNormalFormJson(const GrazingNormalForm& form);
+
 }  // namespace impactkit
