@@ -148,3 +148,40 @@ TEST_CASE(
     CHECK(SimulatedMotion(at, *graze.normal_form, -1e-6) == c.jump);
   }
 }
+
+TEST_CASE(
+    "prediction: sweeps through the paper's grazings of Fig. 5 both ways find the predicted jump "
+    "just past each, and hysteresis: the sweep back keeps the other motion",
+    "[grazing][prediction]") {
+  struct Case {
+    double from;
+    int p, q;
+  };
+  for (const Case& c : {Case{0.9, 1, 1}, Case{0.84, 3, 2}}) {
+    const System system = PaperSystem(c.from);
+    ContinuationOptions options;
+    options.from = c.from;
+    options.to = 0.8;
+    options.direction = ContinuationDirection::kDecreasing;
+    options.orbit.p = c.p;
+    options.orbit.q = c.q;
+    Branch branch = ContinueBranch({system, testing::SeededOrbit(system, c.p, c.q), {}}, options);
+    PredictGrazings(system, &branch);
+    const GrazingNormalForm& form = *branch.special_points.back().normal_form;
+    const GrazingSweeps sweeps =
+        SweepThroughGrazing(testing::At(system, "omega", form.parameter_value), form);
+    std::string table;
+    for (std::size_t k = 0; k < sweeps.values.size(); ++k) {
+      table +=
+          std::to_string(sweeps.values[k]) + " " + sweeps.toward[k] + " " + sweeps.back[k] + "\n";
+    }
+    INFO(table);
+    CHECK(sweeps.agrees);
+    CHECK(sweeps.past == form.prediction->motion);
+    CHECK(sweeps.hysteresis);
+    // Before the grazing the sweep towards it is on the grazing orbit's family
+    // (past lies at decreasing omega: before is the sweep's top).
+    CHECK(sweeps.past_distance < 0);
+    CHECK(sweeps.toward.back() == "P(" + std::to_string(c.p) + "," + std::to_string(c.q) + ")");
+  }
+}

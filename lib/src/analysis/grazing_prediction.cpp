@@ -84,29 +84,43 @@ LocalAttractor IterateNormalForm(const GrazingNormalForm& form, double distance,
   return attractor;
 }
 
-/// The steady motion of `system` past the grazing, simulated from the
-/// grazing orbit (drawn back from the stop by a hair: a simulation cannot
-/// start on it).
-std::string RemoteMotion(const System& system, const GrazingNormalForm& form, double distance,
-                         const GrazingPredictionOptions& options) {
-  System past = system;
-  SetParameter(past, form.parameter, form.parameter_value + distance);
-  Validate(past);
-  const int n = past.Dof();
-  const Stop stop(past, form.stop);
+/// `system` (near the grazing) run from the grazing orbit — drawn back from
+/// the stop by a hair: a simulation cannot start on it — to the first whole
+/// forcing period `periods` periods on: the state there, t = kT.
+HybridState RunFromGrazingOrbit(const System& system, const GrazingNormalForm& form, int periods) {
+  const int n = system.Dof();
+  const Stop stop(system, form.stop);
   HybridState state;
   state.t = form.time;
   state.x = form.touch.head(n);
   state.v = form.touch.tail(n);
   state.x(stop.Dof()) =
       stop.Position() - stop.Sign() * 1e-9 * std::max(1.0, std::abs(stop.Position()));
+  const double period = system.ForcingPeriod();
+  Simulator(system, SimulationOptions{})
+      .Run(state, (std::ceil(form.time / period) + periods) * period);
+  return state;
+}
+
+/// `system` at the parameter `distance` from the grazing.
+System AtDistance(const System& system, const GrazingNormalForm& form, double distance) {
+  System at = system;
+  SetParameter(at, form.parameter, form.parameter_value + distance);
+  Validate(at);
+  return at;
+}
+
+/// The steady motion of `system` past the grazing, simulated from the
+/// grazing orbit.
+std::string RemoteMotion(const System& system, const GrazingNormalForm& form, double distance,
+                         const GrazingPredictionOptions& options) {
+  const System past = AtDistance(system, form, distance);
+  HybridState state = RunFromGrazingOrbit(past, form, options.transient_periods);
   const double period = past.ForcingPeriod();
-  const Simulator simulator(past, SimulationOptions{});
-  const double start = std::ceil(form.time / period) * period;
-  simulator.Run(state, start + options.transient_periods * period);
   SteadyWindowRecorder window(period);
-  const double end = start + (options.transient_periods + options.recorded_periods) * period;
-  if (simulator.Run(state, end, window).termination != Termination::kCompleted) {
+  const Simulator simulator(past, SimulationOptions{});
+  if (simulator.Run(state, state.t + options.recorded_periods * period, window).termination !=
+      Termination::kCompleted) {
     return "unresolved";
   }
   const Classification c = ClassifyMotion(past, window.Strobe(), window.Impacts(),
@@ -193,6 +207,67 @@ GrazingPrediction PredictGrazing(const System& system, const GrazingNormalForm& 
     prediction.scenario = "jump";
   }
   return prediction;
+}
+
+bool GrazingSweepOptions::IsValid(std::string* error) const {
+  if (span > 0 && steps >= 3 && steps % 2 == 1 && transient_periods >= 0 && recorded_periods >= 1 &&
+      settle_periods >= 0) {
+    return true;
+  }
+  if (error) {
+    *error =
+        "grazing sweeps need span > 0, an odd number of steps >= 3, transient_periods >= 0, "
+        "recorded_periods >= 1 and settle_periods >= 0";
+  }
+  return false;
+}
+
+GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm& form,
+                                  const GrazingSweepOptions& options,
+                                  const GrazingPredictionOptions& prediction_options) {
+  std::string error;
+  Require(options.IsValid(&error), error);
+  Require(form.prediction.has_value(), "grazing sweeps check a prediction: predict it first");
+  const GrazingPrediction& prediction = *form.prediction;
+  const double span = options.span * std::max(1.0, std::abs(form.parameter_value));
+  const double before = -prediction.side * span, past = prediction.side * span;
+  SweepOptions sweep;
+  sweep.parameter = form.parameter;
+  sweep.from = form.parameter_value - span;
+  sweep.to = form.parameter_value + span;
+  sweep.steps = options.steps;
+  sweep.transient_periods = options.transient_periods;
+  sweep.recorded_periods = options.recorded_periods;
+  sweep.chunk_values = 0;  // one chain of states through the grazing
+  auto run = [&](double start, SweepDirection direction) {
+    sweep.direction = direction;
+    sweep.fixed_state =
+        RunFromGrazingOrbit(AtDistance(system, form, start), form, options.settle_periods);
+    std::vector<std::string> motions;
+    for (const SweepPoint& point : RunSweep(system, sweep).points) {
+      const Classification& c = point.classification;
+      motions.push_back(MotionLabel(c.kind, c.period.p, c.period.q));
+    }
+    if (direction == SweepDirection::kDown) std::reverse(motions.begin(), motions.end());
+    return motions;
+  };
+  const SweepDirection toward = prediction.side > 0 ? SweepDirection::kUp : SweepDirection::kDown;
+  const SweepDirection away = prediction.side > 0 ? SweepDirection::kDown : SweepDirection::kUp;
+  GrazingSweeps result;
+  result.values = SweepValues(sweep);
+  std::sort(result.values.begin(), result.values.end());
+  result.toward = run(before, toward);
+  result.back = run(past, away);
+  const std::size_t middle = result.values.size() / 2;  // p* itself
+  const std::size_t first_past = prediction.side > 0 ? middle + 1 : middle - 1;
+  result.past_distance = result.values[first_past] - form.parameter_value;
+  result.past = result.toward[first_past];
+  result.expected = prediction.local
+                        ? IterateNormalForm(form, result.past_distance, prediction_options).motion
+                        : prediction.motion;
+  result.agrees = result.past == result.expected;
+  result.hysteresis = result.toward != result.back;
+  return result;
 }
 
 void PredictGrazings(const System& system, Branch* branch,

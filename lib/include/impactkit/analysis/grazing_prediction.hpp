@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "impactkit/analysis/classify.hpp"
+#include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/continuation/diagram_graph.hpp"
 #include "impactkit/model/system.hpp"
@@ -49,6 +50,43 @@ struct GrazingPredictionOptions {
   ClassifyOptions classify;
   bool IsValid(std::string* error) const;
 };
+
+/// Brute-force sweeps through a grazing, the paper's method, to check a
+/// prediction against.
+struct GrazingSweepOptions {
+  /// The sweeps run over p* ± span, relative to max(1, |p*|) ...
+  double span = 2e-3;
+  int steps = 41;  ///< ... at this many values, both ends included (odd: p* among them)
+  int transient_periods = 300;  ///< at each value, from the previous value's state
+  int recorded_periods = 50;
+  /// Periods run from the grazing orbit at a sweep's first value before it
+  /// starts, so that it starts on that side's attractor.
+  int settle_periods = 500;
+  bool IsValid(std::string* error) const;
+};
+
+/// Two sweeps through the grazing: `toward` from the side before it
+/// (started on the grazing orbit's family) past it, `back` from past it
+/// (started where the motion goes there) back.
+struct GrazingSweeps {
+  std::vector<double> values;       ///< increasing
+  std::vector<std::string> toward;  ///< the motion at each value, swept towards the past side
+  std::vector<std::string> back;    ///< the same, swept back
+  double past_distance = 0.0;       ///< p − p* of the first value past the grazing
+  std::string past;                 ///< `toward`'s motion there
+  /// What the prediction expects there: the normal form's attractor at that
+  /// distance if one stays near the grazing orbit, else the remote motion.
+  std::string expected;
+  bool agrees = false;      ///< past == expected
+  bool hysteresis = false;  ///< the two sweeps differ at some value
+};
+
+/// The sweeps at the grazing of `form` (of `system` at the grazing), and
+/// what its prediction (`form.prediction`, required) expects. Throws
+/// InvalidInput for invalid options or a form without its prediction.
+GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm& form,
+                                  const GrazingSweepOptions& options = {},
+                                  const GrazingPredictionOptions& prediction_options = {});
 
 /// The prediction at the grazing whose normal form is `form`, of `system`
 /// (at the grazing: form.parameter = form.parameter_value). Throws
