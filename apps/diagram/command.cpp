@@ -27,6 +27,7 @@
 #include "diagram/output.hpp"
 #include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
+#include "impactkit/io/grazing_output.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
 
@@ -45,7 +46,7 @@ struct DiagramRequest {
   int max_depth = DiagramOptions{}.max_depth, max_branches = DiagramOptions{}.max_branches;
   int sweep_values = 481, sweep_transient = 300, sweep_record = 40, max_q = 16;
   int threads = 0;  ///< 0: all cores
-  std::string json, plot, axis = "velocity";
+  std::string json, plot, grazings, axis = "velocity";
 };
 
 /// The system at --from (or --start), after the checks that need no work.
@@ -111,6 +112,15 @@ SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   return options;
 }
 
+/// The command that made a diagram's files.
+Provenance DiagramProvenance(const DiagramRequest& request, const System& system) {
+  return MakeProvenance(request.system, system,
+                        fmt::format("diagram --param {} --from {} --to {} --max-depth {} "
+                                    "--sweep-values {} --max-q {}",
+                                    request.parameter, request.from, request.to, request.max_depth,
+                                    request.sweep_values, request.max_q));
+}
+
 void RunDiagram(const DiagramRequest& request) {
   const System system = DiagramSystem(request);
   SweptDiagramOptions options = MakeOptions(request);
@@ -120,6 +130,7 @@ void RunDiagram(const DiagramRequest& request) {
   OutputSet outputs;
   AtomicOutputFile* json = AddIfAsked(outputs, request.json);
   AtomicOutputFile* plot = AddIfAsked(outputs, request.plot);
+  AtomicOutputFile* grazings = AddIfAsked(outputs, request.grazings);
   std::vector<DiagramSeed> seeds;
   if (request.start) {
     const StartOrbit found = SolveStartOrbit(
@@ -145,15 +156,20 @@ void RunDiagram(const DiagramRequest& request) {
   fmt::print("seeds:      {}\n", swept.seeds.size());
   PrintDiagram(swept.diagram);
   std::vector<std::string> written;
+  if (grazings) {
+    const std::vector<GrazingCheck> checks = CheckGrazings(system, swept.diagram);
+    fmt::print("grazings checked by sweeps both ways ({}):\n", checks.size());
+    for (const GrazingCheck& check : checks) {
+      fmt::print("  {}\n", DescribeGrazingCheck(check, request.parameter));
+    }
+    nlohmann::json j = nlohmann::json::parse(GrazingChecksJson(checks, request.parameter));
+    j["provenance"] = DiagramProvenance(request, system).Json();
+    grazings->Write(j.dump(2) + "\n");
+    written.push_back(request.grazings);
+  }
   if (json) {
     nlohmann::json j = nlohmann::json::parse(DiagramJson(swept.diagram));
-    j["provenance"] =
-        MakeProvenance(request.system, system,
-                       fmt::format("diagram --param {} --from {} --to {} --max-depth {} "
-                                   "--sweep-values {} --max-q {}",
-                                   request.parameter, request.from, request.to, request.max_depth,
-                                   request.sweep_values, request.max_q))
-            .Json();
+    j["provenance"] = DiagramProvenance(request, system).Json();
     j["system"] = nlohmann::json::parse(SystemToJson(system));
     json->Write(j.dump(2) + "\n");
     written.push_back(request.json);
@@ -247,6 +263,14 @@ void AddDiagramCommand(CLI::App& app) {
       ->type_name("FILE.{png,pdf,svg}")
       ->check(OutputPath())
       ->check(FigurePath())
+      ->group("Output");
+  command
+      ->add_option("--grazings", request->grazings,
+                   "JSON: every grazing's prediction checked by sweeps both ways through it "
+                   "(grazings [{param, grazing_orbit, contact, prediction, sweeps}]; "
+                   "docs/continuation.md, 'What a grazing will do')")
+      ->type_name("FILE.json")
+      ->check(OutputPath())
       ->group("Output");
   command->add_option("--axis", request->axis, "What --plot shows: velocity or range (of x_N)")
       ->capture_default_str()

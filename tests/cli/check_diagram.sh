@@ -42,4 +42,18 @@ done < <(grep -oE '"(from|to)": [0-9]+' "$work/d.json" | grep -oE '[0-9]+$')
   --max-branches 2 >"$work/bounded" || fail "impactkit diagram --max-branches 2 failed"
 grep -q '^diagram: *2 branches, .*incomplete: max_branches (2) reached' "$work/bounded" ||
   fail "no 'incomplete' report: $(cat "$work/bounded")"
+# Every grazing predicted and checked by sweeps both ways: the paper's two
+# of Fig. 5 jump (P(1,1) to P(3,2) below 0.8564, P(3,2) to P(2,1) below
+# 0.8322) as the sweeps find, with hysteresis; the JSON carries each check.
+"$impactkit" diagram --from 0.8 --to 0.9 --sweep-values 41 --sweep-transient 300 --sweep-record 20 \
+  --grazings "$work/g.json" >"$work/grazings" || fail "impactkit diagram --grazings failed"
+for line in 'omega = 0.8322220921, P(3,2) (new contact): predicted P(2,1) (jump), swept P(2,1): agrees; hysteresis' \
+            ', P(1,1) (vanishing impact): predicted P(3,2) (jump), swept P(3,2): agrees; hysteresis'; do
+  grep -qF "$line" "$work/grazings" || fail "no '$line': $(cat "$work/grazings")"
+done
+json=$(tr -d ' \n' <"$work/g.json")
+for field in '"grazings":[{' '"grazing_orbit":"P(3,2)"' '"contact":"new"' '"local":false' \
+             '"agrees":true' '"hysteresis":true' '"toward":["P(2,1)"' '"provenance":{'; do
+  [[ $json == *"$field"* ]] || fail "grazings JSON lacks $field"
+done
 echo ok

@@ -260,14 +260,39 @@ GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm&
   result.back = run(past, away);
   const std::size_t middle = result.values.size() / 2;  // p* itself
   const std::size_t first_past = prediction.side > 0 ? middle + 1 : middle - 1;
+  const std::size_t last_before = prediction.side > 0 ? middle - 1 : middle + 1;
   result.past_distance = result.values[first_past] - form.parameter_value;
   result.past = result.toward[first_past];
   result.expected = prediction.local
                         ? IterateNormalForm(form, result.past_distance, prediction_options).motion
-                        : prediction.motion;
-  result.agrees = result.past == result.expected;
+                        : RemoteMotion(system, form, result.past_distance, prediction_options);
+  const MotionKind family = form.p > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting;
+  result.follows = result.toward[last_before] == MotionLabel(family, form.p, form.q);
+  result.agrees = result.follows && result.past == result.expected;
   result.hysteresis = result.toward != result.back;
   return result;
+}
+
+std::vector<GrazingCheck> CheckGrazings(const System& system, const Diagram& diagram,
+                                        const GrazingSweepOptions& options) {
+  std::vector<GrazingCheck> checks;
+  for (const DiagramNode& node : diagram.nodes) {
+    if (!node.normal_form || !node.normal_form->prediction) continue;
+    const GrazingNormalForm& form = *node.normal_form;
+    System at = system;
+    SetParameter(at, form.parameter, form.parameter_value);
+    GrazingCheck check;
+    check.parameter = form.parameter_value;
+    check.grazing_orbit =
+        MotionLabel(form.p > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting, form.p, form.q);
+    check.new_contact = node.vanishing_impact < 0;
+    check.prediction = *form.prediction;
+    check.sweeps = SweepThroughGrazing(at, form, options);
+    checks.push_back(std::move(check));
+  }
+  std::sort(checks.begin(), checks.end(),
+            [](const GrazingCheck& a, const GrazingCheck& b) { return a.parameter < b.parameter; });
+  return checks;
 }
 
 void PredictGrazings(const System& system, Branch* branch,

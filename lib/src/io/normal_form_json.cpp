@@ -12,6 +12,8 @@ std::vector<double> Values(const Vector& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
+}  // namespace
+
 nlohmann::json PredictionJson(const GrazingPrediction& prediction) {
   nlohmann::json attractors = nlohmann::json::array();
   for (const LocalAttractor& a : prediction.attractors) {
@@ -34,8 +36,6 @@ nlohmann::json PredictionJson(const GrazingPrediction& prediction) {
           {"description", prediction.Describe()},
           {"attractors", attractors}};
 }
-
-}  // namespace
 
 nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
   nlohmann::json linear = nlohmann::json::array();

@@ -21,6 +21,11 @@ namespace impactkit {
 /// description, and the normal form's attractors at each distance).
 nlohmann::json NormalFormJson(const GrazingNormalForm& form);
 
+/// A prediction's object: `side`, `local`, `unstable_grazing_orbit`,
+/// `motion`, `scenario`, `distance`, `one_dimensional` (or null),
+/// `description` and `attractors`.
+nlohmann::json PredictionJson(const GrazingPrediction& prediction);
+
 /// Adds `normal_form` to a grazing's JSON object `j`: the form, or null and
 /// `normal_form_note` saying why there is none.
 void AddNormalForm(const std::optional<GrazingNormalForm>& form, const std::string& note,

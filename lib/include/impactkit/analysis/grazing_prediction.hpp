@@ -57,8 +57,8 @@ struct GrazingSweepOptions {
   /// The sweeps run over p* ± span, relative to max(1, |p*|) ...
   double span = 2e-3;
   int steps = 41;  ///< ... at this many values, both ends included (odd: p* among them)
-  int transient_periods = 300;  ///< at each value, from the previous value's state
-  int recorded_periods = 50;
+  int transient_periods = 500;  ///< at each value, from the previous value's state
+  int recorded_periods = 100;
   /// Periods run from the grazing orbit at a sweep's first value before it
   /// starts, so that it starts on that side's attractor.
   int settle_periods = 500;
@@ -75,9 +75,15 @@ struct GrazingSweeps {
   double past_distance = 0.0;       ///< p − p* of the first value past the grazing
   std::string past;                 ///< `toward`'s motion there
   /// What the prediction expects there: the normal form's attractor at that
-  /// distance if one stays near the grazing orbit, else the remote motion.
+  /// distance if one stays near the grazing orbit, else the motion the
+  /// system goes to from the grazing orbit at that distance.
   std::string expected;
-  bool agrees = false;      ///< past == expected
+  /// `toward` follows the grazing orbit up to the grazing (its motion at
+  /// the last value before it is the grazing orbit's P(p, q)): only then
+  /// does its motion past the grazing test the prediction. Not so where the
+  /// grazing orbit is unstable, or another attractor holds the sweep.
+  bool follows = false;
+  bool agrees = false;      ///< follows, and past == expected
   bool hysteresis = false;  ///< the two sweeps differ at some value
 };
 
@@ -87,6 +93,20 @@ struct GrazingSweeps {
 GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm& form,
                                   const GrazingSweepOptions& options = {},
                                   const GrazingPredictionOptions& prediction_options = {});
+
+/// A grazing of a diagram, its prediction and the sweeps that check it.
+struct GrazingCheck {
+  double parameter = 0.0;
+  std::string grazing_orbit;  ///< the orbit that touches: "P(1,1)", or "non-impacting"
+  bool new_contact = true;    ///< located as a new contact (else as a vanishing impact)
+  GrazingPrediction prediction;
+  GrazingSweeps sweeps;
+};
+
+/// Every grazing node of `diagram` (of `system`) with a prediction
+/// (PredictGrazings), checked by SweepThroughGrazing, in parameter order.
+std::vector<GrazingCheck> CheckGrazings(const System& system, const Diagram& diagram,
+                                        const GrazingSweepOptions& options = {});
 
 /// The prediction at the grazing whose normal form is `form`, of `system`
 /// (at the grazing: form.parameter = form.parameter_value). Throws
