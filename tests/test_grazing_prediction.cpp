@@ -117,7 +117,7 @@ TEST_CASE("prediction: a normal form without its eigenvalues is refused with a c
 }
 
 TEST_CASE(
-    "prediction: the paper's grazings of Fig. 5 keep no attractor near them; the motion jumps to "
+    "prediction: the paper's grazings of Fig. 5 keep no attractor near them: the motion jumps to "
     "P(3,2) below omega = 0.8564 and to P(2,1) below 0.8322, as the simulator finds 1e-6 past",
     "[grazing][prediction]") {
   struct Case {
