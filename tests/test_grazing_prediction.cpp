@@ -71,6 +71,21 @@ std::string SimulatedMotion(const System& system, const GrazingNormalForm& form,
   return MotionLabel(c.kind, c.period.p, c.period.q);
 }
 
+/// The paper's P(p, q) branch seeded at `system`'s omega, followed down to
+/// its grazing, with its grazings predicted.
+Branch PredictedBranchDown(const System& system, int p, int q) {
+  ContinuationOptions options;
+  options.from = system.omega;
+  options.to = 0.8;
+  options.direction = ContinuationDirection::kDecreasing;
+  options.orbit.p = p;
+  options.orbit.q = q;
+  Branch branch = ContinueBranch({system, testing::SeededOrbit(system, p, q), {}}, options);
+  PredictGrazings(system, &branch);
+  REQUIRE(branch.special_points.back().normal_form.has_value());
+  return branch;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -127,14 +142,7 @@ TEST_CASE(
   };
   for (const Case& c : {Case{0.9, 1, 1, "P(3,2)"}, Case{0.84, 3, 2, "P(2,1)"}}) {
     const System system = PaperSystem(c.from);
-    ContinuationOptions options;
-    options.from = c.from;
-    options.to = 0.8;
-    options.direction = ContinuationDirection::kDecreasing;
-    options.orbit.p = c.p;
-    options.orbit.q = c.q;
-    Branch branch = ContinueBranch({system, testing::SeededOrbit(system, c.p, c.q), {}}, options);
-    PredictGrazings(system, &branch);
+    const Branch branch = PredictedBranchDown(system, c.p, c.q);
     const SpecialPoint& graze = branch.special_points.back();
     REQUIRE(graze.normal_form.has_value());
     REQUIRE(graze.normal_form->prediction.has_value());
@@ -159,14 +167,7 @@ TEST_CASE(
   };
   for (const Case& c : {Case{0.9, 1, 1}, Case{0.84, 3, 2}}) {
     const System system = PaperSystem(c.from);
-    ContinuationOptions options;
-    options.from = c.from;
-    options.to = 0.8;
-    options.direction = ContinuationDirection::kDecreasing;
-    options.orbit.p = c.p;
-    options.orbit.q = c.q;
-    Branch branch = ContinueBranch({system, testing::SeededOrbit(system, c.p, c.q), {}}, options);
-    PredictGrazings(system, &branch);
+    const Branch branch = PredictedBranchDown(system, c.p, c.q);
     const GrazingNormalForm& form = *branch.special_points.back().normal_form;
     const GrazingSweeps sweeps =
         SweepThroughGrazing(testing::At(system, "omega", form.parameter_value), form);
