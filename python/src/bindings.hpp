@@ -87,6 +87,11 @@ auto WithoutGil(Call&& call) {
 /// it. An exception the callable raises ends the library call with it.
 std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests);
 
+/// A grazing's normal form (with its prediction) as the dict files carry
+/// under `normal_form` (io/branch_output.hpp's GrazingNormalFormJson), or
+/// None.
+py::object NormalFormDict(const std::optional<GrazingNormalForm>& form);
+
 /// The `each_from` keyword of sweep and parameter_map (and of their option
 /// sets): 'previous' or 'rest' (kFixed: Python gives no fixed state, so it
 /// is rest). StartFromName throws InvalidInput (ValueError) for another name.

@@ -176,11 +176,7 @@ void BindContinuation(py::module_& module) {
           "orbit", [](const SpecialPoint& s) { return s.point.orbit; },
           "The orbit at the located point.")
       .def_property_readonly(
-          "normal_form",
-          [](const SpecialPoint& s) -> py::object {
-            if (!s.normal_form) return py::none();
-            return py::module_::import("json").attr("loads")(GrazingNormalFormJson(*s.normal_form));
-          },
+          "normal_form", [](const SpecialPoint& s) { return NormalFormDict(s.normal_form); },
           "A grazing's discontinuity-map normal form and, once predicted, what the motion does "
           "past it (its 'prediction'): the dict files carry under 'normal_form' "
           "(docs/continuation.md, 'What a grazing will do'); None for other points.")

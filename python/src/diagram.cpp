@@ -84,6 +84,9 @@ void BindNode(py::module_& module) {
       .def_readonly("monitor", &DiagramNode::monitor, "The test function or grazing monitor.")
       .def_readonly("vanishing_impact", &DiagramNode::vanishing_impact,
                     "Grazing/sticking: the impact that vanishes (-1 for a new contact).")
+      .def_property_readonly(
+          "normal_form", [](const DiagramNode& n) { return NormalFormDict(n.normal_form); },
+          "A grazing's normal form and prediction, as SpecialPoint.normal_form; else None.")
       .def_readonly("p", &DiagramNode::p, "Impacts per orbit of the branch it was located on.")
       .def_readonly("q", &DiagramNode::q, "Forcing periods per orbit of that branch.")
       .def_readonly("branch", &DiagramNode::branch, "That branch, an index into branches.")

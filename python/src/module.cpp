@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "bindings.hpp"
+#include "impactkit/io/branch_output.hpp"
 #include "impactkit/io/output_file.hpp"
 
 namespace impactkit::python {
@@ -84,6 +85,11 @@ void InterruptibleRun::Show(const Progress& report) {
     bar_stage_ = stage;
   }
   bar_.attr("update")(report.done - bar_.attr("n").cast<std::int64_t>());
+}
+
+py::object NormalFormDict(const std::optional<GrazingNormalForm>& form) {
+  if (!form) return py::none();
+  return py::module_::import("json").attr("loads")(GrazingNormalFormJson(*form));
 }
 
 std::vector<UserTest> UserTestsFrom(const std::optional<py::dict>& tests) {

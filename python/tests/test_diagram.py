@@ -123,3 +123,16 @@ def test_a_user_test_reaches_every_branch_of_the_diagram(paper_orbit):
         again = impactkit.find_orbit(impactkit.System.paper(node.parameter), p=1, q=1,
                                      seed=node.eta)
         assert abs(again.impact_velocities[0] - level) < 1e-9
+
+
+def test_grazing_nodes_carry_their_normal_form_as_the_branches_special_points(diagram):
+    grazings = [n for n in diagram.nodes if n.type == "grazing"]
+    assert grazings
+    for node in diagram.nodes:
+        if node.type != "grazing":
+            assert node.normal_form is None
+    for node in grazings:
+        located = [s for s in diagram.branches[node.branch].branch.special_points
+                   if s.type == "grazing" and s.parameter == node.parameter]
+        assert located and node.normal_form == located[0].normal_form
+        assert node.normal_form["prediction"]["motion"]
