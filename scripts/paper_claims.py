@@ -68,6 +68,19 @@ class Run:
             sys.exit(f"paper_claims: no {kind} of P({p},{q}) near {near}")
         return best
 
+    def jump(self, p, q, near):
+        """Where the motion goes past the grazing of P(p,q) nearest `near`,
+        by the grazing's normal form (its prediction's motion)."""
+        for branch in self.summary["branches"]:
+            if (branch["p"], branch["q"]) != (p, q):
+                continue
+            for s in branch["special_points"]:
+                if s["type"] == "grazing" and abs(s["param"] - near) < 1e-3:
+                    form = s.get("normal_form")
+                    if form and not form["prediction"]["local"]:
+                        return form["prediction"]["motion"]
+        sys.exit(f"paper_claims: no predicted jump at the grazing of P({p},{q}) near {near}")
+
     def motion_at(self, omega):
         for r in self.summary["regimes"]:
             if r["from"] - 1e-9 <= omega <= r["to"] + 1e-9:
@@ -131,12 +144,18 @@ def rows(run):
          f"branch grazes (an impact vanishes) at {run.point('grazing', 4, 2, 0.832):.7f}, where "
          f"the stable P(3,2) begins ({run.point('grazing', 3, 2, 0.832):.7f})",
          "a grazing near 0.832, but of the doubled orbit, not of P(2,1); P(2,1) and P(3,2) "
-         "coexist on 0.8322–0.8372 ([continuation.md](continuation.md))"),
+         "coexist on 0.8322–0.8372 ([continuation.md](continuation.md)); the normal form at "
+         f"{run.point('grazing', 3, 2, 0.832):.7f} predicts the jump: past it no attractor stays "
+         f"near P(3,2), the motion goes to {run.jump(3, 2, 0.832)} "
+         "([continuation.md](continuation.md#what-a-grazing-will-do))"),
         (9, "P(3,2) persists until a grazing turns it into P(1,1)", "0.856",
          f"P(1,1) begins by grazing at {run.point('grazing', 1, 1, 0.856):.7f}; P(3,2) stays "
          f"stable to its fold at {run.point('fold', 3, 2, 0.859):.7f} (sweep: P(3,2) "
          f"{run.span('P(3,2)')}, P(1,1) from {run.regime('P(1,1)')['from']:.3f})",
-         "the grazing value yes; sweeping up, P(3,2) survives past it to its fold (they coexist)"),
+         "the grazing value yes; sweeping up, P(3,2) survives past it to its fold (they "
+         f"coexist); sweeping down, the normal form at {run.point('grazing', 1, 1, 0.856):.7f} "
+         f"predicts the jump from P(1,1) to {run.jump(1, 1, 0.856)} that the sweeps show "
+         "([continuation.md](continuation.md#what-a-grazing-will-do))"),
         (10, "P(1,1) continuation from Ω = 1.0 down breaks down", "0.856",
          f"grazing at {run.point('grazing', 1, 1, 0.856):.7f} (a new contact)", "yes"),
         (11, "P(1,1) at Ω = 0.9, 1.4 (Figs. 4(e), (f))", "",
