@@ -23,6 +23,7 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "curve/output.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
 #include "impactkit/io/output_set.hpp"
 #include "impactkit/io/system_file.hpp"
@@ -274,6 +275,11 @@ void RunCurve(const CurveRequest& request) {
   }
   fmt::print("system:     {}\n", DescribeSystem(system));
   fmt::print("start:      {}\n", start.special.Describe(request.parameter));
+  if (start.special.normal_form) {
+    const GrazingPrediction prediction = PredictGrazing(start.system, *start.special.normal_form);
+    fmt::print("            {}\n            {}\n", start.special.normal_form->Describe(),
+               prediction.Describe());
+  }
   impactkit::Curve curve;
   {
     const RunProgress progress(request.parameter, request.parameter2);
