@@ -186,3 +186,22 @@ TEST_CASE(
     CHECK(sweeps.toward.back() == "P(" + std::to_string(c.p) + "," + std::to_string(c.q) + ")");
   }
 }
+
+TEST_CASE("prediction: invalid prediction or sweep options are refused with a clear error",
+          "[grazing][prediction]") {
+  GrazingNormalForm form = SquareRootForm(0.5);
+  GrazingPredictionOptions options;
+  options.distances = {1e-6};
+  CHECK_THROWS_WITH(PredictGrazing(PaperSystem(0.5), form, options),
+                    Catch::Contains("at least two distances"));
+  options.distances = {1e-4, 1e-6};
+  CHECK_THROWS_WITH(PredictGrazing(PaperSystem(0.5), form, options),
+                    Catch::Contains("positive and increasing"));
+  GrazingSweepOptions sweeps;
+  sweeps.steps = 40;
+  CHECK_THROWS_WITH(SweepThroughGrazing(PaperSystem(0.5), form, sweeps),
+                    Catch::Contains("an odd number of steps"));
+  // A form never predicted cannot be checked.
+  CHECK_THROWS_WITH(SweepThroughGrazing(PaperSystem(0.5), form),
+                    Catch::Contains("predict it first"));
+}
