@@ -206,6 +206,45 @@ const CurvePoint& NextToCorner(const Curve& curve) {
                                               : curve.points[curve.points.size() - 2];
 }
 
+/// The codimension-two points of `type` on `curve`.
+std::vector<Codim2Point> PointsOf(const Curve& curve, Codim2Type type) {
+  std::vector<Codim2Point> found;
+  for (const Codim2Point& c : curve.codim2_points) {
+    if (c.type == type) found.push_back(c);
+  }
+  return found;
+}
+
+/// The resonant grazing of `type` on the grazing curve in (omega, second)
+/// through `branch`'s vanishing impact at omega = `graze` (the branch in
+/// omega of `system`, at its second value), nearest `omega`. For p >= 2
+/// that curve is P(p − 1, q)'s grazing by a new contact.
+Codim2Point ResonantGrazingNear(const System& system, const Branch& branch, double graze,
+                                const std::string& second, Codim2Type type, double omega) {
+  const auto special = std::find_if(
+      branch.special_points.begin(), branch.special_points.end(), [&](const SpecialPoint& s) {
+        return s.type == SpecialPointType::kGrazing && s.parameter == graze;
+      });
+  REQUIRE(special != branch.special_points.end());
+  CurveStart start{At(system, "omega", graze), *special};
+  if (branch.p >= 2) {
+    ContinuationOptions options;
+    options.orbit.p = branch.p;
+    options.orbit.q = branch.q;
+    const std::optional<CurveStart> reduced =
+        ReducedGrazingStart(system, branch, *special, options);
+    REQUIRE(reduced.has_value());
+    start = *reduced;
+  }
+  const Curve curve =
+      ContinueCurve(start, Plane(second, 0.0, 1.0, start.special.point.orbit.p, branch.q));
+  const std::vector<Codim2Point> found = PointsOf(curve, type);
+  REQUIRE(!found.empty());
+  return *std::min_element(found.begin(), found.end(), [&](const auto& a, const auto& b) {
+    return std::abs(a.point.parameter - omega) < std::abs(b.point.parameter - omega);
+  });
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -264,6 +303,38 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "resonant grazing: on the N = 1 oscillator's grazing curve in (omega, xs) the fold and "
+    "period-doubling curves of P(1,1) leave at Omega = 2 omega_d / j, the closed form",
+    "[curve][grazing-corner]") {
+  // nᵀ adj(Φ(T) − λ I) Φ(T) d0 = −λ (1 + r) a Φ12(T) for one mass
+  // (docs/theory.md §6a), Φ12(T) = e^{−aT} sin(ω_d T) / ω_d: zero for every
+  // λ where ω_d T = jπ, Ω = 2 ω_d / j (Molenaar, de Weger & van de Water
+  // 2001; Simpson & Ghosh 2026), on the curve xs = X(Ω). In omega's range
+  // [0.5, 3]: j = 1, 2, 3.
+  const System system =
+      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
+  const Curve curve =
+      CurveIn("xs", system, SpecialPointType::kGrazing, 1, 1, 0.0, 8.0);  // X(ω_d) ≈ 5
+  REQUIRE(curve.p == 0);  // the non-impacting response's grazing
+  testing::SdofParameters p{1.0, 1.0, 0.1, 0.5, 0.0, 0.8, 0.0};
+  for (Codim2Type type :
+       {Codim2Type::kResonantGrazingFold, Codim2Type::kResonantGrazingPeriodDoubling}) {
+    std::vector<Codim2Point> found = PointsOf(curve, type);
+    REQUIRE(found.size() == 3);
+    std::sort(found.begin(), found.end(),
+              [](const auto& a, const auto& b) { return a.point.parameter > b.point.parameter; });
+    for (int j = 1; j <= 3; ++j) {
+      p.omega = 2.0 * p.DampedFrequency() / j;
+      const Codim2Point& at = found[j - 1];
+      INFO(ToString(type) << " j = " << j << " at omega = " << at.point.parameter);
+      CHECK(std::abs(at.point.parameter - p.omega) < 1e-8);
+      CHECK(std::abs(at.point.parameter2 - p.SteadyAmplitude()) < 1e-8);
+      CHECK(at.second_residual < 1e-12);
+    }
+  }
+}
+
+TEST_CASE(
     "grazing limit: the paper's P(1,1) period-doubling curve in (omega, xs) and P(2,1)'s in "
     "(omega, r) end where their branches' impacts vanish with a multiplier tending to -1",
     "[curve][grazing-corner]") {
@@ -291,6 +362,13 @@ TEST_CASE(
     // for P(2,1); extrapolated, a few 1e-6 or less.)
     CHECK(LimitMultiplierGap(branch, At(PaperSystem(omega_c), second, value_c), graze, p, 1, -1.0) <
           1e-5);
+    // Seen from the grazing curve the corner is a resonant grazing: the
+    // period-doubling curve leaves it there.
+    const Codim2Point resonant =
+        ResonantGrazingNear(At(PaperSystem(omega_c), second, value_c), branch, graze, second,
+                            Codim2Type::kResonantGrazingPeriodDoubling, omega_c);
+    CHECK(std::abs(resonant.point.parameter - omega_c) < 1e-8);
+    CHECK(std::abs(resonant.point.parameter2 - value_c) < 1e-8);
     // P(1,1): the period doubling at value_c − δ (speed ∝ δ) tends to the
     // corner as δ → 0, smoothly (the curve crosses the grazing curve): the
     // quadratic through δ = 4h, 2h, h at 0 (error ~2e-8: 1.1e-6 at
@@ -332,6 +410,13 @@ TEST_CASE(
       BranchWith("xs", xs_c, omega_c - 0.01, near.orbit.eta, 1, 2, SpecialPointType::kGrazing);
   CHECK(std::abs(graze - omega_c) < 1e-8);
   CHECK(LimitMultiplierGap(branch, At(PaperSystem(omega_c), "xs", xs_c), graze, 1, 2, 1.0) < 1e-5);
+  // Seen from the grazing curve the corner is P(1,2)'s resonant grazing:
+  // the fold curve leaves it there.
+  const Codim2Point resonant =
+      ResonantGrazingNear(At(PaperSystem(omega_c), "xs", xs_c), branch, graze, "xs",
+                          Codim2Type::kResonantGrazingFold, omega_c);
+  CHECK(std::abs(resonant.point.parameter - omega_c) < 1e-8);
+  CHECK(std::abs(resonant.point.parameter2 - xs_c) < 1e-8);
   const std::array<double, 4> deltas{1.5e-4, 2e-4, 3e-4, 4e-4};
   Eigen::Vector4d gaps;
   for (int k = 0; k < 4; ++k) {

@@ -52,6 +52,7 @@ void BindCodim2(py::module_& module) {
           "type", [](const Codim2Point& c) { return ToString(c.type); },
           "'fold_flip', 'cusp', 'resonance_1_1' … 'resonance_1_4', 'fold_grazing', "
           "'period_doubling_grazing', 'neimark_sacker_grazing', 'double_grazing', "
+          "'resonant_grazing_fold', 'resonant_grazing_period_doubling', "
           "'sticking_onset', 'user_test'.")
       .def_readonly("user_test", &Codim2Point::user_test,
                     "A user test's zero: the test's name (its key in user_tests).")

@@ -379,10 +379,11 @@ CurveSetup SetUp(const CurveStart& start, const CurveOptions& options) {
   CurveSetup setup;
   setup.options = options;
   // P(1,q)'s impact vanishes where the non-impacting response touches the
-  // stop: that is the curve (p = 0 says so).
+  // stop: that is the curve (p = 0 says so). It keeps q: the resonant
+  // grazings on it are those of P(1,q), the orbit over q periods.
   setup.response = special.vanishing_impact >= 0;
   setup.options.orbit.p = setup.response ? 0 : orbit.p;
-  setup.options.orbit.q = setup.response ? 1 : orbit.q;
+  setup.options.orbit.q = orbit.q;
   if (setup.response) return setup;
   // η is at the orbit's own section stop, whichever stop that is.
   setup.options.orbit.map.stop = orbit.stop;
@@ -457,6 +458,10 @@ std::string ToString(Codim2Type type) {
       return "neimark_sacker_grazing";
     case Codim2Type::kDoubleGrazing:
       return "double_grazing";
+    case Codim2Type::kResonantGrazingFold:
+      return "resonant_grazing_fold";
+    case Codim2Type::kResonantGrazingPeriodDoubling:
+      return "resonant_grazing_period_doubling";
     case Codim2Type::kStickingOnset:
       return "sticking_onset";
     case Codim2Type::kUserTest:

@@ -10,6 +10,7 @@
 #include "continuation/defining_function.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/grazing_limit.hpp"
 
 namespace impactkit::detail {
 
@@ -238,7 +239,10 @@ std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
   point.parameter2 = Mu2(x);
   point.x = x;
   point.tangent = *tangent;
-  if (response_) return point;  // no orbit: the response has no impacts
+  if (response_) {  // no orbit: the response has no impacts
+    if (!GrazingLimits(x, &point)) return std::nullopt;
+    return point;
+  }
   const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
   const Eigen::VectorXd eta = Eta(x);
   if (!map || map->Apply(eta, options_.orbit.p, false).termination != Termination::kCompleted) {
@@ -247,7 +251,26 @@ std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
   point.orbit = DescribeOrbit(*map, eta, options_.orbit.p, options_.orbit.q);
   point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
   if (HasContactTime()) point.contact_time = x(eta_size_);
+  if (IsGrazing() && !GrazingLimits(x, &point)) return std::nullopt;
   return point;
+}
+
+bool CurveProblem::GrazingLimits(const Eigen::VectorXd& x, CurvePoint* point) const {
+  const int q = options_.orbit.q;
+  std::optional<std::vector<StopContact>> contacts;
+  if (response_) {
+    const System system = SystemAt(Mu1(x), Mu2(x));
+    contacts = std::vector<StopContact>{ResponseTouch(system, touched_stop_)};
+  } else {
+    const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
+    if (!map) return false;
+    contacts = TouchContacts(*map, Eta(x), options_.orbit.p, q, grazing_flight_, ContactTime(x),
+                             touched_stop_);
+  }
+  if (!contacts) return false;
+  const SpeedSplitMonodromy split = SplitMonodromy(SystemAt(Mu1(x), Mu2(x)), *contacts, q);
+  point->grazing_limits = {split.GrazingLimit(1.0), split.GrazingLimit(-1.0)};
+  return std::isfinite(point->grazing_limits[0]) && std::isfinite(point->grazing_limits[1]);
 }
 
 }  // namespace impactkit::detail

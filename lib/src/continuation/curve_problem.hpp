@@ -108,6 +108,10 @@ class CurveProblem {
                                                 const Eigen::VectorXd& eta) const;
   /// Grazing: t* lies after the flight's start and before its next impact.
   bool TouchInsideFlight(const Eigen::VectorXd& x) const;
+  /// Grazing: the grazing orbit's GrazingLimit(±1) at X into *point
+  /// (its touch from t*, or the response's closest approach); false if the
+  /// map fails.
+  bool GrazingLimits(const Eigen::VectorXd& x, CurvePoint* point) const;
 
   System base_;
   CurveOptions options_;

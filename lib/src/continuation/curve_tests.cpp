@@ -24,6 +24,14 @@ constexpr auto Fold = TestValue<SpecialPointType::kFold>;
 constexpr auto Flip = TestValue<SpecialPointType::kPeriodDoubling>;
 constexpr auto Torus = TestValue<SpecialPointType::kNeimarkSacker>;
 
+/// A grazing curve's GrazingLimit(±1): which curve leaves at its zero.
+template <int index>
+double GrazingLimit(const CurvePoint& point, const CurvePoint&) {
+  return point.grazing_limits[index];
+}
+constexpr auto FoldLeaves = GrazingLimit<0>;
+constexpr auto FlipLeaves = GrazingLimit<1>;
+
 /// The critical pair's e^{iθ}: the multiplier with θ in (0, π) nearest the
 /// unit circle; none when every multiplier is real.
 std::optional<std::complex<double>> CriticalPair(const CurvePoint& point) {
@@ -89,7 +97,9 @@ std::vector<SecondTest> SecondTests(SpecialPointType type) {
     default:
       return {{Codim2Type::kFoldGrazing, Fold, Any},
               {Codim2Type::kPeriodDoublingGrazing, Flip, Any},
-              {Codim2Type::kNeimarkSackerGrazing, Torus, OnUnitCircle}};
+              {Codim2Type::kNeimarkSackerGrazing, Torus, OnUnitCircle},
+              {Codim2Type::kResonantGrazingFold, FoldLeaves, Any},
+              {Codim2Type::kResonantGrazingPeriodDoubling, FlipLeaves, Any}};
   }
 }
 

@@ -40,6 +40,7 @@
 #include <array>
 #include <complex>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -63,12 +64,24 @@ enum class Codim2Type {
   kPeriodDoublingGrazing,
   kNeimarkSackerGrazing,
   kDoubleGrazing,  ///< a grazing curve meets another grazing: a second contact
+  /// A resonant grazing: on a grazing curve, where the square-root term
+  /// drops out of the fixed-point equation of the orbit with the new
+  /// impact, so that a fold curve of that orbit (P(p + 1, q)) leaves the
+  /// grazing curve (the grazing orbit's GrazingLimit(+1) is zero,
+  /// grazing_limit.hpp). For one mass at Ω = 2 ω_d q / j (Molenaar, de
+  /// Weger & van de Water 2001; Simpson & Ghosh 2026).
+  kResonantGrazingFold,
+  /// The same with GrazingLimit(−1): a period-doubling curve of the orbit
+  /// with the new impact leaves. For one mass the same point as the fold's;
+  /// with several masses in general another.
+  kResonantGrazingPeriodDoubling,
   kStickingOnset,  ///< an impact of the curve's orbit starts to chatter
   kUserTest,       ///< a user test's zero (CurveOptions::user_tests)
 };
 
 /// "fold_flip", "cusp", "resonance_1_1", …, "fold_grazing",
 /// "period_doubling_grazing", "neimark_sacker_grazing", "double_grazing",
+/// "resonant_grazing_fold", "resonant_grazing_period_doubling",
 /// "sticking_onset", "user_test": the name outputs use.
 std::string ToString(Codim2Type type);
 
@@ -115,6 +128,10 @@ struct CurvePoint {
   /// v_c(t*)): zero to the corrector's tolerance.
   Eigen::VectorXd defining;
   double contact_time = 0.0;  ///< grazing: t*, the time of the touch
+  /// Grazing: the grazing orbit's GrazingLimit(+1) and GrazingLimit(−1)
+  /// (grazing_limit.hpp), zero at a resonant grazing; NaN on other curves.
+  std::array<double, 2> grazing_limits{std::numeric_limits<double>::quiet_NaN(),
+                                       std::numeric_limits<double>::quiet_NaN()};
   std::array<double, kBifurcationTestCount> test_values{};
   Eigen::VectorXd x;        ///< the unknowns X
   Eigen::VectorXd tangent;  ///< unit tangent in X
