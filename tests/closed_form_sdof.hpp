@@ -76,6 +76,11 @@ struct SdofParameters {
   double Period() const { return 2.0 * std::numbers::pi / omega; }
   /// X = A / sqrt((k - mΩ²)² + (cΩ)²).
   double SteadyAmplitude() const { return a / std::hypot(k - m * omega * omega, c * omega); }
+  /// X'(Ω) = −A (−2mΩ (k − mΩ²) + c²Ω) / ((k − mΩ²)² + (cΩ)²)^{3/2}.
+  double SteadyAmplitudeRate() const {
+    const double d = k - m * omega * omega, squared = d * d + c * c * omega * omega;
+    return -a * (-2.0 * m * omega * d + c * c * omega) / std::pow(squared, 1.5);
+  }
   /// φ with tan φ = cΩ / (k - mΩ²), φ ∈ [0, π].
   double SteadyLag() const { return std::atan2(c * omega, k - m * omega * omega); }
   double NaturalFrequency() const { return std::sqrt(k / m); }

@@ -14,6 +14,7 @@
 #include "impactkit/continuation/curve.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/grazing_limit.hpp"
+#include "impactkit/orbits/grazing_normal_form.hpp"
 #include "seeded_orbit.hpp"
 #include "system_at.hpp"
 #include "touching_vertex.hpp"
@@ -330,6 +331,25 @@ TEST_CASE(
       CHECK(std::abs(at.point.parameter - p.omega) < 1e-8);
       CHECK(std::abs(at.point.parameter2 - p.SteadyAmplitude()) < 1e-8);
       CHECK(at.second_residual < 1e-12);
+      // Its normal form (unfolded in omega) is the response's closed form,
+      // A = Φ(T) = (−1)^j e^{−aT} I, and the square-root coefficient of the
+      // P(1,1) fixed point, n · (I − A)⁻¹ A W, vanishes.
+      p.xs = at.point.parameter2;
+      REQUIRE(at.normal_form.has_value());
+      const GrazingNormalForm& form = *at.normal_form;
+      const Eigen::Matrix2d phi = testing::SdofTransition(p, p.Period());
+      CHECK((form.linear - phi).cwiseAbs().maxCoeff() < 1e-8);
+      CHECK(std::abs(phi(0, 1)) < 1e-8);
+      const Eigen::Vector2d root(0.0, -(1.0 + p.r) * p.omega * std::sqrt(2.0 * p.xs));
+      CHECK((form.root - root).cwiseAbs().maxCoeff() < 1e-8);
+      // The unfolding's central difference errs by h² X'''/6, h = 1e-5:
+      // largest at j = 2, on the resonance peak (X ≈ 5), 4e-8 relative.
+      CHECK(std::abs(form.unfolding - p.SteadyAmplitudeRate()) <
+            1e-7 * std::abs(p.SteadyAmplitudeRate()));
+      const Eigen::Matrix2d identity = Eigen::Matrix2d::Identity();
+      const double kappa =
+          form.normal.dot((identity - form.linear).lu().solve(form.linear * form.root));
+      CHECK(std::abs(kappa) < 1e-8 * form.root.norm());
     }
   }
 }

@@ -26,13 +26,6 @@ System LibrarySystem(const SdofParameters& p) {
   return UniformChain({1, p.m, p.k, p.c}, Eigen::VectorXd::Constant(1, p.a), p.omega, p.xs, p.r);
 }
 
-/// X'(Ω) of X = A / sqrt((k − mΩ²)² + (cΩ)²).
-double AmplitudeRate(const SdofParameters& p) {
-  const double w = p.omega, d = p.k - p.m * w * w;
-  const double squared = d * d + p.c * p.c * w * w;
-  return -p.a * (-2.0 * p.m * w * d + p.c * p.c * w) / std::pow(squared, 1.5);
-}
-
 /// The paper's branch through the orbit P(p, q) seeded at `omega`, followed
 /// towards `to` to its grazing.
 Branch PaperBranchToGrazing(double omega, int p, int q, double to) {
@@ -191,7 +184,8 @@ TEST_CASE(
   CHECK(form.normal.isApprox(Eigen::RowVector2d(1.0, 0.0)));
   const Eigen::Vector2d root(0.0, -(1.0 + p.r) * p.omega * std::sqrt(2.0 * amplitude));
   CHECK((form.root - root).cwiseAbs().maxCoeff() < 1e-8);
-  CHECK(std::abs(form.unfolding - AmplitudeRate(p)) < 1e-8 * std::abs(AmplitudeRate(p)));
+  CHECK(std::abs(form.unfolding - p.SteadyAmplitudeRate()) <
+        1e-8 * std::abs(p.SteadyAmplitudeRate()));
   // Φ(T) of an under-damped mass has a complex pair: no 1-D reduction.
   CHECK_FALSE(form.reduced.has_value());
   CHECK_THAT(form.reduction_note, Catch::Contains("complex pair"));

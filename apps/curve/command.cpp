@@ -285,6 +285,7 @@ void RunCurve(const CurveRequest& request) {
     const RunProgress progress(request.parameter, request.parameter2);
     curve = ContinueCurve(start, options, progress.Control());
   }
+  PredictGrazings(start.system, &curve);
   PrintCurve(curve);
   if (curve.points.size() < 2) {
     throw std::runtime_error(

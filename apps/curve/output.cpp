@@ -67,6 +67,13 @@ void PrintCurve(const impactkit::Curve& curve) {
   fmt::print("  begins:   {} ({})\n", ToString(curve.begin), curve.begin_message);
   for (const Codim2Point& s : curve.codim2_points) {
     fmt::print("  codim 2:  {}\n", s.Describe(curve.parameter, curve.parameter2));
+    if (s.normal_form) fmt::print("            {}\n", s.normal_form->Describe());
+    if (s.normal_form && s.normal_form->prediction) {
+      fmt::print("            {}\n", s.normal_form->prediction->Describe());
+    }
+    if (!s.normal_form_note.empty()) {
+      fmt::print("            no normal form: {}\n", s.normal_form_note);
+    }
   }
   fmt::print("  ends:     {} ({})\n", ToString(curve.end), curve.end_message);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/io/curve_output.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "option_sets.hpp"
@@ -41,7 +42,11 @@ Curve ContinueCurvePy(const System& system, const Branch& branch, const SpecialP
   System at = system;
   SetParameter(at, branch.parameter, special.parameter);
   const InterruptibleRun run(progress);
-  return WithoutGil([&] { return ContinueCurve({at, special}, options, run); });
+  return WithoutGil([&] {
+    Curve curve = ContinueCurve({at, special}, options, run);
+    PredictGrazings(at, &curve);
+    return curve;
+  });
 }
 
 void BindCodim2(py::module_& module) {
@@ -64,6 +69,13 @@ void BindCodim2(py::module_& module) {
                     "|the curve's defining function| there.")
       .def_readonly("second_residual", &Codim2Point::second_residual,
                     "|the second test function| there.")
+      .def_property_readonly(
+          "normal_form", [](const Codim2Point& c) { return NormalFormDict(c.normal_form); },
+          "A point located on a grazing curve: the grazing orbit's normal form there, "
+          "unfolded in mu1, with its prediction (as SpecialPoint.normal_form); else None.")
+      .def_readonly("normal_form_note", &Codim2Point::normal_form_note,
+                    "Why such a point has no normal form, or where a bifurcation curve's grazing "
+                    "end has it.")
       .def("describe", &Codim2Point::Describe, py::arg("name1"), py::arg("name2"),
            "One line, as the command line prints it.");
 }

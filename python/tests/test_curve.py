@@ -67,3 +67,40 @@ def test_equals_the_command_line(curve, tmp_path):
         return [line for line in path.read_text().splitlines() if not line.startswith("#")]
 
     assert data_lines(py_table) == data_lines(table)
+
+
+def test_a_resonant_grazing_carries_its_normal_form_as_the_command_line_writes_it(tmp_path):
+    # Where P(1,1)'s impact vanishes the curve is the response's grazing; on
+    # it the period-doubling curve of P(1,1) leaves at omega = 1.2352,
+    # xs = 0.3863 (docs/continuation.md). The grazing orbit there is the
+    # response, so the normal form's multipliers are the free flow's over a
+    # period, exp(s T) for the eigenvalues s of the first-order matrix of
+    # M = I, K = [[2, -1], [-1, 1]], C = 0.1 K: another computation.
+    system = impactkit.System.paper(1.2)
+    system["xs"] = 0.37
+    branch = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),
+                                       from_=1.2, to=2.0, direction="increasing")
+    graze = branch.special_points[-1]
+    assert graze.type == "grazing" and graze.vanishing_impact == 0
+    curve = impactkit.continue_curve(system, branch, graze, parameter2="xs", from_=0.5, to=3.0,
+                                     from2=0.0, to2=8.0)
+    resonant = [c for c in curve.codim2_points if c.type == "resonant_grazing_period_doubling"]
+    assert len(resonant) == 1
+    point = resonant[0]
+    assert abs(point.parameter - 1.235190036) < 1e-8
+    stiffness = np.array([[2.0, -1.0], [-1.0, 1.0]])
+    first_order = np.block([[np.zeros((2, 2)), np.eye(2)], [-stiffness, -0.1 * stiffness]])
+    period = 2 * np.pi / point.parameter
+    expected = np.exp(np.linalg.eigvals(first_order) * period)
+    form = point.normal_form
+    eigenvalues = np.array([complex(re, im) for re, im in form["eigenvalues"]])
+    assert np.max([np.min(np.abs(expected - e)) for e in eigenvalues]) < 1e-10
+    assert form["prediction"]["motion"]
+    out = tmp_path / "c.json"
+    subprocess.run([os.environ["IMPACTKIT_CLI"], "curve", "--type", "grazing", "--p", "1",
+                    "--q", "1", "--omega", "1.2", "--set", "xs=0.37", "--param2", "xs",
+                    "--from", "0.5", "--to", "3", "--from2", "0", "--to2", "8", "--json",
+                    str(out)], check=True, capture_output=True)
+    cli = [c for c in json.loads(out.read_text())["codim2_points"]
+           if c["type"] == "resonant_grazing_period_doubling"]
+    assert [c["normal_form"] for c in cli] == [form]

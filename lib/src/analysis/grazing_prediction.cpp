@@ -305,6 +305,16 @@ void PredictGrazings(const System& system, Branch* branch,
   }
 }
 
+void PredictGrazings(const System& system, Curve* curve, const GrazingPredictionOptions& options) {
+  for (Codim2Point& special : curve->codim2_points) {
+    if (!special.normal_form) continue;
+    System at = system;
+    SetParameter(at, curve->parameter2, special.point.parameter2);
+    SetParameter(at, curve->parameter, special.normal_form->parameter_value);
+    special.normal_form->prediction = PredictGrazing(at, *special.normal_form, options);
+  }
+}
+
 void PredictGrazings(const System& system, Diagram* diagram,
                      const GrazingPredictionOptions& options) {
   for (DiagramBranch& branch : diagram->branches) PredictGrazings(system, &branch.branch, options);

@@ -46,6 +46,16 @@ struct HalfCurve {
 /// False on the non-impacting response's grazing curve: no orbit there.
 bool HasOrbit(const CurvePoint& point) { return point.orbit.multipliers.size() > 0; }
 
+/// A second test's zero located at `point`, its value there `residual`.
+Codim2Point Located(Codim2Type type, const CurvePoint& point, double residual) {
+  Codim2Point special;
+  special.type = type;
+  special.point = point;
+  special.defining_residual = point.defining.cwiseAbs().maxCoeff();
+  special.second_residual = residual;
+  return special;
+}
+
 /// Traces one direction of a curve from an oriented start point.
 class CurveTracer {
  public:
@@ -230,7 +240,7 @@ class CurveTracer {
           !test.accept(located)) {
         continue;
       }
-      found.push_back({test.type, located, located.defining.cwiseAbs().maxCoeff(), residual, ""});
+      found.push_back(Located(test.type, located, residual));
     }
     for (const UserTest& test : options_.user_tests) {
       if (!HasOrbit(a) || !HasOrbit(b) || (test.value(a.orbit) > 0) == (test.value(b.orbit) > 0)) {
@@ -238,8 +248,8 @@ class CurveTracer {
       }
       const CurvePoint located =
           LocateZero(a, b, [&test](const CurvePoint& p) { return test.value(p.orbit); });
-      found.push_back({Codim2Type::kUserTest, located, located.defining.cwiseAbs().maxCoeff(),
-                       std::abs(test.value(located.orbit)), test.name});
+      found.push_back(Located(Codim2Type::kUserTest, located, std::abs(test.value(located.orbit))));
+      found.back().user_test = test.name;
     }
     std::sort(found.begin(), found.end(), [](const Codim2Point& x, const Codim2Point& y) {
       return x.point.arclength < y.point.arclength;
@@ -431,6 +441,39 @@ void CheckStart(const CurveStart& start, const CurveOptions& options, double mu1
 
 }  // namespace
 
+namespace {
+
+/// The grazing orbit's normal form at a point located on a grazing curve,
+/// or why there is none; at a bifurcation curve's grazing end, where it is.
+void DescribeGrazing(const CurveProblem& problem, Codim2Point* special) {
+  const bool meeting = special->type == Codim2Type::kFoldGrazing ||
+                       special->type == Codim2Type::kPeriodDoublingGrazing ||
+                       special->type == Codim2Type::kNeimarkSackerGrazing;
+  if (!problem.IsGrazing()) {
+    if (meeting) {
+      special->normal_form_note =
+          "on the grazing curve through this point (--type grazing) it is located again, with "
+          "the grazing orbit's normal form";
+    }
+    return;
+  }
+  if (special->type == Codim2Type::kDoubleGrazing) {
+    special->normal_form_note =
+        "two contacts at once: the normal form of one contact does not describe it";
+    return;
+  }
+  if (special->type == Codim2Type::kUserTest) return;
+  try {
+    const std::optional<GrazingOrbit> orbit = problem.GrazingOrbitAt(special->point.x);
+    Require(orbit.has_value(), "the grazing orbit cannot be followed round");
+    special->normal_form = ComputeGrazingNormalForm(*orbit, problem.Options().parameter);
+  } catch (const InvalidInput& error) {
+    special->normal_form_note = error.what();
+  }
+}
+
+}  // namespace
+
 bool HasCurve(SpecialPointType type) {
   return type == SpecialPointType::kFold || type == SpecialPointType::kPeriodDoubling ||
          type == SpecialPointType::kNeimarkSacker || type == SpecialPointType::kGrazing;
@@ -548,6 +591,7 @@ Curve ContinueCurve(const CurveStart& start, const CurveOptions& options,
   curve.points.insert(curve.points.end(), forward.points.begin(), forward.points.end());
   curve.codim2_points.insert(curve.codim2_points.end(), forward.codim2.begin(),
                              forward.codim2.end());
+  for (Codim2Point& special : curve.codim2_points) DescribeGrazing(problem, &special);
   curve.begin = backward.end;
   curve.begin_message = backward.message;
   curve.end = forward.end;

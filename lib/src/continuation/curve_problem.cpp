@@ -255,20 +255,25 @@ std::optional<CurvePoint> CurveProblem::Describe(const Eigen::VectorXd& x,
   return point;
 }
 
-bool CurveProblem::GrazingLimits(const Eigen::VectorXd& x, CurvePoint* point) const {
-  const int q = options_.orbit.q;
-  std::optional<std::vector<StopContact>> contacts;
+std::optional<GrazingOrbit> CurveProblem::GrazingOrbitAt(const Eigen::VectorXd& x) const {
+  GrazingOrbit orbit{SystemAt(Mu1(x), Mu2(x)), options_.orbit.q, {}};
   if (response_) {
-    const System system = SystemAt(Mu1(x), Mu2(x));
-    contacts = std::vector<StopContact>{ResponseTouch(system, touched_stop_)};
-  } else {
-    const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
-    if (!map) return false;
-    contacts = TouchContacts(*map, Eta(x), options_.orbit.p, q, grazing_flight_, ContactTime(x),
-                             touched_stop_);
+    orbit.contacts = {ResponseTouch(orbit.system, touched_stop_)};
+    return orbit;
   }
-  if (!contacts) return false;
-  const SpeedSplitMonodromy split = SplitMonodromy(SystemAt(Mu1(x), Mu2(x)), *contacts, q);
+  const ImpactMap* map = Along1(Mu2(x)).ImpactMapAt(Mu1(x));
+  if (!map) return std::nullopt;
+  std::optional<std::vector<StopContact>> contacts = TouchContacts(
+      *map, Eta(x), options_.orbit.p, orbit.q, grazing_flight_, ContactTime(x), touched_stop_);
+  if (!contacts) return std::nullopt;
+  orbit.contacts = std::move(*contacts);
+  return orbit;
+}
+
+bool CurveProblem::GrazingLimits(const Eigen::VectorXd& x, CurvePoint* point) const {
+  const std::optional<GrazingOrbit> orbit = GrazingOrbitAt(x);
+  if (!orbit) return false;
+  const SpeedSplitMonodromy split = SplitMonodromy(orbit->system, orbit->contacts, orbit->q);
   point->grazing_limits = {split.GrazingLimit(1.0), split.GrazingLimit(-1.0)};
   return std::isfinite(point->grazing_limits[0]) && std::isfinite(point->grazing_limits[1]);
 }

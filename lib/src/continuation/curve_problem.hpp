@@ -80,6 +80,9 @@ class CurveProblem {
   /// The unit null vector of dF/dX, continuing `previous` (or from the SVD).
   std::optional<Eigen::VectorXd> Tangent(const Eigen::VectorXd& x,
                                          const Eigen::VectorXd& previous) const;
+  /// Grazing: the grazing orbit at X, at (μ1, μ2): its touch at t* (or the
+  /// response's closest approach) and its impacts; empty if the map fails.
+  std::optional<GrazingOrbit> GrazingOrbitAt(const Eigen::VectorXd& x) const;
   /// The curve point at a converged X; empty if the map fails there.
   std::optional<CurvePoint> Describe(const Eigen::VectorXd& x,
                                      const Eigen::VectorXd& previous) const;
@@ -108,9 +111,7 @@ class CurveProblem {
                                                 const Eigen::VectorXd& eta) const;
   /// Grazing: t* lies after the flight's start and before its next impact.
   bool TouchInsideFlight(const Eigen::VectorXd& x) const;
-  /// Grazing: the grazing orbit's GrazingLimit(±1) at X into *point
-  /// (its touch from t*, or the response's closest approach); false if the
-  /// map fails.
+  /// Grazing: its GrazingLimit(±1) at X into *point; false if the map fails.
   bool GrazingLimits(const Eigen::VectorXd& x, CurvePoint* point) const;
 
   System base_;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "io/normal_form_json.hpp"
+
 namespace impactkit {
 namespace {
 
@@ -62,6 +64,9 @@ std::string CurvesJson(const std::vector<Curve>& curves, const std::string& syst
                               {"second_residual", s.second_residual},
                               {"description", s.Describe(c.parameter, c.parameter2)}};
       if (s.type == Codim2Type::kUserTest) point["user_test"] = s.user_test;
+      if (s.normal_form || !s.normal_form_note.empty()) {
+        AddNormalForm(s.normal_form, s.normal_form_note, &point);
+      }
       j["codim2_points"].push_back(std::move(point));
     }
   }

@@ -28,6 +28,7 @@
 #include "impactkit/analysis/classify.hpp"
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/continuation/curve.hpp"
 #include "impactkit/continuation/diagram_graph.hpp"
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/grazing_normal_form.hpp"
@@ -120,6 +121,10 @@ void PredictGrazings(const System& system, Branch* branch,
                      const GrazingPredictionOptions& options = {});
 /// The same for every branch of `diagram` (of `system`) and its grazing nodes.
 void PredictGrazings(const System& system, Diagram* diagram,
+                     const GrazingPredictionOptions& options = {});
+/// The same for the codimension-two points of `curve` (of `system`'s
+/// family) that carry a normal form.
+void PredictGrazings(const System& system, Curve* curve,
                      const GrazingPredictionOptions& options = {});
 
 }  // namespace impactkit

@@ -145,6 +145,14 @@ struct Codim2Point {
   double defining_residual = 0.0;
   double second_residual = 0.0;
   std::string user_test;  ///< a user test's zero: the test's name
+  /// A point located on a grazing curve (its second tests): the grazing
+  /// orbit's local map there (grazing_normal_form.hpp), unfolded in μ1 at
+  /// the point's μ2. Empty elsewhere, or where it cannot be computed (at a
+  /// fold the family does not exist on both sides of μ1 to unfold it);
+  /// normal_form_note says why, and for a bifurcation curve's grazing end
+  /// where to find it.
+  std::optional<GrazingNormalForm> normal_form;
+  std::string normal_form_note;
   /// One line: "fold_flip at omega = 1.61, r = 0.83 (residuals 1e-12, 3e-10)".
   std::string Describe(const std::string& name1, const std::string& name2) const;
 };
