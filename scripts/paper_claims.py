@@ -212,7 +212,7 @@ FIGURE_ROWS = """\
 | 25 | chatter impact speeds small near | 0.138, 0.228 | dips at 0.138 and 0.227 (Fig. 7, [diagrams.md](diagrams.md)) | yes |
 | 26 | attractors at 1.701, 1.72, 1.75, 1.81 near grazing; 1.72 two 1-D sets | | Fig. 8/9: 1.72 two disconnected 1-D sets with a sharp point; 1.701 and 1.75 periodic for us | [maps.md](maps.md) |
 | 27 | low-velocity return map at 1.72, complex in 0.22–0.23 | 1.72 | 1-D, branched, steep drop at 0.21–0.23 | yes ([maps.md](maps.md)) |
-| 28 | Eq. 18 square-root map describes it | | fit s = 0.436, d = 0.211, λ = 0.771, rms 0.051 | qualitatively only ([maps.md](maps.md)) |
+| 28 | Eq. 18 square-root map describes it | | fit s = 0.436, d = 0.211, λ = 0.771, rms 0.051; from first principles 40 of the 41 grazing orbits in 1.6–1.9 reduce to Eq. 18 | the form yes, the fitted coefficients are no grazing orbit's ([below](#eq-18-from-first-principles), [maps.md](maps.md)) |
 | 29 | chaotic chatter (Fig. 12) | 1.72–1.725 | none found at ΔΩ = 0.0005 | no ([maps.md](maps.md)) |
 | 30 | first chatter impact of Fig. 4(b) | t ≈ 778 | t = 779.60 | read off the paper's figure; cause not found ([simulation.md](simulation.md)) |"""
 
