@@ -5,6 +5,7 @@
 // grazing seen from its two sides (the orbit that touches, the orbit whose
 // impact vanishes) giving one normal form.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
@@ -13,6 +14,8 @@
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/io/system_file.hpp"
+#include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/grazing_normal_form.hpp"
 #include "seeded_orbit.hpp"
 #include "system_at.hpp"
@@ -216,4 +219,53 @@ TEST_CASE(
   CHECK((reduced.linear - touch.linear).cwiseAbs().maxCoeff() < 1e-7);
   CHECK((reduced.root - touch.root).cwiseAbs().maxCoeff() < 1e-7);
   CHECK(std::abs(reduced.unfolding - touch.unfolding) < 1e-6);
+}
+
+TEST_CASE(
+    "normal form: a vanishing impact whose reduced orbit repeats (the clearance's P(7,3) without "
+    "its impact is P(2,1) three times) gives the shortest grazing orbit's, P(2,1)'s multipliers",
+    "[grazing][normal-form]") {
+  // At Omega = 1.0383071 P(7,3)'s impact vanishes where P(2,1) touches
+  // (docs/continuation.md, the clearance's grazing table). The normal form
+  // over three periods with one touch would miss the touches of the other
+  // two; over P(2,1)'s one period its multipliers are P(2,1)'s, found
+  // afresh by FindOrbit beside the grazing (to the family's O(distance)).
+  System system = ReadSystemFile(IMPACTKIT_SOURCE_DIR "/examples/systems/clearance-1dof.toml");
+  SetParameter(system, "omega", 1.0384);
+  OrbitOptions orbit_options;
+  orbit_options.p = 7;
+  orbit_options.q = 3;
+  PeriodicOrbit p73;
+  REQUIRE(FindOrbit(system, Eigen::Vector2d(5.872954073819907, 0.46334922286225705), orbit_options,
+                    &p73)
+              .termination == Termination::kConverged);
+  ContinuationOptions options;
+  options.from = 1.0384;
+  options.to = 1.03;
+  options.direction = ContinuationDirection::kDecreasing;
+  options.orbit = orbit_options;
+  const Branch branch = ContinueBranch({system, p73, {}}, options);
+  const auto graze =
+      std::find_if(branch.special_points.begin(), branch.special_points.end(),
+                   [](const SpecialPoint& s) { return s.type == SpecialPointType::kGrazing; });
+  REQUIRE(graze != branch.special_points.end());
+  CHECK(graze->vanishing_impact >= 0);
+  REQUIRE(graze->normal_form.has_value());
+  const GrazingNormalForm& form = *graze->normal_form;
+  CHECK((form.p == 2 && form.q == 1));
+  // P(2,1) just before the grazing (on the side where it has no contact),
+  // from its impact at the lower stop there.
+  SetParameter(system, "omega",
+               graze->parameter - form.unfolding / std::abs(form.unfolding) * 1e-7);
+  orbit_options.p = 2;
+  orbit_options.q = 1;
+  orbit_options.map.stop = 1;
+  PeriodicOrbit p21;
+  REQUIRE(FindOrbit(system, Eigen::Vector2d(3.1420920997917707, -1.2438752868666993), orbit_options,
+                    &p21)
+              .termination == Termination::kConverged);
+  REQUIRE(p21.multipliers.size() == form.eigenvalues.size());
+  for (Eigen::Index k = 0; k < form.eigenvalues.size(); ++k) {
+    CHECK(std::abs(p21.multipliers(k) - form.eigenvalues(k)) < 1e-5);
+  }
 }

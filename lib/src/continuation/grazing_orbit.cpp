@@ -105,7 +105,7 @@ GrazingOrbit GrazingOrbitAt(const System& system, const Branch& branch, const Sp
   System at = system;
   SetParameter(at, branch.parameter, graze.parameter);
   if (graze.vanishing_impact >= 0 && branch.p == 1) {
-    return {at, branch.q, {ResponseTouch(at, detail::NonImpactingTouchStop(at))}};
+    return ShortestPeriod({at, branch.q, {ResponseTouch(at, detail::NonImpactingTouchStop(at))}});
   }
   System on_branch = system;
   SetParameter(on_branch, branch.parameter, graze.point.parameter);
@@ -114,7 +114,8 @@ GrazingOrbit GrazingOrbitAt(const System& system, const Branch& branch, const Sp
   const ImpactMap map(on_branch, map_options);
   const PeriodicOrbit& orbit = graze.point.orbit;
   if (graze.vanishing_impact >= 0) {
-    return ReducedGrazingOrbit(at, map, orbit.eta, branch.p, branch.q, graze.vanishing_impact);
+    return ShortestPeriod(
+        ReducedGrazingOrbit(at, map, orbit.eta, branch.p, branch.q, graze.vanishing_impact));
   }
   const OrbitContacts& contacts = orbit.contacts;
   Require(contacts.clearance.has_value(), "the grazing orbit has no flight maximum");

@@ -99,6 +99,27 @@ double Unfolding(const GrazingOrbit& orbit, const NamedParameter& parameter, dou
   return (penetration_at(value + h) - penetration_at(value - h)) / (2.0 * h);
 }
 
+/// Impacts repeating after this (relative to the orbit's scale) are one.
+constexpr double kRepeatTolerance = 1e-9;
+
+/// Whether `orbit`'s impacts (contacts after the touch) repeat every
+/// `impacts` of them, `periods` forcing periods apart.
+bool ImpactsRepeat(const GrazingOrbit& orbit, std::size_t impacts, int periods) {
+  const double shift = periods * orbit.system.ForcingPeriod();
+  double scale = 1.0;
+  for (const StopContact& c : orbit.contacts) {
+    scale = std::max({scale, c.state.x.cwiseAbs().maxCoeff(), c.state.v.cwiseAbs().maxCoeff()});
+  }
+  for (std::size_t j = 1; j + impacts < orbit.contacts.size(); ++j) {
+    const StopContact &a = orbit.contacts[j], &b = orbit.contacts[j + impacts];
+    const double gap = std::max({std::abs(b.state.t - a.state.t - shift),
+                                 (b.state.x - a.state.x).cwiseAbs().maxCoeff(),
+                                 (b.state.v - a.state.v).cwiseAbs().maxCoeff()});
+    if (a.stop != b.stop || !(gap <= kRepeatTolerance * scale)) return false;
+  }
+  return true;
+}
+
 /// The eigenvector of `matrix` for its real eigenvalue `lambda`.
 Eigen::VectorXd RealEigenvector(const Eigen::MatrixXd& matrix, double lambda) {
   const Eigen::Index n = matrix.rows();
@@ -140,6 +161,21 @@ void Reduce(GrazingNormalForm* form) {
 }
 
 }  // namespace
+
+GrazingOrbit ShortestPeriod(const GrazingOrbit& orbit) {
+  const std::size_t impacts = orbit.contacts.empty() ? 0 : orbit.contacts.size() - 1;
+  // The most repetitions first: the shortest period.
+  for (int k = orbit.q; k >= 2; --k) {
+    if (orbit.q % k != 0 || impacts % static_cast<std::size_t>(k) != 0) continue;
+    const std::size_t each = impacts / static_cast<std::size_t>(k);
+    if (!ImpactsRepeat(orbit, each, orbit.q / k)) continue;
+    GrazingOrbit shortest{orbit.system, orbit.q / k, {}};
+    shortest.contacts.assign(orbit.contacts.begin(),
+                             orbit.contacts.begin() + static_cast<std::ptrdiff_t>(each + 1));
+    return shortest;
+  }
+  return orbit;
+}
 
 Eigen::VectorXd GrazingNormalForm::Map(const Eigen::VectorXd& z, double mu) const {
   const double depth = normal.dot(z) + mu;

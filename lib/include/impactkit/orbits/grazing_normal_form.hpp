@@ -54,6 +54,15 @@ struct GrazingOrbit {
   std::vector<StopContact> contacts;
 };
 
+/// `orbit` over its shortest period: where its impacts repeat every q / k
+/// forcing periods (an orbit whose impact vanishes can leave P(2,1) traced
+/// three times, as the P(6,3) of P(7,3)), the touch and one repetition's
+/// impacts over q / k periods, whose normal form is the grazing's own (the
+/// touch then recurs every q / k periods, where the longer one would miss
+/// it); else `orbit` itself. Impacts repeat when their stops match and
+/// their states agree to 1e-9 of the orbit's scale.
+GrazingOrbit ShortestPeriod(const GrazingOrbit& orbit);
+
 /// The one-dimensional reduction, where it holds.
 struct SquareRootReduction {
   double lambda = 0.0;      ///< the dominant multiplier (real)
