@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
+#include "core/symmetric_eigen.hpp"
 #include "impactkit/core/errors.hpp"
 
 namespace impactkit {
@@ -30,9 +32,36 @@ Eigen::MatrixXd FirstOrderMatrix(const Eigen::MatrixXd& m_inv_k, const Eigen::Ma
   return s;
 }
 
+/// Normal modes from this many degrees of freedom on are kept in the
+/// modal form (LinearFlow::modal_); below, the dense form costs
+/// microseconds to set up, its 4 x 4 product is the fastest per event, and
+/// the usual small models keep their results bit for bit
+/// (tests/test_fingerprints.cpp).
+constexpr Eigen::Index kModalFormFrom = 16;
+
+/// M⁻¹ B: a row scaling for a diagonal M (a chain's) of kModalFormFrom
+/// or more degrees of freedom, where a dense Cholesky factorisation is
+/// O(N³); otherwise the Cholesky solve, which below that size costs
+/// nothing and keeps small models' results bit for bit (a vector B is
+/// solved as a vector: the matrix kernel rounds otherwise).
+template <typename Rhs>
+Rhs SolveMass(const Eigen::MatrixXd& m, const Rhs& b) {
+  if (m.rows() >= kModalFormFrom && detail::IsDiagonal(m)) {
+    return (b.array().colwise() / m.diagonal().array()).matrix();
+  }
+  return m.llt().solve(b);
+}
+
+/// A B through A's sparse view: O(N²) for a chain's tridiagonal A, where
+/// the dense product is O(N³).
+Eigen::MatrixXd SparseProduct(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  const Eigen::SparseMatrix<double> sparse = a.sparseView();
+  return sparse * b;
+}
+
 /// C M⁻¹ K = K M⁻¹ C (Caughey & O'Kelly): the normal modes decouple C too.
 bool IsClassicallyDamped(const Eigen::MatrixXd& c, const Eigen::MatrixXd& m_inv_k) {
-  const Eigen::MatrixXd m_inv_c_term = c * m_inv_k;  // C M⁻¹ K
+  const Eigen::MatrixXd m_inv_c_term = SparseProduct(c, m_inv_k);  // C M⁻¹ K
   const double scale = c.norm() * m_inv_k.norm();
   if (scale == 0) return true;
   return (m_inv_c_term - m_inv_c_term.transpose()).norm() <= 1e-10 * scale;
@@ -40,24 +69,51 @@ bool IsClassicallyDamped(const Eigen::MatrixXd& c, const Eigen::MatrixXd& m_inv_
 
 /// A real basis of invariant 2-planes of S and the 2 x 2 blocks on them.
 struct BlockDecomposition {
-  Eigen::MatrixXd basis;   ///< V (2n x 2n)
+  /// V (2n x 2n); in the modal form Φ (n x n), V = Φ ⊗ I₂ in coordinates
+  /// that interleave each mode's q_j and q_j'.
+  Eigen::MatrixXd basis;
   Eigen::MatrixXd blocks;  ///< 2 x 2n, B_j in columns 2j, 2j+1
+  /// V⁻¹ = Φᵀ M ⊗ I₂ in the modal form (Φᵀ M Φ = I): no inverse to form.
+  Eigen::MatrixXd modal_inverse;
 };
 
-/// Normal modes: z_j = (q_j, q_j'), B_j = [[0, 1], [-ω_j², -2 a_j]].
+/// Normal modes: z_j = (q_j, q_j'), B_j = [[0, 1], [-ω_j², -2 a_j]], with
+/// modal damping 2 a_j = φ_jᵀ C φ_j.
+Eigen::MatrixXd NormalModeBlocks(const Eigen::VectorXd& squares, const Eigen::MatrixXd& phi,
+                                 const Eigen::MatrixXd& c) {
+  const Eigen::VectorXd modal_damping =
+      phi.cwiseProduct(SparseProduct(c, phi)).colwise().sum().transpose();
+  Eigen::MatrixXd blocks(2, 2 * phi.cols());
+  for (Eigen::Index j = 0; j < phi.cols(); ++j) {
+    blocks.block<2, 2>(0, 2 * j) << 0.0, 1.0, -squares(j), -modal_damping(j);
+  }
+  return blocks;
+}
+
+/// Classical damping in the dense form: V holds each φ_j twice.
 BlockDecomposition ClassicalBlocks(const Eigen::MatrixXd& m, const Eigen::MatrixXd& c,
                                    const Eigen::MatrixXd& k) {
   const Eigen::Index n = m.rows();
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> modes(k, m);  // Φᵀ M Φ = I
   const Eigen::MatrixXd& phi = modes.eigenvectors();
-  BlockDecomposition d{Eigen::MatrixXd::Zero(2 * n, 2 * n), Eigen::MatrixXd::Zero(2, 2 * n)};
+  BlockDecomposition d{Eigen::MatrixXd::Zero(2 * n, 2 * n),
+                       NormalModeBlocks(modes.eigenvalues(), phi, c), Eigen::MatrixXd()};
   for (Eigen::Index j = 0; j < n; ++j) {
     d.basis.col(2 * j).head(n) = phi.col(j);
     d.basis.col(2 * j + 1).tail(n) = phi.col(j);
-    const double modal_damping = phi.col(j).dot(c * phi.col(j));  // 2 a_j
-    d.blocks.block<2, 2>(0, 2 * j) << 0.0, 1.0, -modes.eigenvalues()(j), -modal_damping;
   }
   return d;
+}
+
+/// Classical damping in the modal form, the modes by the structured
+/// eigensolver where M is diagonal and K tridiagonal (a chain): O(N²) in
+/// all for a chain, where the dense form's inverse alone is O(N³).
+BlockDecomposition ModalBlocks(const Eigen::MatrixXd& m, const Eigen::MatrixXd& c,
+                               const Eigen::MatrixXd& k) {
+  detail::GeneralizedModes modes = detail::SolveGeneralized(k, m, true);
+  Eigen::MatrixXd blocks = NormalModeBlocks(modes.values, modes.vectors, c);
+  Eigen::MatrixXd inverse = SparseProduct(m, modes.vectors).transpose();  // Φᵀ M
+  return {std::move(modes.vectors), std::move(blocks), std::move(inverse)};
 }
 
 /// Non-classical damping: complex modes of S. A conjugate pair σ ± iω with
@@ -69,7 +125,8 @@ BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
   const Eigen::VectorXcd& lambda = solver.eigenvalues();
   const Eigen::MatrixXcd& vectors = solver.eigenvectors();
   const double tol = 1e-12 * std::max(1.0, lambda.cwiseAbs().maxCoeff());
-  BlockDecomposition d{Eigen::MatrixXd::Zero(dim, dim), Eigen::MatrixXd::Zero(2, dim)};
+  BlockDecomposition d{Eigen::MatrixXd::Zero(dim, dim), Eigen::MatrixXd::Zero(2, dim),
+                       Eigen::MatrixXd()};
   Eigen::Index col = 0;
   std::vector<Eigen::Index> reals;
   for (Eigen::Index i = 0; i < dim; ++i) {
@@ -92,6 +149,25 @@ BlockDecomposition ComplexBlocks(const Eigen::MatrixXd& s) {
     col += 2;
   }
   return d;
+}
+
+/// W = V⁻¹ of the dense form, refused where V is too ill-conditioned.
+Eigen::MatrixXd DenseInverse(const Eigen::MatrixXd& basis) {
+  const Eigen::FullPivLU<Eigen::MatrixXd> basis_lu(basis);
+  // Rounding in the modal coordinates grows with the basis's condition
+  // number: up to 1e6 the flow keeps ~1e-10. A defective state matrix (a
+  // repeated eigenvalue with one eigenvector, e.g. M = I, K the paper's
+  // chain, C = diag(2, 0)) has computed eigenvectors that nearly coincide,
+  // a condition number ~1/√ε, and a flow wrong in the second digit.
+  if (const double condition = 1.0 / basis_lu.rcond(); !(condition <= kMaxBasisCondition)) {
+    throw InvalidInput(fmt::format(
+        "the free modes are (nearly) defective: non-proportional damping with a repeated "
+        "eigenvalue (condition number of the modal basis {:.2g}, at most {:.0e}); the exact "
+        "flow needs distinct modes: change C slightly (e.g. no zero damping on one mass) or "
+        "use proportional damping",
+        condition, kMaxBasisCondition));
+  }
+  return basis_lu.inverse();
 }
 
 /// y = A x for the change of basis at every event. A 2 x 2 or 4 x 4 A (one
@@ -263,35 +339,25 @@ LinearFlow::LinearFlow(const Eigen::MatrixXd& mass, const Eigen::MatrixXd& dampi
     clock_ = ModeClock({}, omega);
     return;
   }
-  const Eigen::LLT<Eigen::MatrixXd> mass_factor(mass);
-  const Eigen::MatrixXd m_inv_k = mass_factor.solve(stiffness);
-  const Eigen::MatrixXd m_inv_c = mass_factor.solve(damping);
-  system_matrix_ = FirstOrderMatrix(m_inv_k, m_inv_c);
-
-  const BlockDecomposition d = IsClassicallyDamped(damping, m_inv_k)
-                                   ? ClassicalBlocks(mass, damping, stiffness)
-                                   : ComplexBlocks(system_matrix_);
-  basis_ = d.basis;
-  const Eigen::FullPivLU<Eigen::MatrixXd> basis_lu(basis_);
-  // Rounding in the modal coordinates grows with the basis's condition
-  // number: up to 1e6 the flow keeps ~1e-10. A defective state matrix (a
-  // repeated eigenvalue with one eigenvector, e.g. M = I, K the paper's
-  // chain, C = diag(2, 0)) has computed eigenvectors that nearly coincide,
-  // a condition number ~1/√ε, and a flow wrong in the second digit.
-  if (const double condition = 1.0 / basis_lu.rcond(); !(condition <= kMaxBasisCondition)) {
-    throw InvalidInput(fmt::format(
-        "the free modes are (nearly) defective: non-proportional damping with a repeated "
-        "eigenvalue (condition number of the modal basis {:.2g}, at most {:.0e}); the exact "
-        "flow needs distinct modes: change C slightly (e.g. no zero damping on one mass) or "
-        "use proportional damping",
-        condition, kMaxBasisCondition));
+  const Eigen::MatrixXd m_inv_k = SolveMass(mass, stiffness);
+  system_matrix_ = FirstOrderMatrix(m_inv_k, SolveMass(mass, damping));
+  BlockDecomposition d;
+  if (!IsClassicallyDamped(damping, m_inv_k)) {
+    d = ComplexBlocks(system_matrix_);
+  } else if (n < kModalFormFrom) {
+    d = ClassicalBlocks(mass, damping, stiffness);
+  } else {
+    d = ModalBlocks(mass, damping, stiffness);
   }
-  inverse_basis_ = n > 0 ? basis_lu.inverse() : Eigen::MatrixXd();
+  modal_ = d.modal_inverse.size() > 0;
+  basis_ = std::move(d.basis);
+  inverse_basis_ = modal_ ? std::move(d.modal_inverse) : DenseInverse(basis_);
 
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(2 * n), f = Eigen::VectorXd::Zero(2 * n);
-  b.tail(n) = mass_factor.solve(forcing);
-  f.tail(n) = mass_factor.solve(constant_force);
-  const Eigen::VectorXd modal_b = inverse_basis_ * b, modal_f = inverse_basis_ * f;
+  // b = (0, M⁻¹A), f = (0, M⁻¹f0) in modal coordinates.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n), b = SolveMass(mass, forcing);
+  Eigen::VectorXd modal_b, modal_f;
+  ToModal(zero, b, &modal_b);
+  ToModal(zero, SolveMass(mass, constant_force), &modal_f);
 
   std::vector<ModeBasis> modes;
   shifted_blocks_.resize(2, 2 * n);
@@ -360,20 +426,15 @@ Eigen::VectorXd LinearFlow::Transient(double t, const Eigen::VectorXd& x,
 // temporary was ~14 % of its instructions (docs/performance.md).
 void LinearFlow::Transient(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                            Eigen::VectorXd* z) const {
-  thread_local Eigen::VectorXd y;
-  const Eigen::Index n = dof_;
-  y.resize(2 * n);
-  y << x, v;
   const std::complex<double> rotor = ForcingRotor(omega_, t);
-  z->resize(2 * n);
-  Multiply(inverse_basis_, y, z);
+  ToModal(x, v, z);
   *z -= (steady_forced_ * rotor).real();
   *z -= steady_constant_;
 }
 
 void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
                        Eigen::VectorXd* v) const {
-  thread_local Eigen::VectorXd z, y;
+  thread_local Eigen::VectorXd z;
   const Eigen::Index n = dof_;
   const double tau = t - t0;
   const std::complex<double> rotor = ForcingRotor(omega_, t);
@@ -384,16 +445,13 @@ void LinearFlow::State(double t0, const Eigen::VectorXd& z0, double t, Eigen::Ve
     const Eigen::Vector2d zj = z0.segment<2>(2 * j);
     z.segment<2>(2 * j) += ec * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
-  y.resize(2 * n);
-  Multiply(basis_, z, &y);
-  *x = y.head(n);
-  *v = y.tail(n);
+  FromModal(z, x, v);
 }
 
 void LinearFlow::StateFrom(double t0, const Eigen::VectorXd& x0, const Eigen::VectorXd& v0,
                            const Eigen::VectorXd& z0, double t, Eigen::VectorXd* x,
                            Eigen::VectorXd* v) const {
-  thread_local Eigen::VectorXd dz, dy;
+  thread_local Eigen::VectorXd dz, dx, dv;
   const Eigen::Index n = dof_;
   const double tau = t - t0;
   // y(t) − y(t0) = V [(e^{Bτ} − I) z0 + Re(Z e^{iΩt0} (e^{iΩτ} − 1))], and
@@ -408,10 +466,9 @@ void LinearFlow::StateFrom(double t0, const Eigen::VectorXd& x0, const Eigen::Ve
     const Eigen::Vector2d zj = z0.segment<2>(2 * j);
     dz.segment<2>(2 * j) += ec_increment * zj + es * (shifted_blocks_.block<2, 2>(0, 2 * j) * zj);
   }
-  dy.resize(2 * n);
-  Multiply(basis_, dz, &dy);
-  *x = x0 + dy.head(n);
-  *v = v0 + dy.tail(n);
+  FromModal(dz, &dx, &dv);
+  *x = x0 + dx;
+  *v = v0 + dv;
 }
 
 void LinearFlow::SteadyState(double t, Eigen::VectorXd* x, Eigen::VectorXd* v) const {
@@ -420,10 +477,16 @@ void LinearFlow::SteadyState(double t, Eigen::VectorXd* x, Eigen::VectorXd* v) c
 
 PreparedOutput LinearFlow::Prepare(const LinearOutput& output) const {
   const Eigen::Index n = dof_;
-  Eigen::RowVectorXd l(2 * n);
-  l << output.wx, output.wv;
   PreparedOutput p;
-  p.modal_weights = l * basis_;
+  if (modal_) {  // l V = (l_x φ_j, l_v φ_j) per mode
+    p.modal_weights.resize(2 * n);
+    p.modal_weights(Eigen::seq(0, 2 * n - 2, 2)) = output.wx * basis_;
+    p.modal_weights(Eigen::seq(1, 2 * n - 1, 2)) = output.wv * basis_;
+  } else {
+    Eigen::RowVectorXd l(2 * n);
+    l << output.wx, output.wv;
+    p.modal_weights = l * basis_;
+  }
   p.forced = (p.modal_weights.cast<std::complex<double>>() * steady_forced_).value() +
              output.cos_amplitude;
   p.constant = p.modal_weights.dot(steady_constant_) + output.offset;
@@ -465,7 +528,56 @@ Eigen::MatrixXd LinearFlow::Transition(double tau) const {
     modal.block<2, 2>(2 * j, 2 * j) =
         ec * Eigen::Matrix2d::Identity() + es * shifted_blocks_.block<2, 2>(0, 2 * j);
   }
-  return basis_ * modal * inverse_basis_;
+  // W = V⁻¹ has V's pattern transposed: rows 2j and 2j + 1 hold φ_jᵀ M.
+  return DenseBasis(basis_) * modal * DenseBasis(inverse_basis_.transpose()).transpose();
+}
+
+Eigen::MatrixXd LinearFlow::DenseBasis(const Eigen::MatrixXd& half) const {
+  if (!modal_) return half;
+  const Eigen::Index n = dof_;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  dense(Eigen::seq(0, n - 1), Eigen::seq(0, 2 * n - 2, 2)) = half;
+  dense(Eigen::seq(n, 2 * n - 1), Eigen::seq(1, 2 * n - 1, 2)) = half;
+  return dense;
+}
+
+void LinearFlow::ToModal(const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                         Eigen::VectorXd* z) const {
+  const Eigen::Index n = dof_;
+  z->resize(2 * n);
+  if (modal_) {  // z = (Φᵀ M x, Φᵀ M v), interleaved
+    thread_local Eigen::VectorXd q, p;
+    q.resize(n);
+    p.resize(n);
+    Multiply(inverse_basis_, x, &q);
+    Multiply(inverse_basis_, v, &p);
+    (*z)(Eigen::seq(0, 2 * n - 2, 2)) = q;
+    (*z)(Eigen::seq(1, 2 * n - 1, 2)) = p;
+    return;
+  }
+  thread_local Eigen::VectorXd y;
+  y.resize(2 * n);
+  y << x, v;
+  Multiply(inverse_basis_, y, z);
+}
+
+void LinearFlow::FromModal(const Eigen::VectorXd& z, Eigen::VectorXd* x, Eigen::VectorXd* v) const {
+  const Eigen::Index n = dof_;
+  if (modal_) {  // x = Φ q, v = Φ q'
+    thread_local Eigen::VectorXd q, p;
+    q = z(Eigen::seq(0, 2 * n - 2, 2));
+    p = z(Eigen::seq(1, 2 * n - 1, 2));
+    x->resize(n);
+    v->resize(n);
+    Multiply(basis_, q, x);
+    Multiply(basis_, p, v);
+    return;
+  }
+  thread_local Eigen::VectorXd y;
+  y.resize(2 * n);
+  Multiply(basis_, z, &y);
+  *x = y.head(n);
+  *v = y.tail(n);
 }
 
 }  // namespace impactkit

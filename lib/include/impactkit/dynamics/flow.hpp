@@ -17,7 +17,11 @@
 /// which covers under-, critically and over-damped modes alike. Classically
 /// damped systems (C M⁻¹ K = K M⁻¹ C) use the real normal modes, so exact
 /// critical damping is fine; otherwise the blocks come from the complex
-/// eigenvectors of S (pairs of conjugate or real eigenvalues).
+/// eigenvectors of S (pairs of conjugate or real eigenvalues). From 16
+/// degrees of freedom on, normal modes are kept as Φ alone (V = Φ ⊗ I₂,
+/// V⁻¹ = Φᵀ M ⊗ I₂): a change of basis is two n x n products instead of
+/// one 2n x 2n, and nothing is inverted; a chain's Φ comes from its
+/// tridiagonal eigenproblem in O(n²) (docs/theory.md, "Long chains").
 ///
 /// Any linear output w = l_x·x + l_v·v + α cos Ωt + β along a flight is then an
 /// exponential sum (Signal) whose derivatives of every order have the same
@@ -170,10 +174,19 @@ class LinearFlow {
   const Eigen::MatrixXd& SystemMatrix() const { return system_matrix_; }
 
  private:
+  /// z = V⁻¹ (x, v) and (x, v) = V z, in either form of V.
+  void ToModal(const Eigen::VectorXd& x, const Eigen::VectorXd& v, Eigen::VectorXd* z) const;
+  void FromModal(const Eigen::VectorXd& z, Eigen::VectorXd* x, Eigen::VectorXd* v) const;
+  /// V (of basis_) or V⁻¹ (of inverse_basis_) as a 2n x 2n matrix.
+  Eigen::MatrixXd DenseBasis(const Eigen::MatrixXd& half) const;
+
   int dof_ = 0;
   double omega_ = 0.0;
   double fastest_rate_ = 0.0;
   ModeClock clock_;
+  /// The modal form: basis_ is Φ and inverse_basis_ Φᵀ M (n x n), the
+  /// modal coordinates interleaving q_j and q_j'.
+  bool modal_ = false;
   Eigen::MatrixXd basis_;           ///< V: y = V z, columns in pairs per mode
   Eigen::MatrixXd inverse_basis_;   ///< W = V⁻¹
   Eigen::MatrixXd shifted_blocks_;  ///< 2 x 2n: per mode, B_j + a_j I
