@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/symmetric_eigen.hpp"
 #include "dynamics/subsystem.hpp"
 
 namespace impactkit {
@@ -17,7 +18,7 @@ HybridSystem::HybridSystem(const System& system) : system_(system) {
   for (int k = 0; k < system_.StopCount(); ++k) {
     held_.push_back(std::make_unique<const Mode>(system_, stops_, StopBit(k)));
   }
-  inverse_mass_ = system_.mass.inverse();
+  inverse_mass_ = detail::SymmetricInverse(system_.mass);
   time_scale_ = free_->Flow().ShortestPeriod();
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 
+#include "core/symmetric_eigen.hpp"
 #include "hybrid/stuck_subsystem.hpp"
 #include "impactkit/dynamics/mode_clock.hpp"
 #include "impactkit/hybrid/system_flows.hpp"
@@ -51,7 +52,7 @@ Mode::Mode(const System& system, const std::vector<Stop>& stops, StopSet held)
           held == 0 ? stop.ImpulseDirection() : stop.ImpulseDirection(system.mass, moving_);
     }
   }
-  inverse_mass_ = system.mass(moving_, moving_).inverse();
+  inverse_mass_ = detail::SymmetricInverse(system.mass(moving_, moving_));
   damping_rows_ = system.damping(moving_, Eigen::all);
   inverse_mass_rows_.resize(stops.size());
   damping_responses_.resize(stops.size());

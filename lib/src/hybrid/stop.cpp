@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/symmetric_eigen.hpp"
+
 namespace impactkit {
 namespace {
 
@@ -29,6 +31,8 @@ Stop::Stop(const System& system, int index)
 
 Eigen::VectorXd Stop::ImpulseDirection(const Eigen::MatrixXd& mass,
                                        const std::vector<int>& moving) const {
+  // A diagonal M moves no other mass (e_c), and needs no O(N³) solve.
+  if (detail::IsDiagonal(mass)) return Eigen::VectorXd::Unit(mass.rows(), dof_);
   const int c = IndexAmong(moving, dof_);
   const auto m = static_cast<int>(moving.size());
   const Eigen::VectorXd column =
@@ -66,7 +70,7 @@ LinearOutput Stop::ContactForce(const System& s, const std::vector<int>& moving,
                                 const Eigen::VectorXd& held_positions) const {
   const int c = dof_;
   const Eigen::MatrixXd ms = s.mass(moving, moving);
-  const Eigen::RowVectorXd coupling = s.mass(c, moving) * ms.inverse();
+  const Eigen::RowVectorXd coupling = s.mass(c, moving) * detail::SymmetricInverse(ms);
   LinearOutput f;
   f.wx = -s.stiffness(c, moving) + coupling * s.stiffness(moving, moving);
   f.wv = -s.damping(c, moving) + coupling * s.damping(moving, moving);

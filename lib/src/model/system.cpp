@@ -2,10 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/SparseLU>
 #include <bit>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
+
+#include "core/symmetric_eigen.hpp"
 
 namespace impactkit {
 namespace {
@@ -21,13 +25,6 @@ void RequireSquare(const Eigen::MatrixXd& m, int n, const std::string& name) {
   RequireFinite(m, name);
   const double scale = m.cwiseAbs().maxCoeff();
   Require((m - m.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale, name + " must be symmetric");
-}
-
-/// Smallest eigenvalue of a symmetric matrix.
-double SmallestEigenvalue(const Eigen::MatrixXd& m) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly)
-      .eigenvalues()
-      .minCoeff();
 }
 
 void ValidateChain(const ChainParameters& chain) {
@@ -49,13 +46,14 @@ void ValidateMatrices(const System& s) {
   RequireSquare(s.damping, n, "C (damping matrix)");
   RequireSquare(s.stiffness, n, "K (stiffness matrix)");
   const double m_scale = s.mass.cwiseAbs().maxCoeff();
-  Require(m_scale > 0 && SmallestEigenvalue(s.mass) > 1e-12 * m_scale,
+  Require(m_scale > 0 && detail::EigenvaluesExceed(s.mass, 1e-12 * m_scale),
           "M (mass matrix) must be positive definite (every mass > 0)");
   const double k_scale = s.stiffness.cwiseAbs().maxCoeff();
-  Require(k_scale > 0 && SmallestEigenvalue(s.stiffness) > 1e-12 * k_scale,
+  Require(k_scale > 0 && detail::EigenvaluesExceed(s.stiffness, 1e-12 * k_scale),
           "K (stiffness matrix) must be positive definite (every mass tied by a spring)");
   const double c_scale = s.damping.cwiseAbs().maxCoeff();
-  Require(c_scale == 0 || SmallestEigenvalue(s.damping) >= -1e-12 * c_scale,
+  // (>= −1e-12 c_scale: no eigenvalue below it, to the rounding of a count.)
+  Require(c_scale == 0 || detail::EigenvaluesExceed(s.damping, -1e-12 * c_scale),
           "C (damping matrix) must be positive semi-definite (no negative damping)");
 }
 
@@ -94,14 +92,25 @@ std::string Named(const System& s, const char* chain_name, const char* matrix_na
   return s.chain ? chain_name : matrix_name;
 }
 
+/// Z⁻¹ A for the dynamic stiffness Z; a sparse LU where Z is tridiagonal
+/// (a chain's: O(N) against the dense O(N³)), infinite where Z is singular.
+Eigen::VectorXcd ForcedResponse(const Eigen::MatrixXcd& z, const Eigen::VectorXcd& a,
+                                bool tridiagonal) {
+  if (!tridiagonal) return z.partialPivLu().solve(a);
+  const Eigen::SparseMatrix<std::complex<double>> sparse = z.sparseView();
+  Eigen::SparseLU<Eigen::SparseMatrix<std::complex<double>>> lu(sparse);
+  if (lu.info() != Eigen::Success) {
+    return Eigen::VectorXcd::Constant(a.size(), std::numeric_limits<double>::infinity());
+  }
+  return lu.solve(a);
+}
+
 /// The scales derived from the entries: natural frequencies, the forcing
 /// period on the fastest mode's time scale, the forced response.
 void ValidateDerivedScales(const System& s) {
   const std::string mk =
       Named(s, "m (mass) and k (stiffness)", "M (mass matrix) and K (stiffness matrix)");
-  const Eigen::VectorXd squares = Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(
-                                      s.stiffness, s.mass, Eigen::EigenvaluesOnly)
-                                      .eigenvalues();
+  const Eigen::VectorXd squares = detail::SolveGeneralized(s.stiffness, s.mass, false).values;
   const double slowest = std::sqrt(squares.minCoeff()), fastest = std::sqrt(squares.maxCoeff());
   Require(slowest >= kSmallest && fastest <= kLargest,
           fmt::format("{} give natural frequencies from {:g} to {:g}; they must lie within {:g} … "
@@ -119,10 +128,12 @@ void ValidateDerivedScales(const System& s) {
   const Eigen::MatrixXcd dynamic_stiffness =
       (s.stiffness - s.omega * s.omega * s.mass).cast<std::complex<double>>() +
       std::complex<double>(0.0, s.omega) * s.damping.cast<std::complex<double>>();
-  const double response = dynamic_stiffness.partialPivLu()
-                              .solve(s.forcing.cast<std::complex<double>>())
-                              .cwiseAbs()
-                              .maxCoeff();
+  const double response =
+      ForcedResponse(dynamic_stiffness, s.forcing.cast<std::complex<double>>(),
+                     detail::IsTridiagonal(s.mass) && detail::IsTridiagonal(s.stiffness) &&
+                         detail::IsTridiagonal(s.damping))
+          .cwiseAbs()
+          .maxCoeff();
   // Resonance (an infinite or NaN response) is the flows' to report.
   Require(!(std::isfinite(response) && response > kLargest),
           fmt::format("A (forcing) gives a forced response of amplitude {:g} at omega = {:g}; at "
