@@ -51,8 +51,9 @@ void RebuildChain(System& s, Change change) {
 }
 
 void SetDof(System& s, double value) {
-  // The modal decomposition costs O(N³) and every event O(N²): n = 1000
-  // takes half a minute per forcing period (docs/performance.md).
+  // A chain's set-up costs O(N²) and every event O(N²): n = 1000 starts in
+  // about half a second, and each event costs ~1.5 ms (docs/performance.md,
+  // "Long chains").
   if (!(std::isfinite(value) && value >= 1 && value == std::floor(value) &&
         value <= kMaxDegreesOfFreedom)) {
     throw InvalidInput(fmt::format("n (number of masses) must be a whole number in [1, {}], got {}",
