@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <optional>
+#include <vector>
 
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/system.hpp"
@@ -21,12 +22,35 @@ struct StickingSeed {
   Eigen::VectorXd state;  ///< the last release of the window, a section state of sticking_map.hpp
 };
 
+/// Records, at every release after a stuck segment, the stop and the
+/// section state there (x, v without that stop's DOF, t): the releases of
+/// a window from which a sticking orbit is seeded.
+class ReleaseRecorder : public Observer {
+ public:
+  explicit ReleaseRecorder(const System& system) : system_(system) {}
+  void OnSegment(const Segment& segment) override;
+  void OnRelease(const Release& release) override;
+
+  /// The window's last release with the least (k, q) for which the release
+  /// k releases earlier (counting every stop's) is from the same stop and
+  /// the same state q forcing periods (of length `period`) before, q <=
+  /// max_q, to 1e-6 relative; nothing if there is none.
+  std::optional<StickingSeed> Seed(double period, int max_q) const;
+
+ private:
+  struct Recorded {
+    int stop;
+    Eigen::VectorXd state;
+  };
+  const System& system_;
+  Eigen::VectorXd x_, v_;
+  double stuck_end_ = -1.0;
+  std::vector<Recorded> releases_;
+};
+
 /// Simulates `transient` periods from rest, then 2 max_q + 1 more, and
-/// returns the last release with the least (k, q) for which the release k
-/// releases earlier (counting every stop's) is from the same stop and the
-/// same state q periods before (to 1e-6 relative); nothing if the window
-/// has no release or its releases do not repeat. Throws
-/// InvalidInput for transient < 0, max_q < 1 or invalid options.
+/// returns ReleaseRecorder::Seed of that window. Throws InvalidInput for
+/// transient < 0, max_q < 1 or invalid options.
 std::optional<StickingSeed> SeedStickingFromSimulation(const System& system, int transient = 500,
                                                        int max_q = 32,
                                                        const SimulationOptions& options = {});
