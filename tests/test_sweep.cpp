@@ -9,6 +9,7 @@
 #include "impactkit/analysis/sweep.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
 
 using Catch::Matchers::Contains;
@@ -73,6 +74,38 @@ void RequireIdentical(const SweepResult& a, const SweepResult& b) {
       REQUIRE(p.impacts[i].t == q.impacts[i].t);
       REQUIRE(p.impacts[i].velocity == q.impacts[i].velocity);
     }
+  }
+}
+
+/// One value of a sweep run twice: with the early end of its transient
+/// (the default) and with its whole transient.
+struct BothWays {
+  SweepPoint early, full;
+};
+
+BothWays RunBothWays(const System& system, SweepOptions options) {
+  options.full_transient = false;
+  BothWays both{RunSweep(system, options).points.front(), {}};
+  options.full_transient = true;
+  both.full = RunSweep(system, options).points.front();
+  return both;
+}
+
+/// The early cell records what the whole run does: the same class, the
+/// same impacts and per-period ranges to `tolerance` (both runs end their
+/// transient within ~1e-10 of the same orbit, sweep.hpp).
+void RequireSameRecord(const SweepPoint& early, const SweepPoint& full, double tolerance) {
+  REQUIRE(early.classification.ToString() == full.classification.ToString());
+  REQUIRE(early.impacts.size() == full.impacts.size());
+  for (std::size_t i = 0; i < early.impacts.size(); ++i) {
+    INFO("impact " << i);
+    CHECK_THAT(early.impacts[i].t, WithinAbs(full.impacts[i].t, tolerance));
+    CHECK_THAT(early.impacts[i].velocity, WithinAbs(full.impacts[i].velocity, tolerance));
+  }
+  REQUIRE(early.range_contact.size() == full.range_contact.size());
+  for (std::size_t k = 0; k < early.range_contact.size(); ++k) {
+    CHECK_THAT(early.range_contact[k], WithinAbs(full.range_contact[k], tolerance));
+    CHECK_THAT(early.range_first[k], WithinAbs(full.range_first[k], tolerance));
   }
 }
 
@@ -276,4 +309,59 @@ TEST_CASE("bad sweep input is rejected before any work", "[sweep]") {
   o.fixed_state = RestState(PaperSystem());
   o.fixed_state->x(1) = 0.2;  // beyond the stop xs = 0.1
   rejects(o, "beyond the stop");
+}
+
+TEST_CASE("a long transient ends early only once its orbit is confirmed, as the whole run ends",
+          "[sweep][early]") {
+  // Damping c = 0.03 instead of 0.1: the start from x1 = 2 decays over
+  // hundreds of periods before the P(1,1) of Omega = 1.3 shows.
+  System s = PaperSystem(1.3);
+  SetParameter(s, "c", 0.03);
+  SweepOptions options = ShortSweep(1.3, 1.3, 1);
+  options.start = SweepStart::kFixed;
+  options.fixed_state = RestState(s);
+  options.fixed_state->x(0) = 2.0;
+  const BothWays both = RunBothWays(s, options);
+  CHECK(both.full.periods_run == 330);
+  CHECK(both.early.periods_run < both.full.periods_run);
+  CHECK(both.early.periods_run > 100);
+  CHECK(both.early.classification.ToString() == "P(1,1)");
+  RequireSameRecord(both.early, both.full, 1e-8);
+}
+
+TEST_CASE("near a period doubling, where periodicity is slow to show, the class is the whole run's",
+          "[sweep][early]") {
+  // P(1,1) doubles at Omega = 1.6130 (docs/continuation.md): its multiplier
+  // near -1 contracts the transient slowly, by about 0.99 a period at 1.61.
+  SECTION("Omega = 1.61: confirmed late, once the periods left suffice") {
+    SweepOptions options = ShortSweep(1.61, 1.61, 1);
+    options.transient_periods = 500;
+    options.recorded_periods = 100;
+    const BothWays both = RunBothWays(PaperSystem(), options);
+    CHECK(both.full.classification.ToString() == "P(1,1)");
+    CHECK(both.early.periods_run > 300);
+    CHECK(both.early.periods_run < both.full.periods_run);
+    RequireSameRecord(both.early, both.full, 1e-8);
+  }
+  SECTION("Omega = 1.612: not settled in 300 periods, run whole, unresolved both ways") {
+    const BothWays both = RunBothWays(PaperSystem(), ShortSweep(1.612, 1.612, 1));
+    CHECK(both.full.classification.kind == MotionKind::kUnresolved);
+    CHECK(both.early.periods_run == both.full.periods_run);
+    RequireSameRecord(both.early, both.full, 0.0);
+  }
+}
+
+TEST_CASE("a chaotic cell runs its whole transient", "[sweep][early]") {
+  const BothWays both = RunBothWays(PaperSystem(), ShortSweep(1.76, 1.76, 1));
+  CHECK(both.early.classification.kind == MotionKind::kChaotic);
+  CHECK(both.full.classification.kind == MotionKind::kChaotic);
+  CHECK(both.early.periods_run == both.full.periods_run);
+}
+
+TEST_CASE("a sticking cell ends early on its release map's orbit, as the whole run ends",
+          "[sweep][early]") {
+  const BothWays both = RunBothWays(PaperSystem(), ShortSweep(0.2, 0.2, 1));
+  CHECK(both.full.classification.ToString() == "P(inf,1)");
+  CHECK(both.early.periods_run < both.full.periods_run);
+  RequireSameRecord(both.early, both.full, 1e-8);
 }

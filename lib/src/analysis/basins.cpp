@@ -170,6 +170,7 @@ std::string BasinsTask::Identity() const {
     text +=
         fmt::format(" base_x={} base_v={}", fmt::join(o.base->x, ","), fmt::join(o.base->v, ","));
   }
+  if (o.run.full_transient) text += " full_transient";
   return text;
 }
 

@@ -111,6 +111,7 @@ std::string SweepIdentity(const SweepOptions& o) {
   if (o.fixed_state) {
     text += fmt::format(" x0={} v0={}", Numbers(o.fixed_state->x), Numbers(o.fixed_state->v));
   }
+  if (o.full_transient) text += " full_transient";
   return text;
 }
 

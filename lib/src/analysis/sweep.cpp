@@ -14,6 +14,7 @@
 #include <optional>
 #include <thread>
 
+#include "analysis/settling.hpp"
 #include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/core/parameter_grid.hpp"
@@ -85,21 +86,30 @@ class ValueRun {
   bool RunTo(HybridState& state, int k, Observer* observer) {
     const double t_end = static_cast<double>(k) * period_;
     if (!(t_end > state.t)) return true;
+    const double t_begin = state.t;
     const SimulationSummary summary =
         observer ? simulator_.Run(state, t_end, *observer) : simulator_.Run(state, t_end);
+    periods_run_ += static_cast<int>(std::lround((state.t - t_begin) / period_));
     events_ += summary.impacts + summary.chatter_jumps + summary.releases;
     status_ = summary.termination;
     return status_ == Termination::kCompleted;
   }
 
+  /// Moves the clock of a state at a whole period on to period `k`
+  /// without running: the forcing is T-periodic, so a state on an orbit of
+  /// q periods, moved by a multiple of q, is where the run would have been.
+  void Skip(HybridState& state, int k) const { state.t = static_cast<double>(k) * period_; }
+
   double Period() const { return period_; }
   std::int64_t Events() const { return events_; }
+  int PeriodsRun() const { return periods_run_; }
   Termination Status() const { return status_; }
 
  private:
   Simulator simulator_;
   double period_;
   std::int64_t events_ = 0;
+  int periods_run_ = 0;
   Termination status_ = Termination::kCompleted;
 };
 
@@ -111,40 +121,159 @@ std::vector<double> Ranges(const std::vector<PeriodExtrema>& periods, int i) {
   return ranges;
 }
 
-/// One value from `state` (time reset to 0); `state` ends where the run
-/// ended. False if the simulator stopped early.
-bool RunValue(const System& system, const SweepOptions& options, HybridState& state,
-              SweepPoint* point) {
-  ValueRun run(system, options);
-  const int transient = options.transient_periods;
-  const int end = transient + options.recorded_periods;
-  const int window = std::max(options.recorded_periods, 2 * options.classify.period.max_q + 1);
-  const int first_classified = std::max(0, end - window);
-  state.t = 0.0;
+/// The early certainty's windows (sweep.hpp, docs/theory.md §9): 2 min(max_q,
+/// 8) + 1 periods, so that a window stays short beside the transient,
+/// compared to the classification's tolerance.
+ProbeOptions ProbeOptionsFor(const SweepOptions& options, int end) {
+  ProbeOptions probe;
+  probe.period = {std::min(options.classify.period.max_q, 8), options.classify.period.tolerance};
+  probe.end = end;
+  return probe;
+}
 
+/// A value's periods: [0, transient) discarded, [transient, end) recorded,
+/// [first_classified, end) classified (sweep.hpp).
+struct ValuePeriods {
+  explicit ValuePeriods(const SweepOptions& options)
+      : transient(options.transient_periods),
+        end(transient + options.recorded_periods),
+        first_classified(std::max(
+            0, end - std::max(options.recorded_periods, 2 * options.classify.period.max_q + 1))) {}
+  int transient, end, first_classified;
+};
+
+/// Runs the transient to period `end` under a TransientProbe. Once it
+/// confirms an orbit, runs on until the state has settled on it, at a
+/// whole period before `end`, and sets `settled`; otherwise runs to `end`.
+/// False if the simulator stopped early.
+bool SettleTransient(const System& system, const SweepOptions& options, ValueRun& run,
+                     HybridState& state, int end, std::optional<Settling>* settled) {
+  TransientProbe probe(system, run.Period(), ProbeOptionsFor(options, end));
+  if (run.RunTo(state, end, &probe)) return true;
+  if (!probe.Settled()) return false;  // the simulator stopped early
+  // Stopped after the event that followed the confirmation.
+  const int settled_at =
+      static_cast<int>(std::ceil(state.t / run.Period())) + probe.Settled()->periods;
+  if (settled_at >= end) return run.RunTo(state, end, nullptr);
+  *settled = probe.Settled();
+  return run.RunTo(state, settled_at, nullptr);
+}
+
+/// `simulated` (the values of periods [end - simulated.size(), end)) with
+/// the periods [first, end - simulated.size()) before them filled by
+/// copies of their last q: the values of periods [first, end).
+std::vector<double> Repeated(const std::vector<double>& simulated, int q, int first, int end) {
+  const int from = end - static_cast<int>(simulated.size());
+  std::vector<double> values;
+  values.reserve(end - first);
+  for (int k = first; k < from; ++k) {
+    const int offset = ((k - end) % q + q) % q;  // period k's place among the last q
+    values.push_back(simulated[simulated.size() - q + offset]);
+  }
+  values.insert(values.end(), simulated.begin(), simulated.end());
+  return values;
+}
+
+/// Runs from the current period `from` to the end, recording: impacts,
+/// strobes and chatter from `from` on, per-period extrema of the recorded
+/// part. Fills `point` and classifies. A value settled on an orbit of q > 0
+/// periods may start after the recorded window's start (RunValue): the
+/// recorded periods before `from` are then copies of the last q simulated,
+/// which the orbit repeats to the settling accuracy (and, should the
+/// extrema not cover every simulated period, the motion is left
+/// unclassified, so that the value is run again whole). False if the
+/// simulator stopped early.
+bool RecordWindow(const System& system, const SweepOptions& options, ValueRun& run,
+                  HybridState& state, const ValuePeriods& periods, int q, SweepPoint* point) {
   SteadyWindowRecorder steady(run.Period());
   ExtremaRecorder extrema(run.Period());
   ObserverList recorded;
   recorded.Add(steady);
   recorded.Add(extrema);
-
-  const bool reached = run.RunTo(state, first_classified, nullptr) &&
-                       run.RunTo(state, transient, &steady) && run.RunTo(state, end, &recorded);
-  point->termination = run.Status();
-  point->events = run.Events();
-  const double t_record = static_cast<double>(transient) * run.Period();
+  const int from =
+      std::max(periods.transient, static_cast<int>(std::lround(state.t / run.Period())));
+  const bool reached =
+      run.RunTo(state, periods.transient, &steady) && run.RunTo(state, periods.end, &recorded);
+  const double t_record = periods.transient * run.Period();
+  const double t_from = from * run.Period(), span = q * run.Period();
+  // Copies of the last q periods' impacts moved back by whole spans into
+  // [t_record, t_from), in time order.
+  for (int m = q > 0 ? (periods.end - periods.transient) / q + 1 : 0; m >= 1; --m) {
+    for (const ImpactView i : steady.Impacts()) {
+      const double t = i.t - m * span;
+      if (i.t >= periods.end * run.Period() - span && t >= t_record && t < t_from) {
+        point->impacts.push_back(SweepImpact{t, i.phase, i.velocity, i.stop});
+      }
+    }
+  }
   for (const ImpactView i : steady.Impacts()) {
     if (i.t >= t_record) point->impacts.push_back(SweepImpact{i.t, i.phase, i.velocity, i.stop});
   }
   if (!steady.Impacts().empty() && steady.Impacts().back().t >= t_record) {
     point->last_impact = steady.Impacts().back().Owned();
   }
-  const std::vector<PeriodExtrema> periods = extrema.CompletePeriods();
-  point->range_contact = Ranges(periods, system.stops[0].dof);
-  point->range_first = Ranges(periods, 0);
+  const std::vector<PeriodExtrema> extremes = extrema.CompletePeriods();
+  point->range_contact = Ranges(extremes, system.stops[0].dof);
+  point->range_first = Ranges(extremes, 0);
+  const bool copied = from > periods.transient;
+  if (copied && static_cast<int>(extremes.size()) != periods.end - from) return reached;
+  if (copied) {
+    point->range_contact = Repeated(point->range_contact, q, periods.transient, periods.end);
+    point->range_first = Repeated(point->range_first, q, periods.transient, periods.end);
+  }
   if (reached) {
     point->classification = ClassifyMotion(system, steady.Strobe(), steady.Impacts(),
                                            steady.ChatterEnds(), options.classify);
+  }
+  return reached;
+}
+
+/// The window shows the period the transient's early end was confirmed
+/// on, or a divisor of it: near a period doubling the transient still
+/// alternates when a probe window sees it, and the P(2,2) confirmed is the
+/// P(1,1) run twice, which the window, settled, shows as such.
+bool ShowsPeriod(const MotionPeriod& window, const MotionPeriod& confirmed) {
+  return window.periodic && window.sticking == confirmed.sticking && confirmed.q % window.q == 0 &&
+         window.p * confirmed.q == confirmed.p * window.q;
+}
+
+/// One value from `state` (time reset to 0); `state` ends where the run
+/// ended. False if the simulator stopped early. Unless `full_transient`,
+/// the transient may end early at a confirmed orbit of q periods
+/// (SettleTransient); the clock then moves on by whole periods of the
+/// orbit to the last 2q + 1 periods, which the period test needs, and only
+/// those are simulated (RecordWindow). Should they not show the confirmed
+/// period, the value is run again, whole.
+bool RunValue(const System& system, const SweepOptions& options, bool full_transient,
+              HybridState& state, SweepPoint* point) {
+  const HybridState start = state;
+  ValueRun run(system, options);
+  const ValuePeriods periods(options);
+  state.t = 0.0;
+  std::optional<Settling> settled;
+  bool reached = full_transient ? run.RunTo(state, periods.first_classified, nullptr)
+                                : SettleTransient(system, options, run, state,
+                                                  periods.first_classified, &settled);
+  if (settled) {
+    // Settled at period k < first_classified <= end - (2q + 1) (q <= 8 <= max_q).
+    const int k = static_cast<int>(std::lround(state.t / run.Period()));
+    run.Skip(state, k + (periods.end - 2 * settled->q - 1 - k) / settled->q * settled->q);
+  }
+  reached = reached &&
+            RecordWindow(system, options, run, state, periods, settled ? settled->q : 0, point);
+  point->termination = run.Status();
+  point->events = run.Events();
+  point->periods_run = run.PeriodsRun();
+  if (settled && !(reached && ShowsPeriod(point->classification.period, settled->period))) {
+    SweepPoint whole;
+    whole.value = point->value;
+    whole.restarted = point->restarted;
+    state = start;
+    const bool again = RunValue(system, options, true, state, &whole);
+    whole.events += run.Events();
+    whole.periods_run += run.PeriodsRun();
+    *point = std::move(whole);
+    return again;
   }
   return reached;
 }
@@ -174,7 +303,7 @@ void RunChunk(const SweepPlan& plan, int chunk, std::vector<SweepPoint>& points,
       point.restarted = previous && k > 0;
       state = FixedState(plan, k);
     }
-    have_state = RunValue(plan.systems[k], options, state, &point);
+    have_state = RunValue(plan.systems[k], options, options.full_transient, state, &point);
     value_done();
   }
 }

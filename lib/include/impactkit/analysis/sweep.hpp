@@ -18,6 +18,17 @@
 ///         (the period search needs 2q + 1 stroboscopic points; the part of
 ///         W before the recorded window comes from the end of the transient)
 ///
+/// Early certainty (unless full_transient; docs/theory.md §9). The
+/// transient before W runs in probe windows of 2 min(max_q, 8) + 1
+/// periods. Once a window repeats as P(p, q) with impacts and FindOrbit
+/// confirms a stable orbit through its last impact (or release) that the
+/// periods left would bring the state within 1e-10 of, the value runs
+/// only until they have, then moves its clock on by whole periods of the
+/// orbit to the start of W, and records W as always. Chaotic, unresolved
+/// and non-impacting transients (and, after three failed confirmations,
+/// any other) run whole. Should W not show the confirmed period, the value
+/// is run again from its start with its whole transient.
+///
 /// Threads and determinism. Starting from the previous value is sequential,
 /// so the sweep is cut into chunks of `chunk_values` consecutive values (in
 /// sweep order) that do not depend on the number of threads; threads take
@@ -79,6 +90,10 @@ struct SweepOptions {
   int chunk_values = 100;
   /// Values before a chunk's first whose transients it runs first (>= 0).
   int warmup_values = 5;
+  /// Run every value's whole transient, without the early certainty of
+  /// the file comment (the classification is the same cell for cell on the
+  /// paper's maps, docs/grids.md; the recorded numbers agree to ~1e-10).
+  bool full_transient = false;
   ClassifyOptions classify;
   SimulationOptions simulation;
   bool IsValid(std::string* error) const;
@@ -109,6 +124,9 @@ struct SweepPoint {
   Termination termination = Termination::kCompleted;
   bool restarted = false;   ///< started from the fixed state (see the file comment)
   std::int64_t events = 0;  ///< impacts, chatter jumps and releases simulated at this value
+  /// Forcing periods simulated at this value: transient + recorded, or
+  /// fewer when the transient ended early at a confirmed orbit.
+  int periods_run = 0;
 };
 
 /// Summary::termination: kCompleted, or kStopped (cancelled: `points` then
