@@ -89,7 +89,7 @@ Provenance ProvenanceOf(const BasinsRequest& request, const System& system,
                   "start; the other coordinates from --x0/--v0, default rest)",
                   o.coordinate1, o.from1, o.to1, o.steps1, o.coordinate2, o.from2, o.to2, o.steps2,
                   o.run.transient_periods, o.run.recorded_periods, o.run.classify.period.max_q,
-                  o.orbit_tolerance, FixedStateProvenance(request.run)));
+                  o.orbit_tolerance, RunFlagsProvenance(request.run)));
 }
 
 std::string AttractorLabel(const BasinsResult& result, int a) {

@@ -23,6 +23,11 @@ void AddRunFlags(CLI::App& command, RunFlags& flags, const std::string& group) {
       ->check(AtMost(kMaxOrbitPeriod, "forcing periods"))
       ->capture_default_str()
       ->group(group);
+  command
+      .add_flag("--full-transient", flags.full_transient,
+                "Run every value's whole transient: no early end at an orbit confirmed by a "
+                "Newton solve (the classification is the same; docs/grids.md)")
+      ->group(group);
   command.add_option("--x0", flags.x0, "Fixed state positions x1,...,xN (default 0)")
       ->type_name("X1,...,XN")
       ->delimiter(',')
@@ -103,10 +108,11 @@ std::optional<HybridState> FixedStateOf(const RunFlags& flags, const System& sys
   return state;
 }
 
-std::string FixedStateProvenance(const RunFlags& flags) {
+std::string RunFlagsProvenance(const RunFlags& flags) {
   std::string text;
   if (!flags.x0.empty()) text += fmt::format(" x0={}", fmt::join(flags.x0, ","));
   if (!flags.v0.empty()) text += fmt::format(" v0={}", fmt::join(flags.v0, ","));
+  if (flags.full_transient) text += " full_transient";
   return text;
 }
 
@@ -121,6 +127,7 @@ void ApplyRunFlags(const RunFlags& flags, const System& system, SweepOptions& op
   options.recorded_periods = flags.record;
   options.classify.period.max_q = flags.max_q;
   options.fixed_state = FixedStateOf(flags, system);
+  options.full_transient = flags.full_transient;
 }
 
 void ApplyRangeFlags(const RangeFlags& flags, const SystemOptions& system_flags,

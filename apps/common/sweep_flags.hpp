@@ -2,7 +2,7 @@
 /// \file common/sweep_flags.hpp
 /// The flags of a brute-force run as `sweep`, `map` and `basins` share them:
 /// how each value is run and classified (--transient, --record, --max-q,
-/// the fixed state --x0/--v0), and the swept range (--param, --from, --to,
+/// the fixed state --x0/--v0, --full-transient), and the swept range (--param, --from, --to,
 /// --steps, --start, --direction, --chunk, --warmup).
 
 #include <CLI/CLI.hpp>
@@ -20,6 +20,7 @@ struct RunFlags {
   int record = SweepOptions{}.recorded_periods;
   int max_q = PeriodOptions{}.max_q;
   std::vector<double> x0, v0;
+  bool full_transient = SweepOptions{}.full_transient;
 };
 
 /// The swept range and its start rule.
@@ -40,7 +41,8 @@ void AddRunFlags(CLI::App& command, RunFlags& flags, const std::string& group);
 void AddRangeFlags(CLI::App& command, RangeFlags& flags, const std::string& group,
                    const std::string& suffix = "");
 
-/// `options` with the run flags applied (periods, max_q, fixed state), the
+/// `options` with the run flags applied (periods, max_q, fixed state,
+/// full transient), the
 /// flag names in the messages. Throws InvalidInput.
 void ApplyRunFlags(const RunFlags& flags, const System& system, SweepOptions& options);
 
@@ -52,7 +54,8 @@ void ApplyRangeFlags(const RangeFlags& flags, const SystemOptions& system_flags,
 /// The fixed state of --x0/--v0 (rest for what is not given); none if neither.
 std::optional<HybridState> FixedStateOf(const RunFlags& flags, const System& system);
 
-/// "x0=...,v0=..." of the fixed state's flags, as the provenance lines write them.
-std::string FixedStateProvenance(const RunFlags& flags);
+/// " x0=... v0=... full_transient" of the fixed state's flags and
+/// --full-transient (what is given), as the provenance lines write them.
+std::string RunFlagsProvenance(const RunFlags& flags);
 
 }  // namespace impactkit::cli

@@ -69,7 +69,7 @@ Provenance ProvenanceOf(const MapRequest& request, const System& system,
       "record={} start={} direction={} max_q={}{}",
       row.parameter, row.from, row.to, row.steps, options.parameter2, options.from2, options.to2,
       options.steps2, row.transient_periods, row.recorded_periods, ToString(row.start),
-      ToString(row.direction), row.classify.period.max_q, FixedStateProvenance(request.run));
+      ToString(row.direction), row.classify.period.max_q, RunFlagsProvenance(request.run));
   if (row.start == SweepStart::kPrevious) {
     text += fmt::format(
         " chunk={} warmup={} (along each row, each value from the previous one's final state; "

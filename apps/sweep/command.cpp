@@ -63,7 +63,7 @@ std::string ProvenanceText(const SweepRequest& request, const System& system,
       options.parameter, options.from, options.to, options.steps, options.transient_periods,
       options.recorded_periods, ToString(options.start), ToString(options.direction),
       options.classify.period.max_q);
-  text += FixedStateProvenance(request.run);
+  text += RunFlagsProvenance(request.run);
   if (options.start == SweepStart::kPrevious) {
     text += fmt::format(
         " chunk={} warmup={} (each value from the previous one's final state; every chunk of "

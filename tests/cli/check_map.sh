@@ -30,6 +30,10 @@
 #         (omega, xs), skipped) writes a PNG; a curves file without
 #         "curves" is refused with exit 2 and one line naming it (skipped,
 #         77, without gnuplot)
+#     check_map.sh IMPACTKIT full
+#         map, basins and sweep each with --full-transient (listed by their
+#         --help, named in their provenance line) class every cell as the
+#         default does, whose transients end early at confirmed orbits
 #     check_map.sh IMPACTKIT basins
 #         at omega = 2 (the paper's P(1,2)) the basins of a grid of starts
 #         hold one attractor, P(1,2), whose orbit is the fixed point that
@@ -182,6 +186,34 @@ JSON
     [[ $status -eq 2 && $(wc -l <"$work/stderr") -eq 1 && ! -e $work/bad.png ]] ||
       fail "bad curves: status $status, stderr $(cat "$work/stderr")"
     grep -q "curves file .*bad.json" "$work/stderr" || fail "message: $(cat "$work/stderr")"
+    echo ok
+    ;;
+  full)
+    # The class columns: map omega,r,kind,p,q; basins x2,v2,attractor,kind,p,q;
+    # sweep summary omega,kind,p,q.
+    basins=(basins --omega 1.7 --coord x1 --from -2 --to 2 --steps 4 --coord2 v1 --from2 -2
+            --to2 2 --steps2 4 --transient 300 --record 40)
+    sweep=(sweep --from 0.1 --to 2.5 --steps 25 --transient 300 --record 40 --chunk 5)
+    declare -A outs=([grid]=--out [basins]=--out [sweep]=--summary)
+    declare -A class_columns=([grid]='$1","$2","$3","$4","$5' [basins]='$1","$2","$3","$4","$5","$6'
+                              [sweep]='$1","$2","$3","$4')
+    for run in grid basins sweep; do
+      declare -n command=$run
+      out=${outs[$run]} columns=${class_columns[$run]}
+      "$impactkit" "${command[0]}" --help | grep -q -- --full-transient ||
+        fail "$run --help does not list --full-transient"
+      "$impactkit" "${command[@]}" "$out" "$work/$run-early.csv" >/dev/null || fail "$run failed"
+      "$impactkit" "${command[@]}" --full-transient "$out" "$work/$run-full.csv" >/dev/null ||
+        fail "$run --full-transient failed"
+      grep -q '^# run: .* full_transient' "$work/$run-full.csv" ||
+        fail "$run --full-transient is not in its provenance"
+      ! grep -q 'full_transient' "$work/$run-early.csv" ||
+        fail "$run without --full-transient says full_transient"
+      diff <(awk -F, "!/^#/ { print $columns }" "$work/$run-early.csv") \
+        <(awk -F, "!/^#/ { print $columns }" "$work/$run-full.csv") ||
+        fail "$run classes cells differently with --full-transient"
+      unset -n command
+    done
     echo ok
     ;;
   basins)
