@@ -415,6 +415,7 @@ class SweepOptions(_OptionSet):
         threads: int = 1,
         each_from: Literal["previous", "rest"] = "previous",
         chunk_values: int = 100,
+        full_transient: bool = False,
     ) -> None: ...
     parameter: str
     from_: float
@@ -425,6 +426,7 @@ class SweepOptions(_OptionSet):
     threads: int
     each_from: Literal["previous", "rest"]
     chunk_values: int
+    full_transient: bool
 
 def sweep(
     system: System,
@@ -438,6 +440,7 @@ def sweep(
     threads: int = 1,
     each_from: Literal["previous", "rest"] = "previous",
     chunk_values: int = 100,
+    full_transient: bool = False,
     progress: Progress = False,
 ) -> SweepResult: ...
 
@@ -601,6 +604,7 @@ class MapOptions(_OptionSet):
         threads: int = 1,
         each_from: Literal["previous", "rest"] = "previous",
         chunk_values: int = 100,
+        full_transient: bool = False,
     ) -> None: ...
     parameter: str
     from_: Optional[float]
@@ -615,6 +619,7 @@ class MapOptions(_OptionSet):
     threads: int
     each_from: Literal["previous", "rest"]
     chunk_values: int
+    full_transient: bool
 
 def parameter_map(
     system: System,
@@ -632,6 +637,7 @@ def parameter_map(
     threads: int = 1,
     each_from: Literal["previous", "rest"] = "previous",
     chunk_values: int = 100,
+    full_transient: bool = False,
     progress: Progress = False,
 ) -> MapResult: ...
 
@@ -664,6 +670,7 @@ def basins(
     recorded_periods: int = 100,
     threads: int = 1,
     orbit_tolerance: float = 1e-4,
+    full_transient: bool = False,
     progress: Progress = False,
 ) -> BasinsResult: ...
 
@@ -683,6 +690,7 @@ class BasinsOptions(_OptionSet):
         recorded_periods: int = 100,
         threads: int = 1,
         orbit_tolerance: float = 1e-4,
+        full_transient: bool = False,
     ) -> None: ...
     coordinate: str
     from_: Optional[float]
@@ -696,6 +704,7 @@ class BasinsOptions(_OptionSet):
     recorded_periods: int
     threads: int
     orbit_tolerance: float
+    full_transient: bool
 
 class Codim2Point:
     @property

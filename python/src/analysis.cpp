@@ -72,7 +72,8 @@ py::dict SweepArrays(const SweepResult& result, const std::string& parameter) {
 
 py::dict SweepPy(const System& system, const std::string& parameter, double from, double to,
                  int steps, int transient_periods, int recorded_periods, int threads,
-                 const std::string& each_from, int chunk_values, const py::object& progress) {
+                 const std::string& each_from, int chunk_values, bool full_transient,
+                 const py::object& progress) {
   SweepOptions options;
   options.parameter = parameter;
   options.from = from;
@@ -82,6 +83,7 @@ py::dict SweepPy(const System& system, const std::string& parameter, double from
   options.recorded_periods = recorded_periods;
   options.threads = threads;
   options.chunk_values = chunk_values;
+  options.full_transient = full_transient;
   options.start = StartFromName(each_from);
   const InterruptibleRun run(progress);
   const SweepResult result = WithoutGil([&] { return RunSweep(system, options, run); });
@@ -149,6 +151,9 @@ void BindSweepOptions(py::module_& module, const SweepOptions& defaults) {
       .Field("chunk_values", &SweepOptions::chunk_values,
              "Consecutive values per chunk (>= 0; 0: one chunk). Part of the result's "
              "definition: change it and the chunk boundaries move.")
+      .Field("full_transient", &SweepOptions::full_transient,
+             "Run every value's whole transient: no early end at an orbit confirmed by a Newton "
+             "solve (the classification is the same; docs/grids.md).")
       .Bind(module, "SweepOptions",
             "The keywords of impactkit.sweep (but system), with its defaults: the library's "
             "SweepOptions (analysis/sweep.hpp). impactkit.sweep(system, "
@@ -172,14 +177,14 @@ void BindAnalysis(py::module_& module) {
   // function's keywords and of SweepOptions, from the same struct.
   const SweepOptions kSweep;
   BindSweepOptions(module, kSweep);
-  module.def("sweep", &SweepPy, py::arg("system"), py::kw_only(),
-             py::arg("parameter") = kSweep.parameter, py::arg("from_") = kSweep.from,
-             py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
-             py::arg("transient_periods") = kSweep.transient_periods,
-             py::arg("recorded_periods") = kSweep.recorded_periods,
-             py::arg("threads") = kSweep.threads, py::arg("each_from") = StartName(kSweep.start),
-             py::arg("chunk_values") = kSweep.chunk_values, py::arg("progress") = false,
-             R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
+  module.def(
+      "sweep", &SweepPy, py::arg("system"), py::kw_only(), py::arg("parameter") = kSweep.parameter,
+      py::arg("from_") = kSweep.from, py::arg("to") = kSweep.to, py::arg("steps") = kSweep.steps,
+      py::arg("transient_periods") = kSweep.transient_periods,
+      py::arg("recorded_periods") = kSweep.recorded_periods, py::arg("threads") = kSweep.threads,
+      py::arg("each_from") = StartName(kSweep.start), py::arg("chunk_values") = kSweep.chunk_values,
+      py::arg("full_transient") = kSweep.full_transient, py::arg("progress") = false,
+      R"(Brute-force bifurcation diagram: `steps` values of a named parameter from
 from_ to to, each simulated to steady state and classified.
 Results do not depend on `threads`. Returns a dict: values, kind, description,
 p, q (0 where undefined; a sticking motion has its q and p = 0, its kind

@@ -64,7 +64,7 @@ py::dict CellArrays(const std::vector<GridCell>& cells, py::ssize_t rows, py::ss
 py::dict ParameterMapPy(const System& system, const std::string& parameter, double from, double to,
                         int steps, const std::string& parameter2, double from2, double to2,
                         int steps2, int transient_periods, int recorded_periods, int threads,
-                        const std::string& each_from, int chunk_values,
+                        const std::string& each_from, int chunk_values, bool full_transient,
                         const py::object& progress) {
   ParameterMapOptions options;
   options.row.parameter = parameter;
@@ -75,6 +75,7 @@ py::dict ParameterMapPy(const System& system, const std::string& parameter, doub
   options.row.recorded_periods = recorded_periods;
   options.row.start = StartFromName(each_from);
   options.row.chunk_values = chunk_values;
+  options.row.full_transient = full_transient;
   options.parameter2 = parameter2;
   options.from2 = from2;
   options.to2 = to2;
@@ -91,10 +92,11 @@ py::dict ParameterMapPy(const System& system, const std::string& parameter, doub
 py::dict BasinsPy(const System& system, const std::string& coordinate1, double from1, double to1,
                   int steps1, const std::string& coordinate2, double from2, double to2, int steps2,
                   int transient_periods, int recorded_periods, int threads, double orbit_tolerance,
-                  const py::object& progress) {
+                  bool full_transient, const py::object& progress) {
   BasinsOptions options;
   options.run.transient_periods = transient_periods;
   options.run.recorded_periods = recorded_periods;
+  options.run.full_transient = full_transient;
   options.coordinate1 = coordinate1;
   options.from1 = from1;
   options.to1 = to1;
@@ -180,6 +182,10 @@ void BindMapOptions(py::module_& module, const ParameterMapOptions& defaults) {
           "chunk_values", [](auto& o) -> auto& { return o.row.chunk_values; },
           "Consecutive values per chunk of a row (>= 0; 0: one chunk). Part of the result's "
           "definition: change it and the chunk boundaries move.")
+      .Field(
+          "full_transient", [](auto& o) -> auto& { return o.row.full_transient; },
+          "Run every cell's whole transient: no early end at an orbit confirmed by a Newton "
+          "solve (the classification is the same; docs/grids.md).")
       .Bind(module, "MapOptions",
             "The keywords of impactkit.parameter_map (but system), with its defaults: the "
             "library's ParameterMapOptions (analysis/parameter_map.hpp). The ranges and steps "
@@ -214,6 +220,10 @@ void BindBasinsOptions(py::module_& module, const BasinsOptions& defaults) {
       .Field("orbit_tolerance", &BasinsOptions::orbit_tolerance,
              "Relative distance under which two impacts are the same: phases within "
              "tolerance * T, speeds within tolerance * max(1, |v|).")
+      .Field(
+          "full_transient", [](auto& o) -> auto& { return o.run.full_transient; },
+          "Run every start's whole transient: no early end at an orbit confirmed by a Newton "
+          "solve (the classification is the same; docs/grids.md).")
       .Bind(module, "BasinsOptions",
             "The keywords of impactkit.basins (but system), with its defaults: the library's "
             "BasinsOptions (analysis/basins.hpp), but for the coordinates, the command line's. "
@@ -235,15 +245,15 @@ void BindGrid(py::module_& module) {
   BindBasinsOptions(module, kBasins);
   // The categories of the tables' motion class (impactkit/_tables.py).
   module.attr("_motion_kinds") = MotionKindNames();
-  module.def("parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
-             py::arg("parameter") = kRow.parameter, py::arg("from_"), py::arg("to"),
-             py::arg("steps"), py::arg("parameter2") = kMap.parameter2, py::arg("from2"),
-             py::arg("to2"), py::arg("steps2"),
-             py::arg("transient_periods") = kRow.transient_periods,
-             py::arg("recorded_periods") = kRow.recorded_periods, py::arg("threads") = kRow.threads,
-             py::arg("each_from") = StartName(kRow.start),
-             py::arg("chunk_values") = kRow.chunk_values, py::arg("progress") = false,
-             R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
+  module.def(
+      "parameter_map", &ParameterMapPy, py::arg("system"), py::kw_only(),
+      py::arg("parameter") = kRow.parameter, py::arg("from_"), py::arg("to"), py::arg("steps"),
+      py::arg("parameter2") = kMap.parameter2, py::arg("from2"), py::arg("to2"), py::arg("steps2"),
+      py::arg("transient_periods") = kRow.transient_periods,
+      py::arg("recorded_periods") = kRow.recorded_periods, py::arg("threads") = kRow.threads,
+      py::arg("each_from") = StartName(kRow.start), py::arg("chunk_values") = kRow.chunk_values,
+      py::arg("full_transient") = kRow.full_transient, py::arg("progress") = false,
+      R"(A two-parameter map, as `impactkit map` computes it: each row is the sweep
 of `parameter` (steps values from from_ to to) at one of the steps2
 values of `parameter2` (ascending), each cell's motion classified. Returns
 a dict of arrays of shape (steps2, steps): 'kind' (names), 'kind_code'
@@ -261,7 +271,8 @@ passes a set.)");
              py::arg("transient_periods") = kBasins.run.transient_periods,
              py::arg("recorded_periods") = kBasins.run.recorded_periods,
              py::arg("threads") = kBasins.run.threads,
-             py::arg("orbit_tolerance") = kBasins.orbit_tolerance, py::arg("progress") = false,
+             py::arg("orbit_tolerance") = kBasins.orbit_tolerance,
+             py::arg("full_transient") = kBasins.run.full_transient, py::arg("progress") = false,
              R"(Basins of attraction, as `impactkit basins` computes them: a grid of
 starts over two state coordinates ('x1'..'xN', 'v1'..'vN'; the others at
 rest), each run to its attractor and the attractors identified by their
