@@ -18,16 +18,21 @@
 ///         (the period search needs 2q + 1 stroboscopic points; the part of
 ///         W before the recorded window comes from the end of the transient)
 ///
-/// Early certainty (unless full_transient; docs/theory.md §9). The
-/// transient before W runs in probe windows of 2 min(max_q, 8) + 1
-/// periods. Once a window repeats as P(p, q) with impacts and FindOrbit
-/// confirms a stable orbit through its last impact (or release) that the
-/// periods left would bring the state within 1e-10 of, the value runs
-/// only until they have, then moves its clock on by whole periods of the
-/// orbit to the start of W, and records W as always. Chaotic, unresolved
-/// and non-impacting transients (and, after three failed confirmations,
-/// any other) run whole. Should W not show the confirmed period, the value
-/// is run again from its start with its whole transient.
+/// Early certainty (unless full_transient; docs/theory.md §9). A probe
+/// (analysis/settling.hpp) watches the transient before W, in windows of
+/// 2 min(max_q, 8) + 1 periods, without interrupting it. Once a window
+/// repeats as P(p, q) with impacts and FindOrbit confirms a stable orbit
+/// through its last impact (or release) that the periods left would bring
+/// the state within 1e-10 of, the value runs only until they have, moves
+/// its clock on by whole periods of the orbit to the last 2q + 1 periods,
+/// and simulates, records and classifies those; the recorded periods
+/// before them are copies of their last q, which the orbit repeats. So the
+/// numbers recorded agree with the whole run's to ~1e-10, not bit for bit.
+/// Chaotic, unresolved and non-impacting transients (and, after three
+/// failed confirmations, any other) run whole, with the same bits as
+/// without the probe. Should the last 2q + 1 periods not show the
+/// confirmed period (or a divisor of it), the value is run again from its
+/// start with its whole transient.
 ///
 /// Threads and determinism. Starting from the previous value is sequential,
 /// so the sweep is cut into chunks of `chunk_values` consecutive values (in
@@ -91,8 +96,11 @@ struct SweepOptions {
   /// Values before a chunk's first whose transients it runs first (>= 0).
   int warmup_values = 5;
   /// Run every value's whole transient, without the early certainty of
-  /// the file comment (the classification is the same cell for cell on the
-  /// paper's maps, docs/grids.md; the recorded numbers agree to ~1e-10).
+  /// the file comment. Either way the classification is the same cell for
+  /// cell on the paper's maps (docs/grids.md); a settled value's numbers
+  /// agree to ~1e-10, and so, from the previous value, does the next
+  /// value's start: a chaotic value's numbers then differ, as they would
+  /// under any change of rounding.
   bool full_transient = false;
   ClassifyOptions classify;
   SimulationOptions simulation;
