@@ -1,8 +1,11 @@
 /// The paper's Fig. 3 sweep (Ω from 0.1 to 2.5, 2401 values, 500 transient
 /// and 100 recorded forcing periods each, every value from the previous
-/// one's final state) on 2 threads, beside the same sweep's cost with the
-/// fastest peer of simulate_bench: the plain Boost.Odeint dense-output
-/// Dormand–Prince with TOMS 748 on the dense output (odeint_peer.hpp).
+/// one's final state) on 2 threads, with its transients ended early at
+/// confirmed orbits (the default) and whole (full_transient): the ratio,
+/// values per CPU-second, and whether every value's class is the same;
+/// beside the whole-transient sweep's cost with the fastest peer of
+/// simulate_bench: the plain Boost.Odeint dense-output Dormand–Prince with
+/// TOMS 748 on the dense output (odeint_peer.hpp).
 ///
 /// The peer's full-sweep cost is extrapolated from a subset measured in the
 /// same run: every `stride`-th value, simulated from rest for the same 600
@@ -11,7 +14,8 @@
 /// we simulate there times its CPU time per impact at the nearest value it
 /// completes; that underestimates it, since its steps shrink with the
 /// flights of a chatter sequence. Our own single-thread cost on the same
-/// subset is measured too, so the subset ratio compares like with like.
+/// subset, whole transients, is measured too, so the subset ratio compares
+/// like with like.
 ///
 ///   ./build/bench/sweep_bench [threads] [stride]      (default 2 and 100)
 
@@ -57,6 +61,32 @@ struct SubsetRow {
   double ours = 0.0;  ///< our CPU seconds
 };
 
+struct SweepCost {
+  SweepResult result;
+  double cpu = 0.0;  ///< CPU seconds
+};
+
+SweepCost MeasureSweep(const SweepOptions& options) {
+  const double cpu_start = CpuSeconds();
+  SweepCost cost{RunSweep(PaperSystem(), options), 0.0};
+  cost.cpu = CpuSeconds() - cpu_start;
+  fmt::print("  {}: {}\n", options.full_transient ? "whole transients" : "early ends",
+             cost.result.BriefReport());
+  fmt::print("    wall {:.2f} s, CPU {:.2f} s, {:.1f} values per CPU-second\n", cost.result.seconds,
+             cost.cpu, cost.result.points.size() / cost.cpu);
+  return cost;
+}
+
+/// Values whose class (kind, p, q) differs between the two sweeps.
+int Differences(const SweepResult& a, const SweepResult& b) {
+  int differ = 0;
+  for (std::size_t k = 0; k < a.points.size(); ++k) {
+    const Classification &x = a.points[k].classification, &y = b.points[k].classification;
+    differ += x.kind != y.kind || x.period.p != y.period.p || x.period.q != y.period.q;
+  }
+  return differ;
+}
+
 PeerCost Peer(double omega, int periods) {
   const System s = PaperSystem(omega);
   const double start = CpuSeconds();
@@ -74,17 +104,20 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "usage: sweep_bench [threads >= 1] [stride >= 1]\n");
     return 2;
   }
-  const SweepOptions options = Figure3(threads);
+  SweepOptions options = Figure3(threads);
   const int periods = options.transient_periods + options.recorded_periods;
 
-  // The full sweep, wall clock and CPU.
-  const double cpu_start = CpuSeconds();
-  const SweepResult full = RunSweep(PaperSystem(), options);
-  const double full_cpu = CpuSeconds() - cpu_start;
-  fmt::print("Fig. 3 sweep: {} on {} threads\n", full.BriefReport(), threads);
-  fmt::print("  wall {:.2f} s, CPU {:.2f} s\n\n", full.seconds, full_cpu);
+  // The sweep both ways, wall clock and CPU.
+  fmt::print("Fig. 3 sweep on {} threads\n", threads);
+  const SweepCost early = MeasureSweep(options);
+  options.full_transient = true;
+  const SweepCost whole = MeasureSweep(options);
+  fmt::print("  whole / early, CPU: {:.2f}x; values classed differently: {}\n\n",
+             whole.cpu / early.cpu, Differences(early.result, whole.result));
+  const SweepResult& full = whole.result;
+  const double full_cpu = whole.cpu;
 
-  // The subset, by both.
+  // The subset, by both, whole transients (the peer runs all 600 periods).
   const std::vector<double> values = SweepValues(options);
   std::vector<SubsetRow> rows;
   for (std::size_t k = 0; k < values.size(); k += stride) {
@@ -137,7 +170,8 @@ int main(int argc, char** argv) {
   fmt::print("Odeint full sweep, extrapolated: {:.1f} CPU s, {:.1f} s on {} threads at best\n",
              peer_full, peer_full / threads, threads);
   fmt::print(
-      "impactkit full sweep: {:.2f} s wall on {} threads ({:.2f} CPU s): {:.1f}x faster than "
+      "impactkit whole-transient sweep: {:.2f} s wall on {} threads ({:.2f} CPU s): {:.1f}x "
+      "faster than "
       "the peer's best wall time (CPU: {:.1f}x)\n",
       full.seconds, threads, full_cpu, peer_full / threads / full.seconds, peer_full / full_cpu);
   return 0;
