@@ -26,7 +26,7 @@ void AddRunFlags(CLI::App& command, RunFlags& flags, const std::string& group) {
   command
       .add_flag("--full-transient", flags.full_transient,
                 "Run every value's whole transient: no early end at an orbit confirmed by a "
-                "Newton solve (the classification is the same; docs/grids.md)")
+                "Newton solve (the same class from the same start; docs/grids.md)")
       ->group(group);
   command.add_option("--x0", flags.x0, "Fixed state positions x1,...,xN (default 0)")
       ->type_name("X1,...,XN")

@@ -153,7 +153,7 @@ void BindSweepOptions(py::module_& module, const SweepOptions& defaults) {
              "definition: change it and the chunk boundaries move.")
       .Field("full_transient", &SweepOptions::full_transient,
              "Run every value's whole transient: no early end at an orbit confirmed by a Newton "
-             "solve (the classification is the same; docs/grids.md).")
+             "solve (the same class from the same start; docs/grids.md).")
       .Bind(module, "SweepOptions",
             "The keywords of impactkit.sweep (but system), with its defaults: the library's "
             "SweepOptions (analysis/sweep.hpp). impactkit.sweep(system, "

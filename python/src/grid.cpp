@@ -185,7 +185,7 @@ void BindMapOptions(py::module_& module, const ParameterMapOptions& defaults) {
       .Field(
           "full_transient", [](auto& o) -> auto& { return o.row.full_transient; },
           "Run every cell's whole transient: no early end at an orbit confirmed by a Newton "
-          "solve (the classification is the same; docs/grids.md).")
+          "solve (the same class from the same start; docs/grids.md).")
       .Bind(module, "MapOptions",
             "The keywords of impactkit.parameter_map (but system), with its defaults: the "
             "library's ParameterMapOptions (analysis/parameter_map.hpp). The ranges and steps "
@@ -223,7 +223,7 @@ void BindBasinsOptions(py::module_& module, const BasinsOptions& defaults) {
       .Field(
           "full_transient", [](auto& o) -> auto& { return o.run.full_transient; },
           "Run every start's whole transient: no early end at an orbit confirmed by a Newton "
-          "solve (the classification is the same; docs/grids.md).")
+          "solve (the same class from the same start; docs/grids.md).")
       .Bind(module, "BasinsOptions",
             "The keywords of impactkit.basins (but system), with its defaults: the library's "
             "BasinsOptions (analysis/basins.hpp), but for the coordinates, the command line's. "

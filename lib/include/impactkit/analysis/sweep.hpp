@@ -96,11 +96,12 @@ struct SweepOptions {
   /// Values before a chunk's first whose transients it runs first (>= 0).
   int warmup_values = 5;
   /// Run every value's whole transient, without the early certainty of
-  /// the file comment. Either way the classification is the same cell for
-  /// cell on the paper's maps (docs/grids.md); a settled value's numbers
-  /// agree to ~1e-10, and so, from the previous value, does the next
-  /// value's start: a chaotic value's numbers then differ, as they would
-  /// under any change of rounding.
+  /// the file comment. Either way a value is classified the same from the
+  /// same start (every cell of the paper's basins and fixed-start maps,
+  /// docs/grids.md); a settled value's numbers agree to ~1e-10, and so,
+  /// from the previous value, does the next value's start, which a chaotic
+  /// value after it amplifies (its numbers, and where its class depends on
+  /// its path, its class, differ: docs/grids.md lists the paper's).
   bool full_transient = false;
   ClassifyOptions classify;
   SimulationOptions simulation;
