@@ -200,7 +200,8 @@ JSON
     for run in grid basins sweep; do
       declare -n command=$run
       out=${outs[$run]} columns=${class_columns[$run]}
-      "$impactkit" "${command[0]}" --help | grep -q -- --full-transient ||
+      # Not `| grep -q`: with pipefail, grep's early exit would fail the pipe.
+      [[ $("$impactkit" "${command[0]}" --help) == *--full-transient* ]] ||
         fail "$run --help does not list --full-transient"
       "$impactkit" "${command[@]}" "$out" "$work/$run-early.csv" >/dev/null || fail "$run failed"
       "$impactkit" "${command[@]}" --full-transient "$out" "$work/$run-full.csv" >/dev/null ||
