@@ -1,6 +1,6 @@
 #pragma once
 /// \file settling.hpp
-/// Early certainty for a brute-force cell (docs/theory.md §9): a transient
+/// Early certainty for a brute-force cell (docs/theory.md §10): a transient
 /// that has reached a stable periodic orbit is recognised, the orbit
 /// confirmed by a Newton solve, and the number of forcing periods after
 /// which the state is within a given distance of it estimated from its

@@ -121,7 +121,7 @@ std::vector<double> Ranges(const std::vector<PeriodExtrema>& periods, int i) {
   return ranges;
 }
 
-/// The early certainty's windows (sweep.hpp, docs/theory.md §9): 2 min(max_q,
+/// The early certainty's windows (sweep.hpp, docs/theory.md §10): 2 min(max_q,
 /// 8) + 1 periods, so that a window stays short beside the transient,
 /// compared to the classification's tolerance.
 ProbeOptions ProbeOptionsFor(const SweepOptions& options, int end) {

@@ -34,7 +34,10 @@ struct GeneralizedModes {
 /// For a diagonal M and a tridiagonal K the problem is the tridiagonal
 /// T = M^-1/2 K M^-1/2: eigenvalues by implicit QR without vectors, each
 /// vector by inverse iteration (O(N) apiece, O(N²) in all); otherwise
-/// Eigen's GeneralizedSelfAdjointEigenSolver (O(N³)).
+/// Eigen's GeneralizedSelfAdjointEigenSolver (O(N³)). Written here because
+/// Eigen has no tridiagonal eigenvector routine (its solver accumulates the
+/// QR rotations, O(N³)) and LAPACK's (dstein, dstemr) is not in the
+/// project's stack.
 GeneralizedModes SolveGeneralized(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m,
                                   bool with_vectors);
 

@@ -18,7 +18,7 @@
 ///         (the period search needs 2q + 1 stroboscopic points; the part of
 ///         W before the recorded window comes from the end of the transient)
 ///
-/// Early certainty (unless full_transient; docs/theory.md §9). A probe
+/// Early certainty (unless full_transient; docs/theory.md §10). A probe
 /// (analysis/settling.hpp) watches the transient before W, in windows of
 /// 2 min(max_q, 8) + 1 periods, without interrupting it. Once a window
 /// repeats as P(p, q) with impacts and FindOrbit confirms a stable orbit
