@@ -239,6 +239,9 @@ GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm&
   sweep.transient_periods = options.transient_periods;
   sweep.recorded_periods = options.recorded_periods;
   sweep.chunk_values = 0;  // one chain of states through the grazing
+  // Whole transients: the check is the paper's method, each value's motion
+  // from the last one's state exactly as a whole run hands it on.
+  sweep.full_transient = true;
   auto run = [&](double start, SweepDirection direction) {
     sweep.direction = direction;
     sweep.fixed_state =

@@ -42,8 +42,16 @@ std::vector<DiagramSeed> SeedsFromSweep(const System& system, const SweepOptions
 
 struct SweptDiagramOptions {
   /// The sweep; its parameter, from and to are set from diagram.continuation
-  /// (parameter, lower, upper).
-  SweepOptions sweep;
+  /// (parameter, lower, upper). Its transients run whole by default: a
+  /// settled cell hands the next a state 1e-10 from its orbit where a whole
+  /// transient hands one at rounding, and in a chaotic stretch that moves
+  /// which windows appear, so which branches the network finds would
+  /// depend on the shortcut (docs/grids.md, "Early certainty").
+  SweepOptions sweep = [] {
+    SweepOptions whole;
+    whole.full_transient = true;
+    return whole;
+  }();
   SweepSeedOptions seeds;
   DiagramOptions diagram;
   bool IsValid(std::string* error) const;
