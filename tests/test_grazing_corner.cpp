@@ -207,6 +207,14 @@ const CurvePoint& NextToCorner(const Curve& curve) {
                                               : curve.points[curve.points.size() - 2];
 }
 
+/// The N = 1 oscillator of the corner tests (m = k = 1, c = 0.1, A = 0.5,
+/// r = 0.8) at Ω = 1.5, xs = 0.2, and its closed form's parameters (Ω and
+/// xs set by each test).
+System SdofSystem() {
+  return UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
+}
+testing::SdofParameters SdofReference() { return {1.0, 1.0, 0.1, 0.5, 0.0, 0.8, 0.0}; }
+
 /// The codimension-two points of `type` on `curve`.
 std::vector<Codim2Point> PointsOf(const Curve& curve, Codim2Type type) {
   std::vector<Codim2Point> found;
@@ -289,11 +297,10 @@ TEST_CASE(
   // both lower coefficients vanish: X = xs and d1 = 0, where
   // d1 = (1 + r) Φ12(T) / det(I − Φ(T)) and Φ12(T) = e^{−aT} sin(ω_d T) / ω_d,
   // so at Ω = 2 ω_d (T = π / ω_d).
-  const System system =
-      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
+  const System system = SdofSystem();
   const Curve curve = CurveIn("xs", system, SpecialPointType::kFold, 1, 1, 0.0, 0.4);
   const Codim2Point& corner = Corner(curve, Codim2Type::kFoldGrazing);
-  testing::SdofParameters p{1.0, 1.0, 0.1, 0.5, 0.0, 0.8, 0.0};
+  testing::SdofParameters p = SdofReference();
   p.omega = 2.0 * p.DampedFrequency();
   p.xs = p.SteadyAmplitude();
   CHECK(std::abs(testing::SdofImpactDirection(p)(0)) < 1e-12);  // d1 = 0 there
@@ -312,12 +319,11 @@ TEST_CASE(
   // λ where ω_d T = jπ, Ω = 2 ω_d / j (Molenaar, de Weger & van de Water
   // 2001; Simpson & Ghosh 2026), on the curve xs = X(Ω). In omega's range
   // [0.5, 3]: j = 1, 2, 3.
-  const System system =
-      UniformChain({1, 1.0, 1.0, 0.1}, Eigen::VectorXd::Constant(1, 0.5), 1.5, 0.2, 0.8);
+  const System system = SdofSystem();
   const Curve curve =
       CurveIn("xs", system, SpecialPointType::kGrazing, 1, 1, 0.0, 8.0);  // X(ω_d) ≈ 5
   REQUIRE(curve.p == 0);  // the non-impacting response's grazing
-  testing::SdofParameters p{1.0, 1.0, 0.1, 0.5, 0.0, 0.8, 0.0};
+  testing::SdofParameters p = SdofReference();
   for (Codim2Type type :
        {Codim2Type::kResonantGrazingFold, Codim2Type::kResonantGrazingPeriodDoubling}) {
     std::vector<Codim2Point> found = PointsOf(curve, type);
