@@ -5,9 +5,16 @@
 // them.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "impactkit/analysis/grazing_prediction.hpp"
+#include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/analysis/swept_diagram.hpp"
+#include "impactkit/io/system_file.hpp"
+#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/hybrid/stop.hpp"
@@ -84,6 +91,44 @@ Branch PredictedBranchDown(const System& system, int p, int q) {
   PredictGrazings(system, &branch);
   REQUIRE(branch.special_points.back().normal_form.has_value());
   return branch;
+}
+
+/// The largest difference between the impact speeds of `orbit` and of
+/// `grazing` (each sorted by stop and speed; `grazing`'s impact
+/// `vanishing`, if any, left out), relative to the largest of `grazing`'s,
+/// from Newton's orbits: what GrazingSweeps::family_speed_gap measures on
+/// the sweep.
+double OrbitSpeedGap(const PeriodicOrbit& orbit, const PeriodicOrbit& grazing,
+                     int vanishing = -1) {
+  auto speeds = [](const PeriodicOrbit& o, int skip) {
+    std::vector<std::pair<int, double>> s;
+    for (std::size_t k = 0; k < o.impacts.size(); ++k) {
+      if (static_cast<int>(k) != skip) s.emplace_back(o.impacts[k].stop, o.impacts[k].velocity);
+    }
+    std::sort(s.begin(), s.end());
+    return s;
+  };
+  const auto a = speeds(orbit, -1), b = speeds(grazing, vanishing);
+  REQUIRE(a.size() == b.size());
+  double gap = 0.0, scale = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    REQUIRE(a[k].first == b[k].first);
+    gap = std::max(gap, std::abs(a[k].second - b[k].second));
+    scale = std::max(scale, b[k].second);
+  }
+  return gap / scale;
+}
+
+/// The orbit P(p, q) of `system` by Newton from `eta`.
+PeriodicOrbit NewtonOrbit(const System& system, const Eigen::VectorXd& eta, int p, int q,
+                          int stop = 0) {
+  OrbitOptions options;
+  options.p = p;
+  options.q = q;
+  options.map.stop = stop;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(system, eta, options, &orbit).termination == Termination::kConverged);
+  return orbit;
 }
 
 }  // namespace
@@ -184,7 +229,76 @@ TEST_CASE(
     // (past lies at decreasing omega: before is the sweep's top).
     CHECK(sweeps.past_distance < 0);
     CHECK(sweeps.toward.back() == "P(" + std::to_string(c.p) + "," + std::to_string(c.q) + ")");
+    // It follows the grazing orbit's family: its impact speeds at the last
+    // value before the grazing are those of Newton's orbit there, so their
+    // distance to the grazing orbit's is that orbit's.
+    CHECK(sweeps.follows);
+    REQUIRE(sweeps.family_speed_gap.has_value());
+    const SpecialPoint& graze = branch.special_points.back();
+    const double last_before = sweeps.values[sweeps.values.size() / 2 + 1];
+    const PeriodicOrbit family = NewtonOrbit(testing::At(system, "omega", last_before),
+                                             graze.point.orbit.eta, c.p, c.q);
+    const double expected = OrbitSpeedGap(family, graze.point.orbit);
+    INFO("gap " << *sweeps.family_speed_gap << ", Newton's " << expected);
+    // The sweep's speeds settle to ~1e-10; the grazing orbit's come from
+    // one pass of the simulator from its touch.
+    CHECK(std::abs(*sweeps.family_speed_gap - expected) < 1e-8);
+    CHECK(*sweeps.family_speed_gap <= 3.0 * *sweeps.family_speed_step);
   }
+}
+
+TEST_CASE(
+    "prediction: a sweep that holds a coexisting orbit of the grazing orbit's label does not "
+    "follow it (the clearance's two P(8,3) at omega = 1.2884), its distance that of Newton's "
+    "orbits",
+    "[grazing][prediction]") {
+  const System system =
+      ReadSystemFile(IMPACTKIT_SOURCE_DIR "/examples/systems/clearance-1dof.toml");
+  // `impactkit diagram --from 1.286 --to 1.306` on the clearance's file.
+  SweptDiagramOptions options;
+  options.diagram.continuation.from = 1.286;
+  options.diagram.continuation.to = 1.306;
+  options.sweep.steps = 481;
+  options.sweep.transient_periods = 300;
+  options.sweep.recorded_periods = 40;
+  options.sweep.classify.period.max_q = 16;
+  options.seeds.max_p = 16;
+  Diagram diagram = TraceSweptDiagram(system, {}, options).diagram;
+  PredictGrazings(system, &diagram);
+  const std::vector<GrazingCheck> checks = CheckGrazings(system, diagram);
+  const auto check = std::find_if(checks.begin(), checks.end(), [](const GrazingCheck& c) {
+    return std::abs(c.parameter - 1.2883567) < 1e-6;
+  });
+  REQUIRE(check != checks.end());
+  REQUIRE(check->grazing_orbit == "P(8,3)");
+  const GrazingSweeps& sweeps = check->sweeps;
+  // The label alone would pass: the sweep shows P(8,3) before the grazing.
+  const std::size_t last_before = sweeps.values.size() / 2 + (check->prediction.side > 0 ? -1 : 1);
+  CHECK(sweeps.toward[last_before] == "P(8,3)");
+  CHECK_FALSE(sweeps.follows);
+  CHECK_FALSE(sweeps.agrees);
+  REQUIRE(sweeps.family_speed_gap.has_value());
+  CHECK(*sweeps.family_speed_gap > 3.0 * *sweeps.family_speed_step);
+  // The other P(8,3), which a simulation from rest reaches there too,
+  // against the grazing orbit: both by Newton.
+  const auto node = std::find_if(diagram.nodes.begin(), diagram.nodes.end(), [&](auto& n) {
+    return n.normal_form && n.parameter == check->parameter;
+  });
+  REQUIRE(node != diagram.nodes.end());
+  const System at = testing::At(system, "omega", sweeps.values[last_before]);
+  const std::optional<OrbitSeed> seed = SeedFromSimulation(at);
+  REQUIRE(seed.has_value());
+  REQUIRE(seed->motion.p == 8);
+  REQUIRE(seed->motion.q == 3);
+  const PeriodicOrbit other = NewtonOrbit(at, seed->eta, 8, 3, seed->stop);
+  // The node's orbit, located where its vanishing impact's speed is ~1e-4,
+  // lies 5e-5 in omega from the grazing; its other speeds change ~3 per
+  // unit omega (family_speed_step over the sweep's step), so it stands for
+  // the grazing orbit to ~2e-4.
+  const double expected = OrbitSpeedGap(other, node->point.orbit, node->vanishing_impact);
+  INFO("gap " << *sweeps.family_speed_gap << ", Newton's " << expected);
+  CHECK(expected > 0.03);
+  CHECK(std::abs(*sweeps.family_speed_gap - expected) < 2e-4);
 }
 
 TEST_CASE("prediction: invalid prediction or sweep options are refused with a clear error",

@@ -13,6 +13,9 @@ std::string GrazingChecksJson(const std::vector<GrazingCheck>& checks,
   nlohmann::json grazings = nlohmann::json::array();
   for (const GrazingCheck& c : checks) {
     const GrazingSweeps& s = c.sweeps;
+    auto optional = [](const std::optional<double>& x) {
+      return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+    };
     grazings.push_back({{"param", c.parameter},
                         {"grazing_orbit", c.grazing_orbit},
                         {"contact", c.new_contact ? "new" : "vanishing"},
@@ -24,6 +27,8 @@ std::string GrazingChecksJson(const std::vector<GrazingCheck>& checks,
                           {"past_distance", s.past_distance},
                           {"past", s.past},
                           {"expected", s.expected},
+                          {"family_speed_gap", optional(s.family_speed_gap)},
+                          {"family_speed_step", optional(s.family_speed_step)},
                           {"follows", s.follows},
                           {"agrees", s.agrees},
                           {"hysteresis", s.hysteresis}}}});
@@ -33,9 +38,14 @@ std::string GrazingChecksJson(const std::vector<GrazingCheck>& checks,
 
 std::string DescribeGrazingCheck(const GrazingCheck& check, const std::string& parameter) {
   const GrazingSweeps& s = check.sweeps;
-  const std::string verdict = !s.follows ? "the sweep does not follow the grazing orbit"
-                              : s.agrees ? "agrees"
-                                         : "DISAGREES";
+  std::string verdict = s.agrees ? "agrees" : "DISAGREES";
+  if (!s.follows) verdict = "the sweep does not follow the grazing orbit";
+  if (!s.follows && s.family_speed_gap) {
+    verdict = fmt::format(
+        "the sweep holds another {} (impact speeds {:.2g} from the grazing orbit's, changing "
+        "{:.2g} over the step before)",
+        check.grazing_orbit, *s.family_speed_gap, *s.family_speed_step);
+  }
   return fmt::format(
       "{} = {:.10g}, {} ({}): predicted {} ({}), swept {}: {}{}", parameter, check.parameter,
       check.grazing_orbit, check.new_contact ? "new contact" : "vanishing impact", s.expected,

@@ -79,10 +79,22 @@ struct GrazingSweeps {
   /// distance if one stays near the grazing orbit, else the motion the
   /// system goes to from the grazing orbit at that distance.
   std::string expected;
-  /// `toward` follows the grazing orbit up to the grazing (its motion at
-  /// the last value before it is the grazing orbit's P(p, q)): only then
-  /// does its motion past the grazing test the prediction. Not so where the
-  /// grazing orbit is unstable, or another attractor holds the sweep.
+  /// Where the grazing orbit is stable and `toward` shows its P(p, q) at
+  /// the last two values before the grazing: the largest difference
+  /// between `toward`'s impact speeds at the last one and the grazing
+  /// orbit's (over one period, each sorted by stop and speed) ...
+  std::optional<double> family_speed_gap;
+  /// ... and between `toward`'s at the two, both relative to the grazing
+  /// orbit's largest speed. Absent otherwise, and where they cannot be
+  /// paired (other numbers of impacts, other stops).
+  std::optional<double> family_speed_step;
+  /// `toward` follows the grazing orbit up to the grazing: family_speed_gap
+  /// is at most 3 family_speed_step. Along the grazing orbit's family the
+  /// gap is about one step (2.4 steps where a fold or a vanishing impact
+  /// lies just past the grazing); a coexisting orbit with the grazing
+  /// orbit's label lies O(1) away. Only then does the motion past the
+  /// grazing test the prediction. Not so where the grazing orbit is
+  /// unstable, or another attractor holds the sweep, with its label or not.
   bool follows = false;
   bool agrees = false;      ///< follows, and past == expected
   bool hysteresis = false;  ///< the two sweeps differ at some value
