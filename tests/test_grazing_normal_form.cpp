@@ -116,6 +116,20 @@ double SmoothSideDeparture(const System& system, const GrazingNormalForm& form, 
          delta;
 }
 
+/// One step of the normal form from z = δ s e_c against the true map,
+/// relative to its √δ term |A W| √δ: what GrazingNormalForm::reach bounds.
+double RootTermError(const System& system, const GrazingNormalForm& form, int q,
+                     double previous_impact, double delta) {
+  const int n = system.Dof();
+  const Stop stop(system, form.stop);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(2 * n);
+  z(stop.Dof()) = stop.Sign() * delta;
+  const double depth = delta + stop.GapOf(form.touch.head(n));
+  const Eigen::VectorXd normal_form = form.linear * (z + form.root * std::sqrt(depth));
+  return (TrueMap(system, form, q, previous_impact, z) - normal_form).norm() /
+         ((form.linear * form.root).norm() * std::sqrt(delta));
+}
+
 /// −d(clearance)/dΩ of the orbit of `branch` on its own side of the
 /// grazing `graze`, where it exists as an orbit of the impact map: FindOrbit
 /// at Ω* + h and Ω* + 2h towards the branch, one-sided second-order
@@ -163,6 +177,15 @@ void CheckAgainstTrueMap(const Branch& branch) {
   INFO("A W = " << expected.transpose() << "\nfitted " << fitted.transpose());
   CHECK((fitted - expected).norm() < 5e-5 * expected.norm());
   CHECK(SmoothSideDeparture(system, form, branch.q, previous_impact, 1e-6) < 1e-4);
+  // The reach: there one step errs by 10 % of the √ term against the true
+  // map, and a hundred times closer by 1 %: the error grows like √δ (the
+  // next term of the map is O(δ)).
+  INFO("reach " << form.reach);
+  const double at_reach = RootTermError(system, form, branch.q, previous_impact, form.reach);
+  const double closer = RootTermError(system, form, branch.q, previous_impact, form.reach / 100);
+  INFO("error at the reach " << at_reach << ", a hundred times closer " << closer);
+  CHECK(std::abs(at_reach - 0.1) < 0.005);
+  CHECK(std::abs(closer - 0.01) < 0.001);
   const double rate = ClearanceRate(branch, graze);
   INFO("unfolding " << form.unfolding << ", clearance rate " << rate);
   CHECK(std::abs(form.unfolding - rate) < 1e-7 * std::abs(rate));

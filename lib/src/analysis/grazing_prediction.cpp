@@ -33,6 +33,7 @@ LocalAttractor IterateNormalForm(const GrazingNormalForm& form, double distance,
   LocalAttractor attractor;
   attractor.distance = distance;
   const double mu = form.unfolding * distance;
+  attractor.within_reach = std::abs(mu) <= form.reach;
   const Eigen::Index n = form.linear.rows();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
   // A tangent vector for the largest exponent: D map = A (I + W nᵀ / (2 √δ))
@@ -352,9 +353,14 @@ GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm&
   const std::size_t last_before = prediction.side > 0 ? middle - 1 : middle + 1;
   result.past_distance = result.values[first_past] - form.parameter_value;
   result.past = result.toward[first_past];
-  result.expected = prediction.local
-                        ? IterateNormalForm(form, result.past_distance, prediction_options).motion
-                        : RemoteMotion(system, form, result.past_distance, prediction_options);
+  if (prediction.local) {
+    const LocalAttractor expected =
+        IterateNormalForm(form, result.past_distance, prediction_options);
+    result.expected = expected.motion;
+    result.expected_within_reach = expected.within_reach;
+  } else {
+    result.expected = RemoteMotion(system, form, result.past_distance, prediction_options);
+  }
   const MotionKind family = form.p > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting;
   // An unstable grazing orbit is no sweep's steady motion; a stable one's
   // label may be shared by a coexisting orbit, so its impact speeds decide.

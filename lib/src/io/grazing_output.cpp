@@ -27,6 +27,7 @@ std::string GrazingChecksJson(const std::vector<GrazingCheck>& checks,
                           {"past_distance", s.past_distance},
                           {"past", s.past},
                           {"expected", s.expected},
+                          {"expected_within_reach", s.expected_within_reach},
                           {"family_speed_gap", optional(s.family_speed_gap)},
                           {"family_speed_step", optional(s.family_speed_step)},
                           {"follows", s.follows},
@@ -38,7 +39,9 @@ std::string GrazingChecksJson(const std::vector<GrazingCheck>& checks,
 
 std::string DescribeGrazingCheck(const GrazingCheck& check, const std::string& parameter) {
   const GrazingSweeps& s = check.sweeps;
-  std::string verdict = s.agrees ? "agrees" : "DISAGREES";
+  std::string verdict = s.agrees                  ? "agrees"
+                        : s.expected_within_reach ? "DISAGREES"
+                                                  : "DISAGREES beyond the normal form's reach";
   if (!s.follows) verdict = "the sweep does not follow the grazing orbit";
   if (!s.follows && s.family_speed_gap) {
     verdict = fmt::format(

@@ -22,7 +22,8 @@ nlohmann::json PredictionJson(const GrazingPrediction& prediction) {
                           {"contacts", a.contacts},
                           {"extent", a.extent},
                           {"lyapunov", a.lyapunov},
-                          {"motion", a.motion}});
+                          {"motion", a.motion},
+                          {"within_reach", a.within_reach}});
   }
   return {{"side", prediction.side},
           {"local", prediction.local},
@@ -59,7 +60,8 @@ nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
                       {"normal", Values(form.normal)},
                       {"curvature", form.curvature},
                       {"root", Values(form.root)},
-                      {"unfolding", form.unfolding}};
+                      {"unfolding", form.unfolding},
+                      {"reach", form.reach}};
   if (form.reduced) {
     const SquareRootReduction& r = *form.reduced;
     j["reduced"] = {{"lambda", r.lambda},

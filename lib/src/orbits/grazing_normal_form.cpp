@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <memory>
 
 #include "impactkit/core/errors.hpp"
 #include "impactkit/hybrid/hybrid_system.hpp"
+#include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/hybrid/stop.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "orbits/orbit_shooting.hpp"
@@ -160,6 +163,92 @@ void Reduce(GrazingNormalForm* form) {
   form->reduced = reduced;
 }
 
+/// The reach is where one step of the normal form errs by this fraction of
+/// its square-root term against the true map.
+constexpr double kReachError = 0.1;
+/// Penetrations tried, relative to the orbit's scale: from this (where the
+/// simulated map's rounding, ~1e-13, is 1e-8 of the √δ term) up by √10.
+constexpr double kSmallestPenetration = 1e-10;
+
+/// The grazing orbit's true Poincaré map over its q periods from x* + z at
+/// t*, as the normal form has it (the contact near t* included, the next
+/// one not): x* + z, which may lie past the stop, is flown back without
+/// the stops by `margin` (less than the time since the orbit's previous
+/// contact), simulated to t* + qT − margin and flown on without the stops
+/// to t* + qT. The departure from x*.
+Eigen::VectorXd TrueMap(const GrazingOrbit& orbit, const GrazingNormalForm& form, double margin,
+                        const Eigen::VectorXd& z) {
+  const int n = orbit.system.Dof();
+  const HybridSystem hybrid(orbit.system);
+  const LinearFlow& flow = hybrid.FreeFlow();
+  auto free_flight = [&](HybridState* state, double t) {
+    const Eigen::VectorXd x = state->x, v = state->v;
+    flow.StateFrom(state->t, x, v, flow.Transient(state->t, x, v), t, &state->x, &state->v);
+    state->t = t;
+  };
+  HybridState state;
+  state.t = form.time;
+  state.x = form.touch.head(n) + z.head(n);
+  state.v = form.touch.tail(n) + z.tail(n);
+  free_flight(&state, form.time - margin);
+  const double end = form.time + orbit.q * orbit.system.ForcingPeriod();
+  if (Simulator(orbit.system, SimulationOptions{}).Run(state, end - margin).termination !=
+      Termination::kCompleted) {
+    return Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::quiet_NaN());
+  }
+  free_flight(&state, end);
+  Eigen::VectorXd y(2 * n);
+  y << state.x, state.v;
+  return y - form.touch;
+}
+
+/// One step of the normal form at the grazing (μ = 0) from the penetration
+/// z = δ s e_c, against the true map: the difference relative to the
+/// square-root term |A W| √δ (infinite where the simulation failed).
+double StepError(const GrazingOrbit& orbit, const GrazingNormalForm& form, double margin,
+                 double delta) {
+  const Stop stop(orbit.system, form.stop);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(form.touch.size());
+  z(stop.Dof()) = stop.Sign() * delta;
+  // The located touch's own gap (~1e-12) acts as a penetration.
+  const double gap = stop.GapOf(form.touch.head(orbit.system.Dof()));
+  const double error = (TrueMap(orbit, form, margin, z) - form.Map(z, gap)).norm() /
+                       ((form.linear * form.root).norm() * std::sqrt(delta));
+  return std::isfinite(error) ? error : std::numeric_limits<double>::infinity();
+}
+
+/// The largest penetration at which one step of the normal form errs by
+/// at most kReachError against the true map: the first of the penetrations
+/// tried that errs more, bisected (in log δ) to 2 %; or the largest the
+/// true map can be set up for (the contact within half the margin of t*)
+/// if none does — then the reach is at least that.
+double Reach(const GrazingOrbit& orbit, const GrazingNormalForm& form) {
+  const double period = orbit.system.ForcingPeriod();
+  double margin = 0.25 * period;
+  if (orbit.contacts.size() > 1) {
+    const double previous = orbit.contacts.back().state.t - orbit.q * period;
+    margin = std::min(margin, 0.5 * (form.time - previous));
+  }
+  // A penetration δ meets the stop √(2δ/a) before t*.
+  const double largest = 0.5 * form.curvature * (0.5 * margin) * (0.5 * margin);
+  const double scale = std::max(1.0, form.touch.cwiseAbs().maxCoeff());
+  const double step = std::sqrt(10.0);
+  double good = 0.0;
+  for (double delta = kSmallestPenetration * scale; delta <= largest; delta *= step) {
+    if (StepError(orbit, form, margin, delta) > kReachError) {
+      if (good == 0.0) return 0.0;
+      double bad = delta;
+      while (bad / good > 1.02) {
+        const double middle = std::sqrt(good * bad);
+        (StepError(orbit, form, margin, middle) > kReachError ? bad : good) = middle;
+      }
+      return good;
+    }
+    good = delta;
+  }
+  return largest;
+}
+
 }  // namespace
 
 GrazingOrbit ShortestPeriod(const GrazingOrbit& orbit) {
@@ -196,6 +285,9 @@ std::string GrazingNormalForm::Describe() const {
       "grazing normal form at stop {}, phase {:.6g}: multipliers {}; |W| = {:.6g}, "
       "penetration {:.6g} per unit {}",
       stop + 1, phase, multipliers, root.norm(), unfolding, parameter);
+  if (std::abs(unfolding) > 0) {
+    line += fmt::format(", reach {:.2g} in {}", reach / std::abs(unfolding), parameter);
+  }
   if (reduced) {
     line += fmt::format("; one-dimensional: lambda = {:.6g}, kappa = {:.6g}", reduced->lambda,
                         reduced->kappa);
@@ -253,6 +345,7 @@ GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit,
   form.root = split.jump * std::sqrt(2.0 / form.curvature);
   form.unfolding = Unfolding(orbit, named, form.time);
   Reduce(&form);
+  form.reach = Reach(orbit, form);
   return form;
 }
 

@@ -79,6 +79,10 @@ struct GrazingSweeps {
   /// distance if one stays near the grazing orbit, else the motion the
   /// system goes to from the grazing orbit at that distance.
   std::string expected;
+  /// Where `expected` is the normal form's attractor: the first value past
+  /// lies within its reach (LocalAttractor::within_reach). A disagreement
+  /// beyond it tests the leading-order map where it does not hold.
+  bool expected_within_reach = true;
   /// Where the grazing orbit is stable and `toward` shows its P(p, q) at
   /// the last two values before the grazing: the largest difference
   /// between `toward`'s impact speeds at the last one and the grazing

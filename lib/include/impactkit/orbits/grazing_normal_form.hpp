@@ -83,6 +83,9 @@ struct LocalAttractor {
   double extent = 0.0;    ///< max |z| over the recorded iterations
   double lyapunov = 0.0;  ///< the map's largest exponent along it, per iteration
   std::string motion;     ///< "P(3,2)", "chaotic", "unresolved"
+  /// Its penetration |m distance| is within the normal form's reach
+  /// (GrazingNormalForm::reach): beyond it the true map may do otherwise.
+  bool within_reach = true;
 };
 
 struct GrazingPrediction {
@@ -128,6 +131,12 @@ struct GrazingNormalForm {
   double curvature = 0.0;        ///< a = −s ẍ_c at the touch (> 0)
   Eigen::VectorXd root;          ///< W: the jump per √δ
   double unfolding = 0.0;        ///< m = dμ/dp
+  /// The penetration δ up to which one step of the map, from z = δ s e_c
+  /// at the grazing, errs by at most 10 % of its √δ term against the true
+  /// map (simulated); its error grows like √δ. Penetrations μ = m (p − p*)
+  /// beyond it are outside the normal form's reach. 0 if it errs more at
+  /// the smallest penetration tried (1e-10 of the orbit's scale).
+  double reach = 0.0;
   std::optional<SquareRootReduction> reduced;
   std::string reduction_note;  ///< why there is no reduction, when there is none
   /// What the motion does past it, once predicted (PredictGrazing).
@@ -136,7 +145,8 @@ struct GrazingNormalForm {
   /// The normal form's map at z (measured from the smooth orbit's point)
   /// for the penetration μ of the smooth orbit.
   Eigen::VectorXd Map(const Eigen::VectorXd& z, double mu) const;
-  /// One line: "grazing normal form at t* = ...: multipliers ..., √ term ..."
+  /// One line: "grazing normal form at stop 1, phase ...: multipliers ...;
+  /// |W| = ..., penetration ... per unit omega, reach ... in omega; ..."
   std::string Describe() const;
 };
 
