@@ -1,9 +1,10 @@
 // The discontinuity-map normal form at a grazing (orbits/grazing_normal_form.hpp):
 // the single-degree-of-freedom response's against a closed form, the
 // paper's against the multipliers of the impact map and against the true
-// Poincaré map near the grazing, fitted to its √δ and δ terms, and the
-// grazing seen from its two sides (the orbit that touches, the orbit whose
-// impact vanishes) giving one normal form.
+// Poincaré map near the grazing (TrueGrazingMap, simulated), fitted to its
+// √δ and δ terms, its reach, and the grazing seen from its two sides (the
+// orbit that touches, the orbit whose impact vanishes) giving one normal
+// form.
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -12,8 +13,6 @@
 
 #include "closed_form_sdof.hpp"
 #include "impactkit/continuation/continuation.hpp"
-#include "impactkit/hybrid/hybrid_system.hpp"
-#include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/grazing_normal_form.hpp"
@@ -47,36 +46,21 @@ Branch PaperBranchToGrazing(double omega, int p, int q, double to) {
   return branch;
 }
 
-/// The true Poincaré map over q periods from x* + z at t*, the contact
-/// near t* included and the next one not, as the normal form has it: x* +
-/// z, which may lie past the stop (no simulation starts there), is flown
-/// back without the stops to a time t* − Δ after the orbit's previous
-/// impact, simulated to t* + qT − Δ, and flown on without the stops to
-/// t* + qT.
-Eigen::VectorXd TrueMap(const System& system, const GrazingNormalForm& form, int q,
-                        double previous_impact, const Eigen::VectorXd& z) {
-  const int n = system.Dof();
-  const HybridSystem hybrid(system);
-  const LinearFlow& flow = hybrid.FreeFlow();
-  const double margin =
-      std::min(0.02 * system.ForcingPeriod(), 0.5 * (form.time - previous_impact));
-  auto free_flight = [&](HybridState* state, double t) {
-    const Eigen::VectorXd x = state->x, v = state->v;
-    flow.StateFrom(state->t, x, v, flow.Transient(state->t, x, v), t, &state->x, &state->v);
-    state->t = t;
-  };
-  HybridState state;
-  state.t = form.time;
-  state.x = form.touch.head(n) + z.head(n);
-  state.v = form.touch.tail(n) + z.tail(n);
-  free_flight(&state, form.time - margin);
-  const double end = form.time + q * system.ForcingPeriod();
-  const Simulator simulator(system, SimulationOptions{});
-  REQUIRE(simulator.Run(state, end - margin).termination == Termination::kCompleted);
-  free_flight(&state, end);
-  Eigen::VectorXd y(2 * n);
-  y << state.x, state.v;
-  return y - form.touch;
+/// The true map (TrueGrazingMap) from z, required to complete.
+Eigen::VectorXd TrueMap(const GrazingOrbit& orbit, const GrazingNormalForm& form,
+                        const Eigen::VectorXd& z) {
+  const Eigen::VectorXd departure = TrueGrazingMap(orbit, form, z);
+  REQUIRE(departure.allFinite());
+  return departure;
+}
+
+/// z = δ s e_c: a state δ past the touched stop (δ < 0: short of it).
+Eigen::VectorXd Penetration(const GrazingOrbit& orbit, const GrazingNormalForm& form,
+                            double delta) {
+  const Stop stop(orbit.system, form.stop);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(form.touch.size());
+  z(stop.Dof()) = stop.Sign() * delta;
+  return z;
 }
 
 /// The √δ coefficient of the true map's departure from A z along the
@@ -84,21 +68,17 @@ Eigen::VectorXd TrueMap(const System& system, const GrazingNormalForm& form, int
 /// c₂ d, d = δ + the touch's own gap, over δ from 1e-9 to 1e-6. The
 /// δ^{3/2} terms left out bias c₁ by ~δ_max: 2e-6 to 8e-6 relative here,
 /// ten times less than with δ up to 1e-5 (so the fit converges to A W).
-Eigen::VectorXd FittedRootTerm(const System& system, const GrazingNormalForm& form, int q,
-                               double previous_impact) {
-  const int n = system.Dof();
-  const Stop stop(system, form.stop);
-  const double gap = stop.GapOf(form.touch.head(n));
+Eigen::VectorXd FittedRootTerm(const GrazingOrbit& orbit, const GrazingNormalForm& form) {
+  const int n = orbit.system.Dof();
+  const double gap = Stop(orbit.system, form.stop).GapOf(form.touch.head(n));
   constexpr int kSamples = 6;
   Eigen::MatrixXd basis(kSamples, 2);
   Eigen::MatrixXd departures(kSamples, 2 * n);
   for (int j = 0; j < kSamples; ++j) {
     const double delta = 1e-9 * std::pow(4.0, j), depth = delta + gap;
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(2 * n);
-    z(stop.Dof()) = stop.Sign() * delta;
+    const Eigen::VectorXd z = Penetration(orbit, form, delta);
     basis.row(j) << std::sqrt(depth), depth;
-    departures.row(j) =
-        (TrueMap(system, form, q, previous_impact, z) - form.linear * z).transpose();
+    departures.row(j) = (TrueMap(orbit, form, z) - form.linear * z).transpose();
   }
   const Eigen::MatrixXd coefficients = basis.colPivHouseholderQr().solve(departures);
   return coefficients.row(0).transpose();
@@ -106,27 +86,19 @@ Eigen::VectorXd FittedRootTerm(const System& system, const GrazingNormalForm& fo
 
 /// max |P(z) − A z| / δ on the side without contact, z = −δ s e_c: O(δ)
 /// if A is the map's linear part there.
-double SmoothSideDeparture(const System& system, const GrazingNormalForm& form, int q,
-                           double previous_impact, double delta) {
-  const int n = system.Dof();
-  const Stop stop(system, form.stop);
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(2 * n);
-  z(stop.Dof()) = -stop.Sign() * delta;
-  return (TrueMap(system, form, q, previous_impact, z) - form.linear * z).cwiseAbs().maxCoeff() /
-         delta;
+double SmoothSideDeparture(const GrazingOrbit& orbit, const GrazingNormalForm& form, double delta) {
+  const Eigen::VectorXd z = Penetration(orbit, form, -delta);
+  return (TrueMap(orbit, form, z) - form.linear * z).cwiseAbs().maxCoeff() / delta;
 }
 
 /// One step of the normal form from z = δ s e_c against the true map,
 /// relative to its √δ term |A W| √δ: what GrazingNormalForm::reach bounds.
-double RootTermError(const System& system, const GrazingNormalForm& form, int q,
-                     double previous_impact, double delta) {
-  const int n = system.Dof();
-  const Stop stop(system, form.stop);
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(2 * n);
-  z(stop.Dof()) = stop.Sign() * delta;
-  const double depth = delta + stop.GapOf(form.touch.head(n));
+double RootTermError(const GrazingOrbit& orbit, const GrazingNormalForm& form, double delta) {
+  const Eigen::VectorXd z = Penetration(orbit, form, delta);
+  const double depth =
+      delta + Stop(orbit.system, form.stop).GapOf(form.touch.head(orbit.system.Dof()));
   const Eigen::VectorXd normal_form = form.linear * (z + form.root * std::sqrt(depth));
-  return (TrueMap(system, form, q, previous_impact, z) - normal_form).norm() /
+  return (TrueMap(orbit, form, z) - normal_form).norm() /
          ((form.linear * form.root).norm() * std::sqrt(delta));
 }
 
@@ -171,18 +143,17 @@ void CheckAgainstTrueMap(const Branch& branch) {
   // The orbit's last impact before the touch: its last contact, q periods earlier.
   ContinuationOptions options;
   const GrazingOrbit orbit = GrazingOrbitAt(PaperSystem(), branch, graze, options);
-  const double previous_impact = orbit.contacts.back().state.t - branch.q * system.ForcingPeriod();
   const Eigen::VectorXd expected = form.linear * form.root;
-  const Eigen::VectorXd fitted = FittedRootTerm(system, form, branch.q, previous_impact);
+  const Eigen::VectorXd fitted = FittedRootTerm(orbit, form);
   INFO("A W = " << expected.transpose() << "\nfitted " << fitted.transpose());
   CHECK((fitted - expected).norm() < 5e-5 * expected.norm());
-  CHECK(SmoothSideDeparture(system, form, branch.q, previous_impact, 1e-6) < 1e-4);
+  CHECK(SmoothSideDeparture(orbit, form, 1e-6) < 1e-4);
   // The reach: there one step errs by 10 % of the √ term against the true
   // map, and a hundred times closer by 1 %: the error grows like √δ (the
   // next term of the map is O(δ)).
   INFO("reach " << form.reach);
-  const double at_reach = RootTermError(system, form, branch.q, previous_impact, form.reach);
-  const double closer = RootTermError(system, form, branch.q, previous_impact, form.reach / 100);
+  const double at_reach = RootTermError(orbit, form, form.reach);
+  const double closer = RootTermError(orbit, form, form.reach / 100);
   INFO("error at the reach " << at_reach << ", a hundred times closer " << closer);
   CHECK(std::abs(at_reach - 0.1) < 0.005);
   CHECK(std::abs(closer - 0.01) < 0.001);

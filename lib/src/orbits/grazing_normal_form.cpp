@@ -170,49 +170,25 @@ constexpr double kReachError = 0.1;
 /// simulated map's rounding, ~1e-13, is 1e-8 of the √δ term) up by √10.
 constexpr double kSmallestPenetration = 1e-10;
 
-/// The grazing orbit's true Poincaré map over its q periods from x* + z at
-/// t*, as the normal form has it (the contact near t* included, the next
-/// one not): x* + z, which may lie past the stop, is flown back without
-/// the stops by `margin` (less than the time since the orbit's previous
-/// contact), simulated to t* + qT − margin and flown on without the stops
-/// to t* + qT. The departure from x*.
-Eigen::VectorXd TrueMap(const GrazingOrbit& orbit, const GrazingNormalForm& form, double margin,
-                        const Eigen::VectorXd& z) {
-  const int n = orbit.system.Dof();
-  const HybridSystem hybrid(orbit.system);
-  const LinearFlow& flow = hybrid.FreeFlow();
-  auto free_flight = [&](HybridState* state, double t) {
-    const Eigen::VectorXd x = state->x, v = state->v;
-    flow.StateFrom(state->t, x, v, flow.Transient(state->t, x, v), t, &state->x, &state->v);
-    state->t = t;
-  };
-  HybridState state;
-  state.t = form.time;
-  state.x = form.touch.head(n) + z.head(n);
-  state.v = form.touch.tail(n) + z.tail(n);
-  free_flight(&state, form.time - margin);
-  const double end = form.time + orbit.q * orbit.system.ForcingPeriod();
-  if (Simulator(orbit.system, SimulationOptions{}).Run(state, end - margin).termination !=
-      Termination::kCompleted) {
-    return Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::quiet_NaN());
-  }
-  free_flight(&state, end);
-  Eigen::VectorXd y(2 * n);
-  y << state.x, state.v;
-  return y - form.touch;
+/// How far before t* the true map starts: a quarter period, or half the
+/// time since the orbit's previous contact if that is shorter.
+double BackFlight(const GrazingOrbit& orbit, const GrazingNormalForm& form) {
+  const double period = orbit.system.ForcingPeriod();
+  if (orbit.contacts.size() < 2) return 0.25 * period;
+  const double previous = orbit.contacts.back().state.t - orbit.q * period;
+  return std::min(0.25 * period, 0.5 * (form.time - previous));
 }
 
 /// One step of the normal form at the grazing (μ = 0) from the penetration
 /// z = δ s e_c, against the true map: the difference relative to the
 /// square-root term |A W| √δ (infinite where the simulation failed).
-double StepError(const GrazingOrbit& orbit, const GrazingNormalForm& form, double margin,
-                 double delta) {
+double StepError(const GrazingOrbit& orbit, const GrazingNormalForm& form, double delta) {
   const Stop stop(orbit.system, form.stop);
   Eigen::VectorXd z = Eigen::VectorXd::Zero(form.touch.size());
   z(stop.Dof()) = stop.Sign() * delta;
   // The located touch's own gap (~1e-12) acts as a penetration.
   const double gap = stop.GapOf(form.touch.head(orbit.system.Dof()));
-  const double error = (TrueMap(orbit, form, margin, z) - form.Map(z, gap)).norm() /
+  const double error = (TrueGrazingMap(orbit, form, z) - form.Map(z, gap)).norm() /
                        ((form.linear * form.root).norm() * std::sqrt(delta));
   return std::isfinite(error) ? error : std::numeric_limits<double>::infinity();
 }
@@ -220,27 +196,22 @@ double StepError(const GrazingOrbit& orbit, const GrazingNormalForm& form, doubl
 /// The largest penetration at which one step of the normal form errs by
 /// at most kReachError against the true map: the first of the penetrations
 /// tried that errs more, bisected (in log δ) to 2 %; or the largest the
-/// true map can be set up for (the contact within half the margin of t*)
-/// if none does — then the reach is at least that.
+/// true map can be set up for (the contact within half its back-flight of
+/// t*) if none does — then the reach is at least that.
 double Reach(const GrazingOrbit& orbit, const GrazingNormalForm& form) {
-  const double period = orbit.system.ForcingPeriod();
-  double margin = 0.25 * period;
-  if (orbit.contacts.size() > 1) {
-    const double previous = orbit.contacts.back().state.t - orbit.q * period;
-    margin = std::min(margin, 0.5 * (form.time - previous));
-  }
   // A penetration δ meets the stop √(2δ/a) before t*.
-  const double largest = 0.5 * form.curvature * (0.5 * margin) * (0.5 * margin);
+  const double half = 0.5 * BackFlight(orbit, form);
+  const double largest = 0.5 * form.curvature * half * half;
   const double scale = std::max(1.0, form.touch.cwiseAbs().maxCoeff());
   const double step = std::sqrt(10.0);
   double good = 0.0;
   for (double delta = kSmallestPenetration * scale; delta <= largest; delta *= step) {
-    if (StepError(orbit, form, margin, delta) > kReachError) {
+    if (StepError(orbit, form, delta) > kReachError) {
       if (good == 0.0) return 0.0;
       double bad = delta;
       while (bad / good > 1.02) {
         const double middle = std::sqrt(good * bad);
-        (StepError(orbit, form, margin, middle) > kReachError ? bad : good) = middle;
+        (StepError(orbit, form, middle) > kReachError ? bad : good) = middle;
       }
       return good;
     }
@@ -264,6 +235,33 @@ GrazingOrbit ShortestPeriod(const GrazingOrbit& orbit) {
     return shortest;
   }
   return orbit;
+}
+
+Eigen::VectorXd TrueGrazingMap(const GrazingOrbit& orbit, const GrazingNormalForm& form,
+                               const Eigen::VectorXd& z) {
+  const int n = orbit.system.Dof();
+  const HybridSystem hybrid(orbit.system);
+  const LinearFlow& flow = hybrid.FreeFlow();
+  auto free_flight = [&](HybridState* state, double t) {
+    const Eigen::VectorXd x = state->x, v = state->v;
+    flow.StateFrom(state->t, x, v, flow.Transient(state->t, x, v), t, &state->x, &state->v);
+    state->t = t;
+  };
+  const double margin = BackFlight(orbit, form);
+  HybridState state;
+  state.t = form.time;
+  state.x = form.touch.head(n) + z.head(n);
+  state.v = form.touch.tail(n) + z.tail(n);
+  free_flight(&state, form.time - margin);
+  const double end = form.time + orbit.q * orbit.system.ForcingPeriod();
+  if (Simulator(orbit.system, SimulationOptions{}).Run(state, end - margin).termination !=
+      Termination::kCompleted) {
+    return Eigen::VectorXd::Constant(2 * n, std::numeric_limits<double>::quiet_NaN());
+  }
+  free_flight(&state, end);
+  Eigen::VectorXd y(2 * n);
+  y << state.x, state.v;
+  return y - form.touch;
 }
 
 Eigen::VectorXd GrazingNormalForm::Map(const Eigen::VectorXd& z, double mu) const {

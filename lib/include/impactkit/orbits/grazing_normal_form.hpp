@@ -150,6 +150,16 @@ struct GrazingNormalForm {
   std::string Describe() const;
 };
 
+/// The true map the normal form approximates: `orbit`'s Poincaré map over
+/// its q periods from x* + z at t* (`form` its normal form), the contact
+/// near t* included and the next one not, as the departure from x*. x* +
+/// z may lie past the stop, where no simulation starts: it is flown back
+/// without the stops to t* − Δ (Δ a quarter period, or half the time since
+/// the orbit's previous contact), simulated to t* + qT − Δ and flown on
+/// without the stops to t* + qT. NaN where the simulation stops early.
+Eigen::VectorXd TrueGrazingMap(const GrazingOrbit& orbit, const GrazingNormalForm& form,
+                               const Eigen::VectorXd& z);
+
 /// The normal form at `orbit`, unfolded in `parameter` (a name of
 /// ParameterNames). Throws InvalidInput for an orbit whose first contact is
 /// no touch (speed or gap not 0 to 1e-8, or pressed into the stop rather
