@@ -4,20 +4,20 @@
 // attractor stays near the grazing orbit, against the simulator a hair past
 // them.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <utility>
 #include <vector>
 
 #include "impactkit/analysis/grazing_prediction.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
-#include "impactkit/analysis/swept_diagram.hpp"
-#include "impactkit/io/system_file.hpp"
-#include "impactkit/orbits/orbit.hpp"
 #include "impactkit/analysis/steady_window.hpp"
+#include "impactkit/analysis/swept_diagram.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/hybrid/stop.hpp"
+#include "impactkit/io/system_file.hpp"
+#include "impactkit/orbits/orbit.hpp"
 #include "seeded_orbit.hpp"
 #include "system_at.hpp"
 
@@ -98,8 +98,7 @@ Branch PredictedBranchDown(const System& system, int p, int q) {
 /// `vanishing`, if any, left out), relative to the largest of `grazing`'s,
 /// from Newton's orbits: what GrazingSweeps::family_speed_gap measures on
 /// the sweep.
-double OrbitSpeedGap(const PeriodicOrbit& orbit, const PeriodicOrbit& grazing,
-                     int vanishing = -1) {
+double OrbitSpeedGap(const PeriodicOrbit& orbit, const PeriodicOrbit& grazing, int vanishing = -1) {
   auto speeds = [](const PeriodicOrbit& o, int skip) {
     std::vector<std::pair<int, double>> s;
     for (std::size_t k = 0; k < o.impacts.size(); ++k) {
@@ -166,6 +165,27 @@ TEST_CASE(
   CHECK(prediction.scenario == "chaos");
   CHECK(prediction.one_dimensional == "chaos");
   CHECK(prediction.attractors.front().lyapunov > 0.01);
+}
+
+TEST_CASE(
+    "prediction: attractors whose penetration m distance exceeds the form's reach are flagged, "
+    "and the description says so where the nearest is",
+    "[grazing][prediction]") {
+  GrazingNormalForm form = SquareRootForm(0.3);
+  GrazingPredictionOptions options;
+  options.distances = {1e-8, 1e-6, 1e-4};
+  form.reach = 1e-6;  // the unfolding is 1: penetrations equal distances
+  GrazingPrediction prediction = PredictGrazing(PaperSystem(0.5), form, options);
+  REQUIRE(prediction.attractors.size() == 3);
+  CHECK(prediction.attractors[0].within_reach);
+  CHECK(prediction.attractors[1].within_reach);
+  CHECK_FALSE(prediction.attractors[2].within_reach);
+  CHECK_THAT(prediction.Describe(), !Catch::Contains("reach"));
+  form.reach = 1e-9;
+  prediction = PredictGrazing(PaperSystem(0.5), form, options);
+  CHECK_FALSE(prediction.attractors[0].within_reach);
+  REQUIRE(prediction.local);
+  CHECK_THAT(prediction.Describe(), Catch::Contains("beyond the normal form's reach"));
 }
 
 TEST_CASE("prediction: a normal form without its eigenvalues is refused with a clear error",
@@ -236,8 +256,8 @@ TEST_CASE(
     REQUIRE(sweeps.family_speed_gap.has_value());
     const SpecialPoint& graze = branch.special_points.back();
     const double last_before = sweeps.values[sweeps.values.size() / 2 + 1];
-    const PeriodicOrbit family = NewtonOrbit(testing::At(system, "omega", last_before),
-                                             graze.point.orbit.eta, c.p, c.q);
+    const PeriodicOrbit family =
+        NewtonOrbit(testing::At(system, "omega", last_before), graze.point.orbit.eta, c.p, c.q);
     const double expected = OrbitSpeedGap(family, graze.point.orbit);
     INFO("gap " << *sweeps.family_speed_gap << ", Newton's " << expected);
     // The sweep's speeds settle to ~1e-10; the grazing orbit's come from

@@ -303,6 +303,9 @@ std::string GrazingPrediction::Describe() const {
     what = "the grazing orbit is unstable; the motion " + where;
   } else if (local) {
     what = fmt::format("{} near the grazing orbit ({})", motion, scenario);
+    if (!attractors.empty() && !attractors.front().within_reach) {
+      what += fmt::format(", found {:.2g} past, beyond the normal form's reach", distance);
+    }
   } else {
     what = "no attractor near the grazing orbit; the motion " + where;
   }

@@ -36,6 +36,7 @@
 /// s and d (d grows at m / κ² per unit parameter). docs/theory.md §6b.
 
 #include <Eigen/Dense>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -135,8 +136,9 @@ struct GrazingNormalForm {
   /// at the grazing, errs by at most 10 % of its √δ term against the true
   /// map (simulated); its error grows like √δ. Penetrations μ = m (p − p*)
   /// beyond it are outside the normal form's reach. 0 if it errs more at
-  /// the smallest penetration tried (1e-10 of the orbit's scale).
-  double reach = 0.0;
+  /// the smallest penetration tried (1e-10 of the orbit's scale); infinite
+  /// for a form not computed from an orbit (then the map is all there is).
+  double reach = std::numeric_limits<double>::infinity();
   std::optional<SquareRootReduction> reduced;
   std::string reduction_note;  ///< why there is no reduction, when there is none
   /// What the motion does past it, once predicted (PredictGrazing).
