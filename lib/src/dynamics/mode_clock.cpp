@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 namespace impactkit {
 namespace {
@@ -186,6 +189,33 @@ ExponentialTable::ExponentialTable(std::complex<double> rate) {
   FillTables(rate, kFine * step_, &coarse_, &coarse_increment_);
 }
 
+namespace {
+
+/// The table of e^{λτ} for a mode's rate λ. Continuation builds the flows
+/// at every parameter value its corrector visits (μ and μ ± h for ∂U/∂μ);
+/// in Ω, r or xs the modes do not move, and building their tables (640
+/// long-double products each) was a quarter of a connected diagram's CPU
+/// time (docs/performance.md). The last few rates' tables are kept per
+/// thread and copied: the same rate, bit for bit, gives the same table.
+ExponentialTable ModeTable(std::complex<double> rate) {
+  constexpr std::size_t kKept = 8;
+  struct Kept {
+    std::uint64_t real, imag;
+    ExponentialTable table;
+  };
+  thread_local std::vector<Kept> kept;  // the newest last
+  const std::uint64_t real = std::bit_cast<std::uint64_t>(rate.real());
+  const std::uint64_t imag = std::bit_cast<std::uint64_t>(rate.imag());
+  for (const Kept& k : kept) {
+    if (k.real == real && k.imag == imag) return k.table;
+  }
+  if (kept.size() == kKept) kept.erase(kept.begin());
+  kept.push_back({real, imag, ExponentialTable(rate)});
+  return kept.back().table;
+}
+
+}  // namespace
+
 ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
     : modes_(std::move(modes)),
       omega_(omega),
@@ -196,7 +226,7 @@ ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
     series_.emplace_back(mode.decay, mode.beta2);
     largest_rate = std::max(largest_rate, mode.LargestRate());
     const bool oscillates = mode.beta2 > 0;
-    tables_.push_back(oscillates ? ExponentialTable({-mode.decay, mode.root}) : ExponentialTable());
+    tables_.push_back(oscillates ? ModeTable({-mode.decay, mode.root}) : ExponentialTable());
     inverse_roots_.push_back(oscillates ? 1.0 / mode.root : 0.0);
   }
   anchored_span_ = 1.0 / largest_rate;
