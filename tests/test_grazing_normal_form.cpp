@@ -187,6 +187,16 @@ TEST_CASE(
   CHECK_FALSE(form.reduced.has_value());
   CHECK_THAT(form.reduction_note, Catch::Contains("complex pair"));
   CHECK(std::abs(ComputeGrazingNormalForm(orbit, "xs").unfolding + 1.0) < 1e-8);
+  // Its reach: the true map errs by 10 % there, or by less where the scan
+  // stopped at the largest penetration the true map can be set up for.
+  const double at_reach = RootTermError(orbit, form, form.reach);
+  INFO("reach " << form.reach << (form.reach_bounded ? " (bounded)" : "") << ", error there "
+                << at_reach);
+  if (form.reach_bounded) {
+    CHECK(at_reach <= 0.1);
+  } else {
+    CHECK(std::abs(at_reach - 0.1) < 0.005);
+  }
 }
 
 TEST_CASE(

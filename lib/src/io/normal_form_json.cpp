@@ -61,7 +61,8 @@ nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
                       {"curvature", form.curvature},
                       {"root", Values(form.root)},
                       {"unfolding", form.unfolding},
-                      {"reach", form.reach}};
+                      {"reach", form.reach},
+                      {"reach_bounded", form.reach_bounded}};
   if (form.reduced) {
     const SquareRootReduction& r = *form.reduced;
     j["reduced"] = {{"lambda", r.lambda},

@@ -193,31 +193,36 @@ double StepError(const GrazingOrbit& orbit, const GrazingNormalForm& form, doubl
   return std::isfinite(error) ? error : std::numeric_limits<double>::infinity();
 }
 
-/// The largest penetration at which one step of the normal form errs by
-/// at most kReachError against the true map: the first of the penetrations
-/// tried that errs more, bisected (in log δ) to 2 %; or the largest the
-/// true map can be set up for (the contact within half its back-flight of
-/// t*) if none does — then the reach is at least that.
-double Reach(const GrazingOrbit& orbit, const GrazingNormalForm& form) {
+/// Sets the largest penetration at which one step of the normal form errs
+/// by at most kReachError against the true map: the first of the
+/// penetrations tried that errs more, bisected (in log δ) to 2 %; or, if
+/// none does, the largest the true map can be set up for (the contact
+/// within half its back-flight of t*), with reach_bounded: the reach is at
+/// least that.
+void SetReach(const GrazingOrbit& orbit, GrazingNormalForm* form) {
   // A penetration δ meets the stop √(2δ/a) before t*.
-  const double half = 0.5 * BackFlight(orbit, form);
-  const double largest = 0.5 * form.curvature * half * half;
-  const double scale = std::max(1.0, form.touch.cwiseAbs().maxCoeff());
+  const double half = 0.5 * BackFlight(orbit, *form);
+  const double largest = 0.5 * form->curvature * half * half;
+  const double scale = std::max(1.0, form->touch.cwiseAbs().maxCoeff());
   const double step = std::sqrt(10.0);
   double good = 0.0;
-  for (double delta = kSmallestPenetration * scale; delta <= largest; delta *= step) {
-    if (StepError(orbit, form, delta) > kReachError) {
-      if (good == 0.0) return 0.0;
+  for (double delta = std::min(kSmallestPenetration * scale, largest);;
+       delta = std::min(delta * step, largest)) {
+    if (StepError(orbit, *form, delta) > kReachError) {
       double bad = delta;
-      while (bad / good > 1.02) {
+      while (good > 0.0 && bad / good > 1.02) {
         const double middle = std::sqrt(good * bad);
-        (StepError(orbit, form, middle) > kReachError ? bad : good) = middle;
+        (StepError(orbit, *form, middle) > kReachError ? bad : good) = middle;
       }
-      return good;
+      form->reach = good;
+      form->reach_bounded = false;
+      return;
     }
     good = delta;
+    if (delta >= largest) break;
   }
-  return largest;
+  form->reach = largest;
+  form->reach_bounded = true;
 }
 
 }  // namespace
@@ -284,7 +289,8 @@ std::string GrazingNormalForm::Describe() const {
       "penetration {:.6g} per unit {}",
       stop + 1, phase, multipliers, root.norm(), unfolding, parameter);
   if (std::abs(unfolding) > 0) {
-    line += fmt::format(", reach {:.2g} in {}", reach / std::abs(unfolding), parameter);
+    line += fmt::format(", reach {}{:.2g} in {}", reach_bounded ? "at least " : "",
+                        reach / std::abs(unfolding), parameter);
   }
   if (reduced) {
     line += fmt::format("; one-dimensional: lambda = {:.6g}, kappa = {:.6g}", reduced->lambda,
@@ -346,7 +352,7 @@ GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit,
   form.root = split.jump * std::sqrt(2.0 / form.curvature);
   form.unfolding = Unfolding(orbit, named, form.time);
   Reduce(&form);
-  form.reach = Reach(orbit, form);
+  SetReach(orbit, &form);
   return form;
 }
 

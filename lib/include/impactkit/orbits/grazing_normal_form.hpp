@@ -139,6 +139,10 @@ struct GrazingNormalForm {
   /// the smallest penetration tried (1e-10 of the orbit's scale); infinite
   /// for a form not computed from an orbit (then the map is all there is).
   double reach = std::numeric_limits<double>::infinity();
+  /// The true map could not be set up beyond `reach` (its contact would
+  /// precede the back-flight: TrueGrazingMap) before the error reached
+  /// 10 %: the reach is at least `reach`.
+  bool reach_bounded = false;
   std::optional<SquareRootReduction> reduced;
   std::string reduction_note;  ///< why there is no reduction, when there is none
   /// What the motion does past it, once predicted (PredictGrazing).
