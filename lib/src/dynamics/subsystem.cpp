@@ -24,6 +24,14 @@ Eigen::VectorXd EmbedAtStop(const Eigen::VectorXd& reduced, int inserted, double
   return full;
 }
 
+Eigen::MatrixXd WithZeroRow(const Eigen::MatrixXd& reduced, int inserted) {
+  const Eigen::Index n = reduced.rows() + 1;
+  Eigen::MatrixXd full(n, reduced.cols());
+  full << reduced.topRows(inserted), Eigen::RowVectorXd::Zero(reduced.cols()),
+      reduced.bottomRows(n - 1 - inserted);
+  return full;
+}
+
 Eigen::MatrixXd WithoutRow(const Eigen::MatrixXd& full, int removed) {
   const Eigen::Index n = full.rows();
   Eigen::MatrixXd reduced(n - 1, full.cols());

@@ -18,4 +18,8 @@ Eigen::MatrixXd WithoutRow(const Eigen::MatrixXd& full, int removed);
 /// The full vector: `reduced` with `value` inserted at index `inserted`.
 Eigen::VectorXd EmbedAtStop(const Eigen::VectorXd& reduced, int inserted, double value);
 
+/// The full matrix: `reduced` with a zero row inserted at `inserted` (the
+/// derivative of a coordinate the stop holds fixed).
+Eigen::MatrixXd WithZeroRow(const Eigen::MatrixXd& reduced, int inserted);
+
 }  // namespace impactkit

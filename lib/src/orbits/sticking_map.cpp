@@ -66,13 +66,20 @@ class StickingMap::Cycle {
   /// sticks at (cycle->stop); that release's section state in *next.
   Termination Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
                   Eigen::MatrixXd* jacobian, StickingCycle* cycle);
+  /// StickingMap::Follow.
+  StickingFlight Follow(const HybridState& from, double until, std::optional<int> released);
 
  private:
   using Arrival = PhaseEvents::Event;
+  /// From the current state (a release from stop `released`, or a free
+  /// state) to the next release, or to horizon_ if that comes first
+  /// (*at_horizon).
+  Termination ToNextRelease(std::optional<int> released, StickingCycle* cycle, bool* at_horizon);
   /// The free flight to the first arrival at any stop (PhaseEvents), the
-  /// first of a cycle from a release at stop `released`.
+  /// first of a cycle from a release at stop `released`; or, none coming
+  /// before horizon_, to horizon_ (*at_horizon, and no arrival).
   std::optional<Arrival> NextArrival(std::optional<int> released, StickingCycle* cycle,
-                                     Termination* status);
+                                     Termination* status, bool* at_horizon);
   /// Takes into `cycle` the interior turns (the zeros of a velocity) on the
   /// flight [begin, end]: the least distance from its stop of each stop's
   /// mass at a turn towards that stop (its clearance), and the section
@@ -91,12 +98,17 @@ class StickingMap::Cycle {
   bool HeldMeetsOtherStop(int stop, const LinearFlow& flow, double te, const Eigen::VectorXd& z0,
                           double end) const;
   bool ArrivalEndsChatter(const Arrival& arrival, StickingCycle* cycle, double* t_star);
-  Termination StickAndRelease(int stop, double te, double t_star, StickingCycle* cycle);
+  /// Stuck at stop `stop` from te to the release, or to horizon_ if that
+  /// comes first (*at_horizon).
+  Termination StickAndRelease(int stop, double te, double t_star, StickingCycle* cycle,
+                              bool* at_horizon);
   /// The state-and-time Jacobian through a flight from (t0, y0) to an event
   /// at t1 with witness gradient l and slope ẇ(t1): G = Φ (dy0 − f0 dt0),
   /// dt1 = −l G / ẇ, dy1 = G + f1 dt1.
   void ThroughFlight(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0,
                      const Eigen::VectorXd& f1, const Eigen::RowVectorXd& gradient, double slope);
+  /// The same to the fixed time horizon_: dy1 = Φ (dy0 − f0 dt0), dt1 = 0.
+  void ToHorizon(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0);
   /// The rows of ∂y/∂s without those of the held DOF `dof`.
   Eigen::MatrixXd HeldRows(const Eigen::MatrixXd& full, int dof) const;
 
@@ -116,7 +128,9 @@ class StickingMap::Cycle {
   std::vector<Eigen::RowVectorXd> release_gradients_;
   PhaseEvents phase_events_;  ///< the current flight's
   double t_ = 0.0;
-  double deadline_ = 0.0;         ///< the cycle must stick before this time
+  double deadline_ = 0.0;  ///< the cycle must stick before this time
+  /// Follow's fixed end time (infinity for P_R).
+  double horizon_ = std::numeric_limits<double>::infinity();
   std::vector<double> previous_;  ///< each stop's last impact time
   int last_stop_ = 0;             ///< the stop of the last event (PhaseEvents::First's order)
   Eigen::VectorXd x_, v_;
@@ -126,7 +140,6 @@ class StickingMap::Cycle {
 
 Termination StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::VectorXd* next,
                                     Eigen::MatrixXd* jacobian, StickingCycle* cycle) {
-  const System& system = hybrid_.GetSystem();
   const int held = n_ - 1, m = 2 * n_ - 1;
   const Stop& released = hybrid_.GetStop(from);
   t_ = s(m - 1);
@@ -142,8 +155,51 @@ Termination StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::V
     }
     dt_ = Eigen::RowVectorXd::Unit(m, m - 1);
   }
+  horizon_ = std::numeric_limits<double>::infinity();
+  bool at_horizon = false;
+  const Termination status = ToNextRelease(from, cycle, &at_horizon);
+  if (status != Termination::kCompleted) return status;
+  const int dof = hybrid_.GetStop(cycle->stop).Dof();
+  next->resize(m);
+  *next << WithoutIndex(x_, dof), WithoutIndex(v_, dof), t_;
+  if (with_jacobian_) {
+    jacobian->resize(m, m);
+    *jacobian << HeldRows(dy_, dof), dt_;
+  }
+  return Termination::kCompleted;
+}
+
+StickingFlight StickingMap::Cycle::Follow(const HybridState& from, double until,
+                                          std::optional<int> released) {
+  t_ = from.t;
+  x_ = from.x;
+  v_ = from.v;
+  horizon_ = until;
+  if (with_jacobian_) {
+    dy_ = Eigen::MatrixXd::Identity(2 * n_, 2 * n_);
+    dt_ = Eigen::RowVectorXd::Zero(2 * n_);
+  }
+  StickingFlight flight;
+  for (bool at_horizon = false; !at_horizon;) {
+    flight.cycles.emplace_back();
+    flight.termination = ToNextRelease(released, &flight.cycles.back(), &at_horizon);
+    if (flight.termination != Termination::kCompleted) return flight;
+    if (at_horizon) break;
+    released = flight.cycles.back().stop;
+    // Released, the mass's coordinates are the stop's again: fixed.
+    const int dof = hybrid_.GetStop(*released).Dof();
+    if (with_jacobian_) dy_ = WithZeroRow(WithZeroRow(dy_, dof), n_ + dof);
+  }
+  flight.state = {t_, x_, v_};
+  if (with_jacobian_) flight.jacobian = dy_;
+  return flight;
+}
+
+Termination StickingMap::Cycle::ToNextRelease(std::optional<int> released, StickingCycle* cycle,
+                                              bool* at_horizon) {
+  const System& system = hybrid_.GetSystem();
   cycle->release = t_;
-  last_stop_ = from;
+  last_stop_ = released.value_or(last_stop_);
   cycle->impacts.clear();
   cycle->clearance = std::numeric_limits<double>::infinity();
   cycle->contact_min = cycle->contact_max = x_(measured_);
@@ -152,7 +208,8 @@ Termination StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::V
   Termination status = Termination::kCompleted;
   for (int i = 0; i < options_.max_impacts; ++i) {
     const std::optional<Arrival> arrival =
-        NextArrival(i == 0 ? std::optional<int>(from) : std::nullopt, cycle, &status);
+        NextArrival(i == 0 ? released : std::nullopt, cycle, &status, at_horizon);
+    if (*at_horizon) return Termination::kCompleted;
     if (!arrival) return status;
     last_stop_ = arrival->stop;
     double t_star;
@@ -160,22 +217,13 @@ Termination StickingMap::Cycle::Run(const Eigen::VectorXd& s, int from, Eigen::V
       previous_[arrival->stop] = arrival->t;
       continue;
     }
-    status = StickAndRelease(arrival->stop, arrival->t, t_star, cycle);
-    if (status != Termination::kCompleted) return status;
-    const int dof = hybrid_.GetStop(arrival->stop).Dof();
-    next->resize(m);
-    *next << WithoutIndex(x_, dof), WithoutIndex(v_, dof), t_;
-    if (with_jacobian_) {
-      jacobian->resize(m, m);
-      *jacobian << HeldRows(dy_, dof), dt_;
-    }
-    return Termination::kCompleted;
+    return StickAndRelease(arrival->stop, arrival->t, t_star, cycle, at_horizon);
   }
   return Termination::kNoChatter;
 }
 
 std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
-    std::optional<int> released, StickingCycle* cycle, Termination* status) {
+    std::optional<int> released, StickingCycle* cycle, Termination* status, bool* at_horizon) {
   const bool from_release = released.has_value();
   const LinearFlow& flow = hybrid_.FreeFlow();
   HybridState from;
@@ -197,15 +245,23 @@ std::optional<StickingMap::Cycle::Arrival> StickingMap::Cycle::NextArrival(
       return std::nullopt;
     }
   }
-  const std::optional<Arrival> first = phase_events_.First(deadline_, last_stop_, late);
+  const std::optional<Arrival> first =
+      phase_events_.First(std::min(deadline_, horizon_), last_stop_, late);
+  const Eigen::VectorXd x0 = x_, v0 = v_;
+  const double t0 = t_;
+  if (!first && horizon_ <= deadline_) {
+    flow.StateFrom(t0, x0, v0, z0, horizon_, &x_, &v_);
+    t_ = horizon_;
+    if (with_jacobian_) ToHorizon(flow.Transition(horizon_ - t0), hybrid_.VectorField(t0, x0, v0));
+    *at_horizon = true;
+    return std::nullopt;
+  }
   if (!first) {
     *status = from_release ? Termination::kNoImpact : Termination::kNoChatter;
     return std::nullopt;
   }
   const double end = first->t, measured_from = from_release ? late.begin : t_;
   if (with_contacts_) MeasureFlight(t_, z0, measured_from, end, cycle);
-  const Eigen::VectorXd x0 = x_, v0 = v_;
-  const double t0 = t_;
   flow.StateFrom(t0, x0, v0, z0, end, &x_, &v_);
   const Stop& stop = hybrid_.GetStop(first->stop);
   x_(stop.Dof()) = stop.Position();
@@ -233,8 +289,10 @@ void StickingMap::Cycle::MeasureFlight(double t0, const Eigen::VectorXd& z0, dou
       }
       // Only the turns towards the stop count for its clearance: maxima of
       // x below an upper stop, minima above a lower one.
-      if (stop.Sign() * velocity.Derivative().Value(t) < 0) {
-        cycle->clearance = std::min(cycle->clearance, -stop.GapOf(x));
+      if (stop.Sign() * velocity.Derivative().Value(t) < 0 && -stop.GapOf(x) < cycle->clearance) {
+        cycle->clearance = -stop.GapOf(x);
+        cycle->clearance_time = t;
+        cycle->clearance_stop = j;
       }
     }
   }
@@ -316,7 +374,7 @@ bool StickingMap::Cycle::ArrivalEndsChatter(const Arrival& arrival, StickingCycl
 /// From the impact at te that ends the chatter, the stuck flow: through
 /// the chatter's tail to its end t*, then stuck to the release.
 Termination StickingMap::Cycle::StickAndRelease(int stop, double te, double t_star,
-                                                StickingCycle* cycle) {
+                                                StickingCycle* cycle, bool* at_horizon) {
   const System& system = hybrid_.GetSystem();
   const LinearFlow& flow = hybrid_.StuckFlow(stop);
   const Stop& holding = hybrid_.GetStop(stop);
@@ -332,8 +390,24 @@ Termination StickingMap::Cycle::StickAndRelease(int stop, double te, double t_st
   const Signal release = flow.Output(hybrid_.Release(stop), te, z0);
   const std::optional<double> tr = FirstUpcrossing(
       release, t_star, t_star + options_.max_stuck_periods * system.ForcingPeriod(), events_);
-  if (!tr) return Termination::kNoRelease;
-  if (HeldMeetsOtherStop(stop, flow, te, z0, *tr)) return Termination::kMetWhileHeld;
+  if (!tr && t_star + options_.max_stuck_periods * system.ForcingPeriod() < horizon_) {
+    return Termination::kNoRelease;
+  }
+  *at_horizon = !tr || horizon_ < *tr;
+  const double end = *at_horizon ? horizon_ : *tr;
+  if (HeldMeetsOtherStop(stop, flow, te, z0, end)) return Termination::kMetWhileHeld;
+  if (*at_horizon) {
+    flow.StateFrom(te, x0, v0, z0, end, &x1, &v1);
+    if (with_jacobian_) {
+      dy_ = HeldRows(dy_, c);
+      ToHorizon(flow.Transition(end - te), hybrid_.Holding(StopBit(stop)).VectorField(te, x0, v0));
+      dy_ = WithZeroRow(WithZeroRow(dy_, c), n_ + c);
+    }
+    x_ = EmbedAtStop(x1, c, holding.Position());
+    v_ = EmbedAtStop(v1, c, 0.0);
+    t_ = end;
+    return Termination::kCompleted;
+  }
   if (with_contacts_) {
     cycle->hold_margin = HoldMargin(release, t_star, *tr);
     if (c == measured_) {
@@ -365,6 +439,11 @@ void StickingMap::Cycle::ThroughFlight(const Eigen::MatrixXd& transition, const 
   EventDerivatives d = ThroughEvent(AtFixedTime(transition, dy_, dt_, f0), gradient, slope, f1);
   dy_ = std::move(d.state);
   dt_ = std::move(d.time);
+}
+
+void StickingMap::Cycle::ToHorizon(const Eigen::MatrixXd& transition, const Eigen::VectorXd& f0) {
+  dy_ = AtFixedTime(transition, dy_, dt_, f0);
+  dt_ = Eigen::RowVectorXd::Zero(dt_.size());
 }
 
 Eigen::MatrixXd StickingMap::Cycle::HeldRows(const Eigen::MatrixXd& full, int dof) const {
@@ -430,6 +509,31 @@ StickingMapResult StickingMap::Apply(const Eigen::VectorXd& s, int k, bool with_
     result.jacobian.resize(0, 0);
   }
   return result;
+}
+
+StickingFlight StickingMap::Follow(const HybridState& from, double until, bool with_jacobian,
+                                   std::optional<int> released) const {
+  const int n = GetSystem().Dof();
+  if (from.x.size() != n || from.v.size() != n) {
+    throw InvalidInput(
+        fmt::format("a state of this system has {} positions and velocities, got {} "
+                    "and {}",
+                    n, from.x.size(), from.v.size()));
+  }
+  if (!from.x.allFinite() || !from.v.allFinite() || !std::isfinite(from.t) ||
+      !std::isfinite(until)) {
+    throw InvalidInput("the state and the time followed to must be finite");
+  }
+  if (!(until >= from.t)) {
+    throw InvalidInput(
+        fmt::format("the motion is followed forward: {} is before the start {}", until, from.t));
+  }
+  if (released && (*released < 0 || *released >= hybrid_->StopCount())) {
+    throw InvalidInput(fmt::format("a release from stop {} (0-based): the system has {} stops",
+                                   *released, hybrid_->StopCount()));
+  }
+  Cycle cycle(*hybrid_, options_, with_jacobian, false);
+  return cycle.Follow(from, until, released);
 }
 
 SectionImage StickingMap::Iterate(const Eigen::VectorXd& s, int k, bool with_jacobian) const {

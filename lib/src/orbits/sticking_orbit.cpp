@@ -67,7 +67,11 @@ PeriodicOrbit DescribeStickingOrbit(const StickingMap& map, const Eigen::VectorX
     contacts.contact_max = std::max(contacts.contact_max, cycle.contact_max);
     contacts.contact_margin = std::min(contacts.contact_margin, cycle.contact_force);
     contacts.hold_margin = std::min(contacts.hold_margin, cycle.hold_margin);
-    clearance = std::min(clearance, cycle.clearance);
+    if (cycle.clearance < clearance) {
+      clearance = cycle.clearance;
+      contacts.clearance_time = cycle.clearance_time;
+      contacts.clearance_stop = cycle.clearance_stop;
+    }
     for (std::size_t i = 0; i < cycle.impacts.size(); ++i) {
       if (i == 0 || cycle.impacts[i].stop != cycle.stop) {
         contacts.approach_impact_speed =

@@ -29,8 +29,8 @@
 namespace impactkit {
 
 /// Of a sticking orbit (sticking_orbit.hpp) the extent, the least
-/// clearance of its flights and the sticking monitors are measured; where
-/// that clearance lies and the next one are not.
+/// clearance of its flights (its time and stop) and the sticking monitors
+/// are measured; the clearance's flight and the next one are not.
 struct OrbitContacts {
   double contact_min = 0.0;  ///< least x_c over the orbit (c: the section stop's mass)
   double contact_max = 0.0;  ///< greatest x_c over the orbit
@@ -38,7 +38,7 @@ struct OrbitContacts {
   /// no flight has an interior maximum.
   std::optional<double> clearance;
   double clearance_time = 0.0;  ///< when the highest interior maximum occurs
-  int clearance_flight = 0;     ///< the impact (index) whose flight holds it
+  int clearance_flight = 0;     ///< the impact (index) whose flight holds it (impacting orbits)
   int clearance_stop = 0;       ///< the stop it approaches
   /// The same for the next highest interior extremum (another one, in any
   /// flight): on a grazing curve, whose own touch is `clearance`, the

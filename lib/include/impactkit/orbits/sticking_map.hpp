@@ -50,6 +50,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,8 @@ struct StickingCycle {
   /// impact); infinity when no flight has such a turn. Measured only when
   /// Apply is asked for contacts.
   double clearance = std::numeric_limits<double>::infinity();
+  double clearance_time = 0.0;  ///< when that turn is
+  int clearance_stop = 0;       ///< the stop it turns towards
   /// The least interior minimum of Fs during the stuck phase (t*, release):
   /// > 0 while the stop holds the mass throughout (0: Fs touches 0 before
   /// the release, an early release); infinity when Fs has no interior
@@ -123,6 +126,21 @@ struct StickingMapResult {
   std::vector<StickingCycle> cycles;  ///< what each application did
 };
 
+/// The motion from a state to a fixed time (StickingMap::Follow).
+struct StickingFlight {
+  /// kCompleted (the motion reached the time: the result is valid), or why
+  /// it stopped, as StickingMapResult's.
+  Termination termination = Termination::kCompleted;
+  HybridState state;  ///< at that time (a held mass at its stop, at rest)
+  /// ∂(x, v)(until) / ∂(x, v)(from), 2N × 2N, both at their fixed times,
+  /// when asked and kCompleted.
+  Eigen::MatrixXd jacobian;
+  /// The cycles it went through, from the start (the first one's
+  /// `release`) to the last release, and then the part cut off at the
+  /// time (its impacts only).
+  std::vector<StickingCycle> cycles;
+};
+
 class StickingMap : public SectionMap {
  public:
   /// Throws InvalidInput for an invalid system or options (a stop the
@@ -137,6 +155,18 @@ class StickingMap : public SectionMap {
   /// non-finite entry, or k < 1.
   StickingMapResult Apply(const Eigen::VectorXd& s, int k, bool with_jacobian,
                           bool with_contacts = false) const;
+
+  /// The motion from `from` to the time `until` (>= from.t), through the
+  /// impacts, chatter, sticking and releases the map follows, and if asked
+  /// its Jacobian: the monodromy of a sticking orbit on a stroboscopic
+  /// section. `from` is a free state (its first flight searched for
+  /// arrivals from its time on), or with `released` a release from that
+  /// stop (ToState of a section state: its first flight starts as P_R's).
+  /// The contact monitors are not measured. Throws InvalidInput for a
+  /// state of the wrong size or with a non-finite entry, or `until` before
+  /// its time.
+  StickingFlight Follow(const HybridState& from, double until, bool with_jacobian,
+                        std::optional<int> released = std::nullopt) const;
 
   /// SectionMap: P_R^k as Apply, its failures (a state of the wrong size
   /// or with a non-finite entry included) as SectionImage::failure.
