@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <complex>
+#include <iomanip>
 #include <numbers>
 
 #include "closed_form_sdof.hpp"
@@ -17,6 +19,7 @@
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/grazing_normal_form.hpp"
 #include "seeded_orbit.hpp"
+#include "sticking_grazing.hpp"
 #include "system_at.hpp"
 
 using namespace impactkit;
@@ -102,20 +105,24 @@ double RootTermError(const GrazingOrbit& orbit, const GrazingNormalForm& form, d
          ((form.linear * form.root).norm() * std::sqrt(delta));
 }
 
-/// −d(clearance)/dΩ of the orbit of `branch` on its own side of the
-/// grazing `graze`, where it exists as an orbit of the impact map: FindOrbit
-/// at Ω* + h and Ω* + 2h towards the branch, one-sided second-order
-/// differences with the located point's clearance.
-double ClearanceRate(const Branch& branch, const SpecialPoint& graze) {
+/// −d(clearance)/dΩ of the orbit of `branch` (of `system`) on its own
+/// side of the grazing `graze`, where it exists as a fixed point of its
+/// section map: FindOrbit at Ω* + h and Ω* + 2h towards the branch,
+/// one-sided second-order differences with the located point's clearance.
+/// The clearance is measured at the flight's turn, the unfolding at the
+/// touch's fixed time: the two agree to first order.
+double ClearanceRate(const System& system, const Branch& branch, const SpecialPoint& graze) {
   const double side = branch.points.front().parameter > graze.parameter ? 1.0 : -1.0;
   const double h = side * 2e-6;
   OrbitOptions options;
   options.p = branch.p;
   options.q = branch.q;
+  options.releases = branch.releases;
+  options.release_map.stop = branch.stop;
   auto clearance = [&](double omega) {
     PeriodicOrbit orbit;
-    REQUIRE(FindOrbit(PaperSystem(omega), graze.point.orbit.eta, options, &orbit).termination ==
-            Termination::kConverged);
+    REQUIRE(FindOrbit(testing::At(system, "omega", omega), graze.point.orbit.eta, options, &orbit)
+                .termination == Termination::kConverged);
     REQUIRE(orbit.contacts.clearance.has_value());
     return *orbit.contacts.clearance;
   };
@@ -126,23 +133,25 @@ double ClearanceRate(const Branch& branch, const SpecialPoint& graze) {
   return -slope;
 }
 
-/// The normal form's multipliers against the impact map's at the grazing
-/// orbit, its √δ term against the true map's, its linear part against the
-/// true map without contact, and its unfolding against the orbit's own
-/// clearance.
-void CheckAgainstTrueMap(const Branch& branch) {
+/// The normal form's multipliers against the section map's at the grazing
+/// orbit (a sticking orbit's stroboscopic monodromy has the release map's
+/// 2N − 2 section multipliers and two zeros: sticking forgets the held
+/// mass's state), its √δ term against the true map's, its linear part
+/// against the true map without contact, and its unfolding against the
+/// orbit's own clearance.
+void CheckAgainstTrueMap(const System& system, const Branch& branch) {
   const SpecialPoint& graze = branch.special_points.back();
   REQUIRE(graze.normal_form.has_value());
   const GrazingNormalForm& form = *graze.normal_form;
-  const System system = testing::At(PaperSystem(), "omega", graze.parameter);
   const Eigen::VectorXcd& multipliers = graze.point.orbit.multipliers;
-  REQUIRE(multipliers.size() == form.eigenvalues.size());
-  for (Eigen::Index k = 0; k < multipliers.size(); ++k) {
-    CHECK(std::abs(multipliers(k) - form.eigenvalues(k)) < 1e-8);
+  REQUIRE(multipliers.size() <= form.eigenvalues.size());
+  for (Eigen::Index k = 0; k < form.eigenvalues.size(); ++k) {
+    const std::complex<double> expected = k < multipliers.size() ? multipliers(k) : 0.0;
+    CHECK(std::abs(expected - form.eigenvalues(k)) < 1e-8);
   }
   // The orbit's last impact before the touch: its last contact, q periods earlier.
   ContinuationOptions options;
-  const GrazingOrbit orbit = GrazingOrbitAt(PaperSystem(), branch, graze, options);
+  const GrazingOrbit orbit = GrazingOrbitAt(system, branch, graze, options);
   const Eigen::VectorXd expected = form.linear * form.root;
   const Eigen::VectorXd fitted = FittedRootTerm(orbit, form);
   INFO("A W = " << expected.transpose() << "\nfitted " << fitted.transpose());
@@ -157,8 +166,8 @@ void CheckAgainstTrueMap(const Branch& branch) {
   INFO("error at the reach " << at_reach << ", a hundred times closer " << closer);
   CHECK(std::abs(at_reach - 0.1) < 0.005);
   CHECK(std::abs(closer - 0.01) < 0.001);
-  const double rate = ClearanceRate(branch, graze);
-  INFO("unfolding " << form.unfolding << ", clearance rate " << rate);
+  const double rate = ClearanceRate(system, branch, graze);
+  INFO(std::setprecision(12) << "unfolding " << form.unfolding << ", clearance rate " << rate);
   CHECK(std::abs(form.unfolding - rate) < 1e-7 * std::abs(rate));
 }
 
@@ -203,8 +212,8 @@ TEST_CASE(
     "normal form: the paper's grazings of Fig. 5 (P(1,1) at omega = 0.8564, P(3,2) at 0.8322) "
     "against the impact map's multipliers, the true map's sqrt term and the orbits' clearance",
     "[grazing][normal-form]") {
-  CheckAgainstTrueMap(PaperBranchToGrazing(0.9, 1, 1, 0.8));
-  CheckAgainstTrueMap(PaperBranchToGrazing(0.84, 3, 2, 0.8));
+  CheckAgainstTrueMap(PaperSystem(), PaperBranchToGrazing(0.9, 1, 1, 0.8));
+  CheckAgainstTrueMap(PaperSystem(), PaperBranchToGrazing(0.84, 3, 2, 0.8));
 }
 
 TEST_CASE(
@@ -272,4 +281,57 @@ TEST_CASE(
   for (Eigen::Index k = 0; k < form.eigenvalues.size(); ++k) {
     CHECK(std::abs(p21.multipliers(k) - form.eigenvalues(k)) < 1e-5);
   }
+}
+
+TEST_CASE(
+    "normal form: a sticking family's new contact (paper-mass1-stop at omega = 0.19016) against "
+    "the release map's multipliers, the true map's sqrt term and the orbits' clearance",
+    "[grazing][normal-form][sticking]") {
+  // Mass 2 sticks at its stop every period while mass 1 strikes its own
+  // three times between releases; going down in Ω, a fourth turn of mass 1
+  // touches its stop (tests/test_sticking_stops.cpp).
+  const System system = testing::PaperWithMass1StopFile();
+  const Branch branch = testing::StickingBranchToNewContact(system);
+  const GrazingNormalForm& form = *branch.special_points.back().normal_form;
+  CHECK(form.releases == 1);
+  CHECK(form.stop == 0);
+  CheckAgainstTrueMap(system, branch);
+}
+
+TEST_CASE(
+    "normal form: a sticking family's vanishing impact (paper-mass1-stop at omega = 0.19016, "
+    "followed back up) gives the new contact's normal form, seen from the family that touches",
+    "[grazing][normal-form][sticking]") {
+  // Below the new contact the family with mass 1's fourth impact, followed
+  // back up, ends where that impact vanishes: the same grazing
+  // (tests/test_sticking_stops.cpp). Its grazing orbit is the neighbouring
+  // family's touch, solved afresh from its clearance's zero.
+  const System system = testing::PaperWithMass1StopFile();
+  const Branch touching = testing::StickingBranchToNewContact(system);
+  const SpecialPoint& graze = touching.special_points.back();
+  const ContinuationOptions down = testing::DownToNewContact();
+  const std::vector<GrazingSeed> seeds = SeedsAtGrazing(system, touching, graze, down);
+  REQUIRE(!seeds.empty());
+  PeriodicOrbit below;
+  REQUIRE(FindOrbit(seeds[0].system, seeds[0].eta, seeds[0].orbit, &below).termination ==
+          Termination::kConverged);
+  ContinuationOptions up = down;
+  up.direction = ContinuationDirection::kIncreasing;
+  const Branch vanishing = ContinueBranch({seeds[0].system, below, {}}, up);
+  REQUIRE(vanishing.end == Termination::kGrazing);
+  const SpecialPoint& gone = vanishing.special_points.back();
+  REQUIRE(gone.vanishing_impact >= 0);
+  INFO(gone.normal_form_note);
+  REQUIRE(gone.normal_form.has_value());
+  const GrazingNormalForm& touch = *graze.normal_form;
+  const GrazingNormalForm& reduced = *gone.normal_form;
+  // Both located to end_tolerance (1e-9) in the parameter; the touch's
+  // time is flat in it (a maximum), so the phases agree to ~1e-8; each
+  // unfolding carries its one-sided difference's ~1e-7.
+  CHECK(std::abs(reduced.parameter_value - touch.parameter_value) < 1e-9);
+  CHECK(std::abs(reduced.phase - touch.phase) < 1e-7);
+  CHECK((reduced.touch - touch.touch).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK((reduced.linear - touch.linear).cwiseAbs().maxCoeff() < 1e-7);
+  CHECK((reduced.root - touch.root).cwiseAbs().maxCoeff() < 1e-7);
+  CHECK(std::abs(reduced.unfolding - touch.unfolding) < 2e-7);
 }

@@ -14,11 +14,14 @@
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/analysis/swept_diagram.hpp"
+#include "impactkit/continuation/continuation.hpp"
+#include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/hybrid/stop.hpp"
 #include "impactkit/io/system_file.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "seeded_orbit.hpp"
+#include "sticking_grazing.hpp"
 #include "system_at.hpp"
 
 using namespace impactkit;
@@ -57,10 +60,9 @@ std::pair<double, double> StableWindow(double lambda, int n) {
           std::pow(lambda, 2 * n - 4) / (C(lambda, n - 1) * C(lambda, n - 1))};
 }
 
-/// The system's steady motion a distance `distance` from the grazing
-/// `form`'s parameter value, simulated from the grazing orbit.
-std::string SimulatedMotion(const System& system, const GrazingNormalForm& form, double distance) {
-  const System past = testing::At(system, form.parameter, form.parameter_value + distance);
+/// The grazing orbit's touch drawn back from its stop by 1e-9, run at
+/// `past` for `periods` forcing periods.
+HybridState RunFromTouch(const System& past, const GrazingNormalForm& form, int periods) {
   const int n = past.Dof();
   const Stop stop(past, form.stop);
   HybridState state;
@@ -68,9 +70,17 @@ std::string SimulatedMotion(const System& system, const GrazingNormalForm& form,
   state.x = form.touch.head(n);
   state.v = form.touch.tail(n);
   state.x(stop.Dof()) = stop.Position() - stop.Sign() * 1e-9;
+  Simulator(past, SimulationOptions{}).Run(state, form.time + periods * past.ForcingPeriod());
+  return state;
+}
+
+/// The system's steady motion a distance `distance` from the grazing
+/// `form`'s parameter value, simulated from the grazing orbit.
+std::string SimulatedMotion(const System& system, const GrazingNormalForm& form, double distance) {
+  const System past = testing::At(system, form.parameter, form.parameter_value + distance);
+  HybridState state = RunFromTouch(past, form, 1000);
   const double period = past.ForcingPeriod();
   const Simulator simulator(past, SimulationOptions{});
-  simulator.Run(state, form.time + 1000 * period);
   SteadyWindowRecorder window(period);
   simulator.Run(state, form.time + 1200 * period, window);
   const Classification c =
@@ -338,4 +348,75 @@ TEST_CASE("prediction: invalid prediction or sweep options are refused with a cl
   // A form never predicted cannot be checked.
   CHECK_THROWS_WITH(SweepThroughGrazing(PaperSystem(0.5), form),
                     Catch::Contains("predict it first"));
+}
+
+namespace {
+
+/// The impacts at the touched stop in each of `count` forcing periods
+/// centred on the touch's phase, simulated from the grazing orbit at a
+/// distance `distance` past it, after 500 periods.
+std::vector<int> ImpactsAtTouchedStop(const System& system, const GrazingNormalForm& form,
+                                      double distance, int count) {
+  const System past = testing::At(system, form.parameter, form.parameter_value + distance);
+  HybridState state = RunFromTouch(past, form, 500);
+  const double period = past.ForcingPeriod();
+  const double first = form.time + 501 * period - 0.5 * period;
+  ImpactRecorder recorder;
+  Simulator(past, SimulationOptions{}).Run(state, first + count * period, recorder);
+  std::vector<int> counts(static_cast<std::size_t>(count), 0);
+  for (const auto& impact : recorder.Impacts()) {
+    const double k = std::floor((impact.t - first) / period);
+    if (impact.stop == form.stop && k >= 0 && k < count) ++counts[static_cast<std::size_t>(k)];
+  }
+  return counts;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "prediction: past a sticking family's new contact (paper-mass1-stop at omega = 0.19016) the "
+    "simulator has the normal form's attractor: the new impact every other period 1e-8 past, "
+    "every period 1e-6 past",
+    "[grazing][prediction][sticking]") {
+  // Mass 2 sticks every period while mass 1 strikes its stop three times;
+  // going down in Ω a fourth turn of mass 1 touches it. The leading
+  // multiplier is −0.129 and κ is small (most of the jump is forgotten
+  // where mass 2 sticks), so closer than μ ~ κ² / (1 − λ)² the square-root
+  // term overshoots: the new contact comes every other period.
+  const System system = testing::PaperWithMass1StopFile();
+  Branch branch = testing::StickingBranchToNewContact(system);
+  PredictGrazings(system, &branch);
+  const SpecialPoint& graze = branch.special_points.back();
+  REQUIRE(graze.normal_form.has_value());
+  const GrazingNormalForm& form = *graze.normal_form;
+  REQUIRE(form.prediction.has_value());
+  const GrazingPrediction& prediction = *form.prediction;
+  INFO(prediction.Describe());
+  CHECK(prediction.local);
+  const auto& impacts = graze.point.orbit.impacts;
+  const int family = static_cast<int>(std::count_if(
+      impacts.begin(), impacts.end(), [&](const OrbitImpact& i) { return i.stop == form.stop; }));
+  REQUIRE(family == 3);
+  const System at = testing::At(system, "omega", form.parameter_value);
+  for (const LocalAttractor& attractor : prediction.attractors) {
+    if (!attractor.within_reach) continue;
+    const std::vector<int> counts = ImpactsAtTouchedStop(at, form, attractor.distance, 12);
+    std::string seen;
+    for (const int c : counts) seen += std::to_string(c) + " ";
+    INFO("distance " << attractor.distance << ": " << attractor.motion << " with "
+                     << attractor.contacts << " contact(s) in " << attractor.period
+                     << " period(s); simulated impacts per period " << seen);
+    REQUIRE(attractor.period >= 1);
+    for (std::size_t k = 0; k < counts.size(); ++k) {
+      const auto j = k % static_cast<std::size_t>(attractor.period);
+      CHECK(counts[k] == counts[j]);  // the attractor's period
+      CHECK((counts[k] == family || counts[k] == family + 1));
+    }
+    int added = 0;
+    for (int k = 0; k < attractor.period; ++k)
+      added += counts[static_cast<std::size_t>(k)] - family;
+    CHECK(added == attractor.contacts);
+  }
+  CHECK(prediction.attractors[0].period == 2);
+  CHECK(prediction.attractors[1].period == 1);
 }

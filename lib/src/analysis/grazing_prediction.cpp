@@ -78,8 +78,10 @@ LocalAttractor IterateNormalForm(const GrazingNormalForm& form, double distance,
     attractor.period = period;
     attractor.contacts = static_cast<int>(std::count(contact.end() - period, contact.end(), true));
     const long impacts = static_cast<long>(period) * form.p + attractor.contacts;
-    attractor.motion = MotionLabel(impacts > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting,
-                                   impacts, period * form.q);
+    const MotionKind kind = form.releases > 0 ? MotionKind::kSticking
+                            : impacts > 0     ? MotionKind::kPeriodic
+                                              : MotionKind::kNonImpacting;
+    attractor.motion = MotionLabel(kind, impacts, period * form.q);
     return attractor;
   }
   attractor.motion = MotionLabel(
@@ -191,6 +193,9 @@ struct FamilyDistance {
 std::optional<FamilyDistance> DistanceToFamily(const System& system, const GrazingNormalForm& form,
                                                const SweepPoint& nearer,
                                                const SweepPoint& farther) {
+  // A sticking orbit's chatter has as many impacts as the simulator's
+  // rule lets it before sticking: none to pair.
+  if (form.releases > 0) return std::nullopt;
   if (form.p == 0) return FamilyDistance{};  // one non-impacting response
   const auto count = static_cast<std::size_t>(form.p);
   const SpeedSet grazing = GrazingOrbitSpeeds(system, form);

@@ -683,7 +683,6 @@ namespace {
 
 /// Each grazing's normal form, or why there is none.
 void DescribeGrazings(const System& system, const ContinuationOptions& options, Branch* branch) {
-  if (branch->section != OrbitSection::kImpact) return;
   for (SpecialPoint& special : branch->special_points) {
     if (special.type != SpecialPointType::kGrazing) continue;
     try {

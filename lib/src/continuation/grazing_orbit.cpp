@@ -3,14 +3,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "continuation/branch_problem.hpp"
 #include "continuation/vanishing_impact.hpp"
 #include "impactkit/continuation/continuation.hpp"
 #include "impactkit/core/errors.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 #include "orbits/orbit_shooting.hpp"
 
 namespace impactkit {
@@ -94,14 +97,95 @@ GrazingOrbit ReducedGrazingOrbit(const System& system, const ImpactMap& map,
   return orbit;
 }
 
+/// The sticking orbit `orbit` (of `system`, on `map`'s section, k
+/// releases in q periods) as a grazing orbit touching at its clearance's
+/// turn, its family keeping off the stop on `smooth_side`.
+GrazingOrbit TouchingStickingOrbit(const System& system, const StickingMapOptions& map_options,
+                                   const PeriodicOrbit& orbit, double smooth_side) {
+  Require(orbit.contacts.clearance.has_value(), "the grazing orbit has no flight maximum");
+  StickingGrazing sticking{map_options, orbit.releases, orbit.eta, 0.0, smooth_side};
+  const StickingMap map(system, map_options);
+  const HybridState release = map.ToState(orbit.eta);
+  const StickingFlight to_touch =
+      map.Follow(release, orbit.contacts.clearance_time, false, map_options.stop);
+  Require(to_touch.termination == Termination::kCompleted,
+          "the grazing orbit cannot be followed to its touch: " + Describe(to_touch.termination));
+  sticking.previous_event = release.t;
+  for (const StickingCycle& cycle : to_touch.cycles) {
+    sticking.previous_event = std::max(sticking.previous_event, cycle.release);
+    for (const StickingImpact& impact : cycle.impacts) {
+      sticking.previous_event = std::max(sticking.previous_event, impact.t);
+    }
+  }
+  GrazingOrbit grazing{system, orbit.q, {{to_touch.state, orbit.contacts.clearance_stop}}};
+  grazing.sticking = std::move(sticking);
+  return grazing;
+}
+
+/// Where a sticking family's approach impact vanishes, the neighbouring
+/// family (without it, past the branch's end on `side`) touches: its
+/// clearance, linear in the parameter there, is solved at two distances
+/// 1e-6 and 2e-6 past and extrapolated to its zero p*, and the orbit taken
+/// 1e-10 short of it on its side (its gap ~1e-10, where the orbit at p*
+/// itself may come out with the impact at a speed of rounding's square
+/// root). The extrapolation errs by c'' Δ² ~ 1e-12.
+GrazingOrbit NeighbouringTouch(const System& system, const Branch& branch,
+                               const SpecialPoint& graze, const StickingMapOptions& map_options,
+                               double side) {
+  OrbitOptions options;
+  options.q = branch.q;
+  options.releases = branch.releases;
+  options.release_map = map_options;
+  const double scale = std::max(1.0, std::abs(graze.parameter));
+  auto orbit_at = [&](double value) {
+    System at = system;
+    SetParameter(at, branch.parameter, value);
+    PeriodicOrbit orbit;
+    const OrbitSummary solved = FindOrbit(at, graze.point.orbit.eta, options, &orbit);
+    Require(solved.termination == Termination::kConverged && orbit.contacts.clearance,
+            "the neighbouring sticking family, without the vanishing impact, could not be found: " +
+                solved.message);
+    return std::make_pair(at, orbit);
+  };
+  const double p1 = graze.parameter + side * 1e-6 * scale,
+               p2 = graze.parameter + side * 2e-6 * scale;
+  const double c1 = *orbit_at(p1).second.contacts.clearance;
+  const double c2 = *orbit_at(p2).second.contacts.clearance;
+  Require(c2 > c1 && c1 > 0, "the neighbouring sticking family's clearance does not open past it");
+  const double touch = p1 - c1 * (p2 - p1) / (c2 - c1) + side * 1e-10 * scale;
+  const auto [at, orbit] = orbit_at(touch);
+  return TouchingStickingOrbit(at, map_options, orbit, side);
+}
+
+/// A sticking family's grazing orbit: at a new contact the located point's
+/// orbit (its clearance 0 to end_tolerance), its family keeping off the
+/// stop on the branch's side; where an approach impact vanishes, the
+/// neighbouring family's touch (NeighbouringTouch).
+GrazingOrbit StickingGrazingOrbit(const System& system, const Branch& branch,
+                                  const SpecialPoint& graze, const ContinuationOptions& options) {
+  StickingMapOptions map_options = options.orbit.release_map;
+  map_options.stop = branch.stop;
+  // The branch's points all lie on the side it was followed from.
+  const double from = branch.points.front().parameter, to = branch.points.back().parameter;
+  const double away = std::abs(from - graze.parameter) > std::abs(to - graze.parameter) ? from : to;
+  const double branch_side = away < graze.parameter ? -1.0 : 1.0;
+  if (graze.vanishing_impact >= 0) {
+    return NeighbouringTouch(system, branch, graze, map_options, -branch_side);
+  }
+  System on_branch = system;
+  SetParameter(on_branch, branch.parameter, graze.point.parameter);
+  return TouchingStickingOrbit(on_branch, map_options, graze.point.orbit, branch_side);
+}
+
 }  // namespace
 
 GrazingOrbit GrazingOrbitAt(const System& system, const Branch& branch, const SpecialPoint& graze,
                             const ContinuationOptions& options) {
   Require(graze.type == SpecialPointType::kGrazing,
           "a grazing orbit needs a located grazing point, got " + ToString(graze.type));
-  Require(branch.section == OrbitSection::kImpact,
-          "a sticking family's grazing has no grazing orbit of the impact map");
+  if (branch.section == OrbitSection::kRelease) {
+    return StickingGrazingOrbit(system, branch, graze, options);
+  }
   System at = system;
   SetParameter(at, branch.parameter, graze.parameter);
   if (graze.vanishing_impact >= 0 && branch.p == 1) {

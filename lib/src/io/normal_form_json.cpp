@@ -52,6 +52,7 @@ nlohmann::json NormalFormJson(const GrazingNormalForm& form) {
                       {"stop", form.stop + 1},
                       {"p", form.p},
                       {"q", form.q},
+                      {"releases", form.releases},
                       {"time", form.time},
                       {"phase", form.phase},
                       {"touch", Values(form.touch)},

@@ -14,6 +14,7 @@
 #include "impactkit/hybrid/stop.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 #include "orbits/orbit_shooting.hpp"
 
 namespace impactkit {
@@ -27,6 +28,12 @@ constexpr double kTouchTolerance = 1e-8;
 /// grazing, so the error is ~h² p''' ~ 1e-10 plus the orbit's rounding
 /// over h, ~1e-15 / h ~ 1e-10.
 constexpr double kUnfoldingStep = 1e-5;
+/// A sticking family's one-sided step: second-order one-sided differences
+/// err by h² p''' / 3, twice the central ones' at the same h and with a
+/// larger p''' (on paper-mass1-stop's new contact 1.4e-6 at h = 1e-5,
+/// against the converged m to 1e-7); at 3e-6 that is ~1.3e-7, beside the
+/// sticking orbits' Newton rounding over h (~1e-7 at 1e-6).
+constexpr double kOneSidedUnfoldingStep = 3e-6;
 /// A multiplier counts as real when its imaginary part is below this
 /// (relative to its modulus).
 constexpr double kRealTolerance = 1e-10;
@@ -48,11 +55,38 @@ void RequireTouch(const GrazingOrbit& orbit, const HybridSystem& hybrid) {
                       speed, gap));
 }
 
+/// The penetration s (x_c − xs) at time t of the sticking orbit of
+/// `orbit`'s family at `system` (on its smooth side: it keeps off the
+/// touched stop), solved from the grazing orbit's release state.
+double StickingOrbitPenetration(const GrazingOrbit& orbit, const System& system, double t) {
+  const StickingGrazing& sticking = *orbit.sticking;
+  OrbitOptions options;
+  options.q = orbit.q;
+  options.releases = sticking.releases;
+  options.release_map = sticking.map;
+  PeriodicOrbit solved;
+  const OrbitSummary summary = FindOrbit(system, sticking.release, options, &solved);
+  Require(summary.termination == Termination::kConverged,
+          "the grazing orbit's sticking family could not be followed for its unfolding: " +
+              summary.message);
+  const StickingMap map(system, sticking.map);
+  HybridState start = map.ToState(solved.eta);
+  // FindOrbit puts the release in [0, T): back to the grazing orbit's.
+  const double period = system.ForcingPeriod();
+  start.t += std::round((sticking.release(map.TimeIndex()) - start.t) / period) * period;
+  const StickingFlight flight = map.Follow(start, t, false, sticking.map.stop);
+  Require(flight.termination == Termination::kCompleted,
+          "the grazing orbit's sticking family could not be followed to its touch: " +
+              Describe(flight.termination));
+  return Stop(system, orbit.contacts.front().stop).GapOf(flight.state.x);
+}
+
 /// The penetration s (x_c − xs) at time t of the orbit of `orbit`'s
 /// family at `system` that keeps the grazing orbit's impacts and ignores
 /// the touched stop — past the grazing a virtual orbit, which is what the
 /// unfolding measures. Without impacts it is the non-impacting response.
 double SmoothOrbitPenetration(const GrazingOrbit& orbit, const System& system, double t) {
+  if (orbit.sticking) return StickingOrbitPenetration(orbit, system, t);
   const auto hybrid = std::make_shared<const HybridSystem>(system);
   const Stop& stop = hybrid->GetStop(orbit.contacts.front().stop);
   HybridState state;
@@ -84,11 +118,14 @@ double SmoothOrbitPenetration(const GrazingOrbit& orbit, const System& system, d
 }
 
 /// m = dμ/dp: the smooth orbit's penetration at the touch's time, by
-/// central differences. At fixed time suffices: the penetration is a
-/// maximum there, so its time's shift changes it only to second order.
+/// central differences; a sticking family's by second-order one-sided
+/// ones on its smooth side (the same error, O(h²)). At fixed time
+/// suffices: the penetration is a maximum there, so its time's shift
+/// changes it only to second order.
 double Unfolding(const GrazingOrbit& orbit, const NamedParameter& parameter, double t) {
   const double value = parameter.Get(orbit.system);
-  const double h = kUnfoldingStep * std::max(1.0, std::abs(value));
+  const double h =
+      (orbit.sticking ? kOneSidedUnfoldingStep : kUnfoldingStep) * std::max(1.0, std::abs(value));
   auto penetration_at = [&](double p) {
     System system = orbit.system;
     parameter.Set(system, p);
@@ -99,7 +136,30 @@ double Unfolding(const GrazingOrbit& orbit, const NamedParameter& parameter, dou
                                      parameter.Name(), p, error.what()));
     }
   };
+  if (orbit.sticking) {
+    const double side = orbit.sticking->smooth_side < 0 ? -1.0 : 1.0;
+    return (-3.0 * penetration_at(value) + 4.0 * penetration_at(value + side * h) -
+            penetration_at(value + 2.0 * side * h)) /
+           (2.0 * side * h);
+  }
   return (penetration_at(value + h) - penetration_at(value - h)) / (2.0 * h);
+}
+
+/// A sticking grazing orbit's monodromy from its touch over its q periods
+/// (StickingMap::Follow), and its impacts in them.
+Eigen::MatrixXd StickingMonodromy(const GrazingOrbit& orbit, int* impacts) {
+  const StickingMap map(orbit.system, orbit.sticking->map);
+  const HybridState& touch = orbit.contacts.front().state;
+  const StickingFlight flight =
+      map.Follow(touch, touch.t + orbit.q * orbit.system.ForcingPeriod(), true);
+  Require(flight.termination == Termination::kCompleted,
+          "the sticking grazing orbit cannot be followed round from its touch: " +
+              Describe(flight.termination));
+  *impacts = 0;
+  for (const StickingCycle& cycle : flight.cycles) {
+    *impacts += static_cast<int>(cycle.impacts.size());
+  }
+  return flight.jacobian;
 }
 
 /// Impacts repeating after this (relative to the orbit's scale) are one.
@@ -174,8 +234,9 @@ constexpr double kSmallestPenetration = 1e-10;
 /// time since the orbit's previous contact if that is shorter.
 double BackFlight(const GrazingOrbit& orbit, const GrazingNormalForm& form) {
   const double period = orbit.system.ForcingPeriod();
-  if (orbit.contacts.size() < 2) return 0.25 * period;
-  const double previous = orbit.contacts.back().state.t - orbit.q * period;
+  if (!orbit.sticking && orbit.contacts.size() < 2) return 0.25 * period;
+  const double previous = orbit.sticking ? orbit.sticking->previous_event
+                                         : orbit.contacts.back().state.t - orbit.q * period;
   return std::min(0.25 * period, 0.5 * (form.time - previous));
 }
 
@@ -228,6 +289,7 @@ void SetReach(const GrazingOrbit& orbit, GrazingNormalForm* form) {
 }  // namespace
 
 GrazingOrbit ShortestPeriod(const GrazingOrbit& orbit) {
+  if (orbit.sticking) return orbit;
   const std::size_t impacts = orbit.contacts.empty() ? 0 : orbit.contacts.size() - 1;
   // The most repetitions first: the shortest period.
   for (int k = orbit.q; k >= 2; --k) {
@@ -277,10 +339,13 @@ Eigen::VectorXd GrazingNormalForm::Map(const Eigen::VectorXd& z, double mu) cons
 
 std::string GrazingNormalForm::Describe() const {
   std::string multipliers;
+  // A sticking orbit's exact zeros come out at rounding (~1e-17).
+  const double zero = 1e-12 * (eigenvalues.size() ? std::max(1.0, std::abs(eigenvalues(0))) : 1.0);
   for (Eigen::Index k = 0; k < eigenvalues.size(); ++k) {
     const std::complex<double> m = eigenvalues(k);
     multipliers += k ? ", " : "";
-    multipliers += std::abs(m.imag()) > kRealTolerance * std::abs(m)
+    multipliers += std::abs(m) < zero ? "0"
+                   : std::abs(m.imag()) > kRealTolerance * std::abs(m)
                        ? fmt::format("{:.6g}{:+.6g}i", m.real(), m.imag())
                        : fmt::format("{:.6g}", m.real());
   }
@@ -345,7 +410,12 @@ GrazingNormalForm ComputeGrazingNormalForm(const GrazingOrbit& orbit,
           fmt::format("a grazing orbit's touch must turn back from its stop; the mass is pressed "
                       "into it (acceleration {:.3g} towards it): a sticking onset",
                       -form.curvature));
-  form.linear = split.smooth;
+  if (orbit.sticking) {
+    form.linear = StickingMonodromy(orbit, &form.p);
+    form.releases = orbit.sticking->releases;
+  } else {
+    form.linear = split.smooth;
+  }
   form.eigenvalues =
       SortedByModulus(Eigen::EigenSolver<Eigen::MatrixXd>(form.linear).eigenvalues());
   form.normal = split.normal;

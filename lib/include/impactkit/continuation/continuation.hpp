@@ -128,9 +128,8 @@ struct SpecialPoint {
   int vanishing_impact = -1;
   /// A user test's zero: the test's name (UserTest::name).
   std::string user_test;
-  /// A grazing of an impacting family: the local map there
-  /// (grazing_normal_form.hpp), unfolded in the branch's parameter. Empty
-  /// for other types, a sticking family's grazing, or where the grazing
+  /// A grazing: the local map there (grazing_normal_form.hpp), unfolded in
+  /// the branch's parameter. Empty for other types, or where the grazing
   /// orbit could not be resolved (normal_form_note says why).
   std::optional<GrazingNormalForm> normal_form;
   std::string normal_form_note;
@@ -226,9 +225,13 @@ struct GrazingSeed {
 /// The grazing orbit at the grazing point `graze` of `branch`, touching
 /// its stop: at a new contact the located orbit itself; where an impact
 /// vanishes the orbit without it — P(p − 1, q), found at the located
-/// parameter, or for p = 1 the non-impacting response. Throws InvalidInput
-/// for another type of point, a sticking family, or a reduced orbit that
-/// cannot be found or does not touch.
+/// parameter, or for p = 1 the non-impacting response. On a sticking
+/// family (with its family's release state and smooth side,
+/// StickingGrazing): at a new contact the located orbit; where an
+/// approach impact vanishes, the neighbouring family's (without it) at the
+/// zero of its clearance. Throws InvalidInput for another type of point,
+/// or a reduced or neighbouring orbit that cannot be found or does not
+/// touch.
 GrazingOrbit GrazingOrbitAt(const System& system, const Branch& branch, const SpecialPoint& graze,
                             const ContinuationOptions& options);
 

@@ -25,6 +25,15 @@
 /// m the unfolding: the rate at which the family's smooth orbit (the one
 /// that ignores the new contact, continued past it) penetrates the stop.
 ///
+/// A sticking orbit's touch lies in a flight before its chatter, and the
+/// jump is the same; A is then its stroboscopic monodromy through the
+/// chatter, the stuck phases and the releases (the release map's analytic
+/// Jacobian, StickingMap::Follow), of rank at most 2N − 2 (sticking
+/// forgets the held mass's state), and m is measured on the side where the
+/// family keeps off the stop (StickingGrazing::smooth_side): the release
+/// map carries the new impact on past the grazing, so the smooth family
+/// has no continuation there to difference.
+///
 /// Where one real multiplier λ of A dominates, with right and left
 /// eigenvectors v, w (w · v = 1), the penetration y = δ obeys, once the
 /// others have decayed,
@@ -43,19 +52,37 @@
 
 #include "impactkit/model/system.hpp"
 #include "impactkit/orbits/grazing_limit.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 
 namespace impactkit {
 
+/// What a sticking grazing orbit P(∞, q) carries besides its touch: the
+/// family it belongs to, as fixed points of the release map.
+struct StickingGrazing {
+  StickingMapOptions map;       ///< the release map (its stop: the section's)
+  int releases = 1;             ///< k: its sticking phases in q periods
+  Eigen::VectorXd release;      ///< s: its release state before the touch (within q periods)
+  double previous_event = 0.0;  ///< its last impact or release before the touch
+  /// The parameter's direction (±1) in which its family keeps off the
+  /// touched stop: past the grazing the release map carries the new
+  /// impact, so the family's smooth continuation is measured on this side.
+  double smooth_side = 1.0;
+};
+
 /// A periodic orbit of `system` that touches a stop: its contacts in q
 /// forcing periods from the touch, in time order — the touch (speed 0,
-/// turning back) first, then its impacts, each at its stop.
+/// turning back) first, then its impacts, each at its stop. A sticking
+/// orbit (`sticking`) has the touch alone: its chatter, sticking and
+/// releases are the release map's (StickingMap::Follow).
 struct GrazingOrbit {
   System system;
   int q = 1;
   std::vector<StopContact> contacts;
+  std::optional<StickingGrazing> sticking = std::nullopt;
 };
 
-/// `orbit` over its shortest period: where its impacts repeat every q / k
+/// `orbit` over its shortest period (a sticking orbit's q is its family's
+/// already): where its impacts repeat every q / k
 /// forcing periods (an orbit whose impact vanishes can leave P(2,1) traced
 /// three times, as the P(6,3) of P(7,3)), the touch and one repetition's
 /// impacts over q / k periods, whose normal form is the grazing's own (the
@@ -123,6 +150,7 @@ struct GrazingNormalForm {
   int stop = 0;                  ///< the stop touched
   int p = 0;                     ///< the grazing orbit's impacts (the touch not counted) ...
   int q = 1;                     ///< ... in q forcing periods: the map's period
+  int releases = 0;              ///< its sticking phases in q periods (0: it does not stick)
   double time = 0.0;             ///< t*, the touch: the section's time
   double phase = 0.0;            ///< t* mod T, in [0, T)
   Eigen::VectorXd touch;         ///< x* = (x, v) at t*
