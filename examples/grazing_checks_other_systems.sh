@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Every grazing's prediction checked against brute-force sweeps on two systems
+# Every grazing's prediction checked against brute-force sweeps on systems
 # besides the paper's (docs/continuation.md, "What a grazing will do", the
 # tables after the paper's): `impactkit diagram --grazings` on the 3-mass chain
-# examples/systems/three-mass.toml over Ω 0.3-0.7 (32 grazings) and on one mass
+# examples/systems/three-mass.toml over Ω 0.3-0.7 (32 grazings), on one mass
 # in the symmetric clearance examples/systems/clearance-1dof.toml (two stops)
-# over Ω 0.6-2.2 (19 grazings). Prints one check line per grazing and writes
-# each diagram's JSON and its checks' JSON; 1.5-2.5 minutes on 2 shared cores,
-# nearly all of it the 3-mass chain's (the clearance's takes about 16 s).
+# over Ω 0.6-2.2 (19 grazings), and on the sticking chain of
+# examples/systems/paper-mass1-stop.toml over Ω 0.14-0.2 (10 grazings of
+# sticking families). Prints one check line per grazing and writes each
+# diagram's JSON and its checks' JSON; 2-3.5 minutes on 2 shared cores,
+# most of it the 3-mass chain's (the clearance's takes about 16 s, the
+# sticking chain's 30-70 s).
 #
 #   examples/grazing_checks_other_systems.sh [impactkit binary] [data folder]
 #
@@ -25,4 +28,9 @@ echo "three-mass.toml, omega 0.3-0.7:"
 echo "clearance-1dof.toml, omega 0.6-2.2:"
 "$impactkit" diagram --system "$systems/clearance-1dof.toml" --from 0.6 --to 2.2 \
   --json "$data/clearance-diagram.json" --grazings "$data/clearance-grazings.json" |
+  sed -n '/^grazings checked/,$p'
+
+echo "paper-mass1-stop.toml, omega 0.14-0.2:"
+"$impactkit" diagram --system "$systems/paper-mass1-stop.toml" --from 0.14 --to 0.2 \
+  --json "$data/sticking-diagram.json" --grazings "$data/sticking-grazings.json" |
   sed -n '/^grazings checked/,$p'

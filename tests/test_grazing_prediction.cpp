@@ -420,3 +420,35 @@ TEST_CASE(
   CHECK(prediction.attractors[0].period == 2);
   CHECK(prediction.attractors[1].period == 1);
 }
+
+TEST_CASE(
+    "prediction: sweeps through a sticking family's new contact (paper-mass1-stop at omega = "
+    "0.19016) follow its family, whose impact speeds, chatter included, are Newton's orbit's",
+    "[grazing][prediction][sticking]") {
+  const System system = testing::PaperWithMass1StopFile();
+  Branch branch = testing::StickingBranchToNewContact(system);
+  PredictGrazings(system, &branch);
+  const SpecialPoint& graze = branch.special_points.back();
+  const GrazingNormalForm& form = *graze.normal_form;
+  const GrazingSweeps sweeps =
+      SweepThroughGrazing(testing::At(system, "omega", form.parameter_value), form);
+  INFO(form.prediction->Describe());
+  CHECK(sweeps.follows);
+  CHECK(sweeps.agrees);
+  CHECK(sweeps.toward[sweeps.values.size() / 2 + 1] == "P(inf,1)");
+  REQUIRE(sweeps.family_speed_gap.has_value());
+  // Newton's sticking orbit at the last value before the grazing (above
+  // it), against the grazing orbit: the gap the sweep's speeds show.
+  const double last_before = sweeps.values[sweeps.values.size() / 2 + 1];
+  OrbitOptions options;
+  options.releases = 1;
+  options.q = 1;
+  options.release_map.stop = 1;
+  PeriodicOrbit family;
+  REQUIRE(
+      FindOrbit(testing::At(system, "omega", last_before), graze.point.orbit.eta, options, &family)
+          .termination == Termination::kConverged);
+  const double expected = OrbitSpeedGap(family, graze.point.orbit);
+  INFO("gap " << *sweeps.family_speed_gap << ", Newton's " << expected);
+  CHECK(std::abs(*sweeps.family_speed_gap - expected) < 1e-8);
+}

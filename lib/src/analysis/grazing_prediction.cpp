@@ -27,6 +27,20 @@ constexpr double kPeriodTolerance = 1e-8;
 /// attractors give clearly negative ones.
 constexpr double kChaosThreshold = 1e-3;
 
+/// How the command line names a motion of the grazing orbit's kind with
+/// `impacts` impacts in q periods: P(p,q), P(inf,q) if it sticks.
+std::string MotionLike(const GrazingNormalForm& form, long impacts, int q) {
+  const MotionKind kind = form.releases > 0 ? MotionKind::kSticking
+                          : impacts > 0     ? MotionKind::kPeriodic
+                                            : MotionKind::kNonImpacting;
+  return MotionLabel(kind, impacts, q);
+}
+
+/// The grazing orbit as the command line names motions.
+std::string GrazingOrbitLabel(const GrazingNormalForm& form) {
+  return MotionLike(form, form.p, form.q);
+}
+
 /// The normal form's attractor at distance `distance` past the grazing.
 LocalAttractor IterateNormalForm(const GrazingNormalForm& form, double distance,
                                  const GrazingPredictionOptions& options) {
@@ -78,10 +92,7 @@ LocalAttractor IterateNormalForm(const GrazingNormalForm& form, double distance,
     attractor.period = period;
     attractor.contacts = static_cast<int>(std::count(contact.end() - period, contact.end(), true));
     const long impacts = static_cast<long>(period) * form.p + attractor.contacts;
-    const MotionKind kind = form.releases > 0 ? MotionKind::kSticking
-                            : impacts > 0     ? MotionKind::kPeriodic
-                                              : MotionKind::kNonImpacting;
-    attractor.motion = MotionLabel(kind, impacts, period * form.q);
+    attractor.motion = MotionLike(form, impacts, period * form.q);
     return attractor;
   }
   attractor.motion = MotionLabel(
@@ -193,9 +204,6 @@ struct FamilyDistance {
 std::optional<FamilyDistance> DistanceToFamily(const System& system, const GrazingNormalForm& form,
                                                const SweepPoint& nearer,
                                                const SweepPoint& farther) {
-  // A sticking orbit's chatter has as many impacts as the simulator's
-  // rule lets it before sticking: none to pair.
-  if (form.releases > 0) return std::nullopt;
   if (form.p == 0) return FamilyDistance{};  // one non-impacting response
   const auto count = static_cast<std::size_t>(form.p);
   const SpeedSet grazing = GrazingOrbitSpeeds(system, form);
@@ -366,11 +374,10 @@ GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm&
   } else {
     result.expected = RemoteMotion(system, form, result.past_distance, prediction_options);
   }
-  const MotionKind family = form.p > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting;
   // An unstable grazing orbit is no sweep's steady motion; a stable one's
   // label may be shared by a coexisting orbit, so its impact speeds decide.
   const std::size_t before_that = 2 * last_before - middle;
-  const std::string family_label = MotionLabel(family, form.p, form.q);
+  const std::string family_label = GrazingOrbitLabel(form);
   if (!prediction.unstable_grazing_orbit && result.toward[last_before] == family_label &&
       result.toward[before_that] == family_label) {
     if (const auto distance = DistanceToFamily(system, form, toward_points[last_before],
@@ -396,8 +403,7 @@ std::vector<GrazingCheck> CheckGrazings(const System& system, const Diagram& dia
     SetParameter(at, form.parameter, form.parameter_value);
     GrazingCheck check;
     check.parameter = form.parameter_value;
-    check.grazing_orbit =
-        MotionLabel(form.p > 0 ? MotionKind::kPeriodic : MotionKind::kNonImpacting, form.p, form.q);
+    check.grazing_orbit = GrazingOrbitLabel(form);
     check.new_contact = node.vanishing_impact < 0;
     check.prediction = *form.prediction;
     check.sweeps = SweepThroughGrazing(at, form, options);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "continuation/branch_problem.hpp"
@@ -122,39 +123,61 @@ GrazingOrbit TouchingStickingOrbit(const System& system, const StickingMapOption
   return grazing;
 }
 
+/// The touch found must lie this close (relative to max(1, |p|)) to the
+/// located grazing, or it is another one. A vanishing impact's located
+/// parameter errs by more than end_tolerance, its Newton floor growing
+/// like 1/v: on paper-mass1-stop's sticking chain the touches lie 5e-10
+/// to 1e-7 from it.
+constexpr double kTouchAgreement = 1e-6;
+/// The touching orbit's clearance: ~1e-10 (RequireTouch allows 1e-8).
+constexpr double kTouchClearance = 1e-10;
+/// Secant steps towards it, each a tenth of the way closer.
+constexpr int kTouchSteps = 8;
+
 /// Where a sticking family's approach impact vanishes, the neighbouring
-/// family (without it, past the branch's end on `side`) touches: its
-/// clearance, linear in the parameter there, is solved at two distances
-/// 1e-6 and 2e-6 past and extrapolated to its zero p*, and the orbit taken
-/// 1e-10 short of it on its side (its gap ~1e-10, where the orbit at p*
-/// itself may come out with the impact at a speed of rounding's square
-/// root). The extrapolation errs by c'' Δ² ~ 1e-12.
-GrazingOrbit NeighbouringTouch(const System& system, const Branch& branch,
-                               const SpecialPoint& graze, const StickingMapOptions& map_options,
-                               double side) {
+/// family (without it) touches, on the side `side` of the grazing: its
+/// clearance c, solved 1e-6 and 2e-6 away, is followed by secant steps
+/// towards its zero, each to a tenth of the nearer point's distance from
+/// the zero estimate (so always on the family's side: at the zero itself
+/// Newton may land on the side with the impact, at a speed of rounding's
+/// square root), until c <= 1e-10. The clearance is not linear enough to
+/// extrapolate at once: on paper-mass1-stop's sticking chain its
+/// curvature moves the first estimate by up to 1e-7. None where no such
+/// family opens on that side with its zero near the grazing.
+std::optional<GrazingOrbit> NeighbouringTouch(const System& system, const Branch& branch,
+                                              const SpecialPoint& graze,
+                                              const StickingMapOptions& map_options, double side) {
   OrbitOptions options;
   options.q = branch.q;
   options.releases = branch.releases;
   options.release_map = map_options;
   const double scale = std::max(1.0, std::abs(graze.parameter));
-  auto orbit_at = [&](double value) {
-    System at = system;
-    SetParameter(at, branch.parameter, value);
+  struct Sample {
+    double p, c;
+    System system;
     PeriodicOrbit orbit;
-    const OrbitSummary solved = FindOrbit(at, graze.point.orbit.eta, options, &orbit);
-    Require(solved.termination == Termination::kConverged && orbit.contacts.clearance,
-            "the neighbouring sticking family, without the vanishing impact, could not be found: " +
-                solved.message);
-    return std::make_pair(at, orbit);
   };
-  const double p1 = graze.parameter + side * 1e-6 * scale,
-               p2 = graze.parameter + side * 2e-6 * scale;
-  const double c1 = *orbit_at(p1).second.contacts.clearance;
-  const double c2 = *orbit_at(p2).second.contacts.clearance;
-  Require(c2 > c1 && c1 > 0, "the neighbouring sticking family's clearance does not open past it");
-  const double touch = p1 - c1 * (p2 - p1) / (c2 - c1) + side * 1e-10 * scale;
-  const auto [at, orbit] = orbit_at(touch);
-  return TouchingStickingOrbit(at, map_options, orbit, side);
+  auto sample = [&](double value) -> std::optional<Sample> {
+    Sample at{value, 0.0, system, {}};
+    SetParameter(at.system, branch.parameter, value);
+    const OrbitSummary solved = FindOrbit(at.system, graze.point.orbit.eta, options, &at.orbit);
+    if (solved.termination != Termination::kConverged || !at.orbit.contacts.clearance) return {};
+    at.c = *at.orbit.contacts.clearance;
+    if (!(at.c > 0)) return {};
+    return at;
+  };
+  auto far = sample(graze.parameter + side * 2e-6 * scale);
+  auto near = sample(graze.parameter + side * 1e-6 * scale);
+  for (int step = 0; step < kTouchSteps && far && near && near->c < far->c; ++step) {
+    if (near->c <= kTouchClearance) {
+      if (!(std::abs(near->p - graze.parameter) <= kTouchAgreement * scale)) return std::nullopt;
+      return TouchingStickingOrbit(near->system, map_options, near->orbit, side);
+    }
+    const double zero = near->p - near->c * (far->p - near->p) / (far->c - near->c);
+    far = std::move(near);
+    near = sample(zero + 0.1 * (far->p - zero));
+  }
+  return std::nullopt;
 }
 
 /// A sticking family's grazing orbit: at a new contact the located point's
@@ -170,7 +193,16 @@ GrazingOrbit StickingGrazingOrbit(const System& system, const Branch& branch,
   const double away = std::abs(from - graze.parameter) > std::abs(to - graze.parameter) ? from : to;
   const double branch_side = away < graze.parameter ? -1.0 : 1.0;
   if (graze.vanishing_impact >= 0) {
-    return NeighbouringTouch(system, branch, graze, map_options, -branch_side);
+    // Past the branch's end (the impact persists across the grazing as
+    // the family without it), or on its own side (the two families fold
+    // into each other there).
+    for (const double side : {-branch_side, branch_side}) {
+      if (auto orbit = NeighbouringTouch(system, branch, graze, map_options, side)) return *orbit;
+    }
+    throw InvalidInput(
+        "no sticking family without the vanishing impact touches the stop at this grazing on "
+        "either side of it (its clearance solved 1e-6 and 2e-6 away does not open to a zero "
+        "here)");
   }
   System on_branch = system;
   SetParameter(on_branch, branch.parameter, graze.point.parameter);

@@ -114,7 +114,7 @@ GrazingSweeps SweepThroughGrazing(const System& system, const GrazingNormalForm&
 /// A grazing of a diagram, its prediction and the sweeps that check it.
 struct GrazingCheck {
   double parameter = 0.0;
-  std::string grazing_orbit;  ///< the orbit that touches: "P(1,1)", or "non-impacting"
+  std::string grazing_orbit;  ///< the orbit that touches: "P(1,1)", "P(inf,1)" or "non-impacting"
   bool new_contact = true;    ///< located as a new contact (else as a vanishing impact)
   GrazingPrediction prediction;
   GrazingSweeps sweeps;
