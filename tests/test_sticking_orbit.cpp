@@ -18,6 +18,7 @@
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
+#include "impactkit/orbits/sticking_map.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 #include "seeded_orbit.hpp"
 
@@ -131,6 +132,60 @@ TEST_CASE("paper system at Omega = 0.2: section multipliers match the simulator'
     CHECK(std::abs(orbit.multipliers(i) - lambda(i)) < 1e-5);
     CHECK(std::abs(section(i) - lambda(i)) < 1e-5);  // D P_R's other multiplier is 0
   }
+}
+
+TEST_CASE(
+    "StickingMap::Follow: from a free state over a period, the state and its Jacobian are the "
+    "simulator's and its finite-difference monodromy, and a time inside a stuck phase holds the "
+    "mass",
+    "[sticking]") {
+  const System system = PaperSystem(0.2);
+  const PeriodicOrbit orbit = testing::SeededStickingOrbit(system);
+  const StickingMap map(system);
+  const double flight = orbit.impacts[0].t - orbit.eta(orbit.eta.size() - 1);
+  const HybridState start = OnOrbit(system, map, orbit, 0.5 * flight);
+  const double span = orbit.q * system.ForcingPeriod();
+  const StickingFlight followed = map.Follow(start, start.t + span, true);
+  REQUIRE(followed.termination == Termination::kCompleted);
+  const int n = 2 * system.Dof();
+  Eigen::VectorXd y(n), end(n);
+  y << start.x, start.v;
+  end << followed.state.x, followed.state.v;
+  const Simulator simulator(system);
+  // The simulator's events (its chatter's accumulation included) to ~1e-12.
+  CHECK((end - Strobe(simulator, start.t, y, span)).cwiseAbs().maxCoeff() < 1e-10);
+  // Central differences of the simulator, h = 1e-6: O(h²) and its
+  // rounding over h, ~1e-7; the chatter's count must not change, which
+  // holds at this h (the release map's own step, sticking_map.hpp).
+  const double h = 1e-6;
+  for (int j = 0; j < n; ++j) {
+    Eigen::VectorXd plus = y, minus = y;
+    plus(j) += h;
+    minus(j) -= h;
+    const Eigen::VectorXd column =
+        (Strobe(simulator, start.t, plus, span) - Strobe(simulator, start.t, minus, span)) /
+        (2 * h);
+    INFO("column " << j << ": " << followed.jacobian.col(j).transpose() << " against "
+                   << column.transpose());
+    CHECK((followed.jacobian.col(j) - column).cwiseAbs().maxCoeff() < 1e-5);
+  }
+  // To the middle of the stuck phase: mass 2 held at its stop, at rest,
+  // whatever the start (its rows of the Jacobian are 0); mass 1 the
+  // simulator's.
+  const StuckPhase& stuck = orbit.stuck[0];
+  const double period = system.ForcingPeriod();
+  double middle = 0.5 * (stuck.stick + stuck.release);
+  middle += std::ceil((start.t - middle) / period) * period;
+  const StickingFlight held = map.Follow(start, middle, true);
+  REQUIRE(held.termination == Termination::kCompleted);
+  CHECK(held.state.x(1) == system.stops[0].position);
+  CHECK(held.state.v(1) == 0.0);
+  CHECK(held.jacobian.row(1).isZero(0.0));
+  CHECK(held.jacobian.row(3).isZero(0.0));
+  HybridState simulated = start;
+  simulator.Run(simulated, middle);
+  CHECK(std::abs(held.state.x(0) - simulated.x(0)) < 1e-10);
+  CHECK(std::abs(held.state.v(0) - simulated.v(0)) < 1e-10);
 }
 
 TEST_CASE("release map: analytic Jacobian agrees with finite differences", "[sticking]") {
