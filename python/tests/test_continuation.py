@@ -235,3 +235,30 @@ def test_a_grazing_carries_its_normal_form_and_prediction_as_the_command_line_wr
     with open(cli_json) as f:
         cli = json.load(f)
     assert cli["special_points"][-1]["normal_form"] == form
+
+
+def test_a_sticking_familys_grazing_carries_its_normal_form_through_chatter_and_release():
+    # On paper-mass1-stop.toml the sticking family from omega = 0.2 meets a
+    # fourth impact of mass 1 at 0.1901614 going down. Its normal form's
+    # monodromy runs through the chatter, the stuck phase and the release:
+    # its multipliers are the release map's (another computation: the
+    # section's Jacobian) and two zeros. Just past it the new contact comes
+    # every other period (docs/theory.md §6b).
+    import os
+
+    path = os.path.join(os.environ["IMPACTKIT_SOURCE_DIR"], "examples", "systems",
+                        "paper-mass1-stop.toml")
+    system = impactkit.System.from_file(path)
+    start = impactkit.find_orbit(system)
+    assert start.releases == 1
+    branch = impactkit.continue_branch(system, start, from_=0.2, to=0.18,
+                                       direction="decreasing")
+    graze = branch.special_points[-1]
+    assert graze.type == "grazing"
+    form = graze.normal_form
+    assert form["releases"] == 1
+    eigenvalues = np.array([complex(re, im) for re, im in form["eigenvalues"]])
+    np.testing.assert_allclose(eigenvalues[:2], graze.multipliers, atol=1e-8)
+    assert np.all(np.abs(eigenvalues[2:]) < 1e-12)
+    assert form["prediction"]["local"] is True
+    assert form["prediction"]["motion"] == "P(inf,2)"
