@@ -269,6 +269,21 @@ TEST_CASE("sticking orbits: bad input is a clear error", "[sticking]") {
     nan(0) = std::nan("");
     CHECK_THROWS_AS(FindOrbit(system, nan, options, &out), InvalidInput);
   }
+  SECTION("Follow: a state of the wrong size or with a NaN, a time before it, a stop it lacks") {
+    const StickingMap map(system);
+    const HybridState start = map.ToState(orbit.eta);
+    HybridState short_state = start;
+    short_state.x = Eigen::VectorXd::Zero(1);
+    CHECK_THROWS_WITH(map.Follow(short_state, start.t + 1.0, true),
+                      Catch::Matchers::Contains("2 positions and velocities"));
+    HybridState nan = start;
+    nan.v(0) = std::nan("");
+    CHECK_THROWS_WITH(map.Follow(nan, start.t + 1.0, true), Catch::Matchers::Contains("finite"));
+    CHECK_THROWS_WITH(map.Follow(start, start.t - 1.0, true),
+                      Catch::Matchers::Contains("followed forward"));
+    CHECK_THROWS_WITH(map.Follow(start, start.t + 1.0, true, 3),
+                      Catch::Matchers::Contains("the system has 1 stop"));
+  }
   SECTION("a guess where the stop still pushes (no release)") {
     Eigen::VectorXd held = orbit.eta;
     held(2) = 0.0;  // Fs = 0.5 + x1 - 0.1 > 0 at t = 0

@@ -529,8 +529,9 @@ StickingFlight StickingMap::Follow(const HybridState& from, double until, bool w
         fmt::format("the motion is followed forward: {} is before the start {}", until, from.t));
   }
   if (released && (*released < 0 || *released >= hybrid_->StopCount())) {
-    throw InvalidInput(fmt::format("a release from stop {} (0-based): the system has {} stops",
-                                   *released, hybrid_->StopCount()));
+    throw InvalidInput(fmt::format("a release from stop {} (0-based): the system has {} stop{}",
+                                   *released, hybrid_->StopCount(),
+                                   hybrid_->StopCount() == 1 ? "" : "s"));
   }
   Cycle cycle(*hybrid_, options_, with_jacobian, false);
   return cycle.Follow(from, until, released);
