@@ -371,6 +371,16 @@ std::vector<int> ImpactsAtTouchedStop(const System& system, const GrazingNormalF
   return counts;
 }
 
+/// paper-mass1-stop's sticking family followed down to its new contact at
+/// Ω = 0.19016, its grazings predicted.
+Branch PredictedStickingBranch(const System& system) {
+  Branch branch = testing::StickingBranchToNewContact(system);
+  PredictGrazings(system, &branch);
+  REQUIRE(branch.special_points.back().normal_form.has_value());
+  REQUIRE(branch.special_points.back().normal_form->prediction.has_value());
+  return branch;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -384,12 +394,9 @@ TEST_CASE(
   // where mass 2 sticks), so closer than μ ~ κ² / (1 − λ)² the square-root
   // term overshoots: the new contact comes every other period.
   const System system = testing::PaperWithMass1StopFile();
-  Branch branch = testing::StickingBranchToNewContact(system);
-  PredictGrazings(system, &branch);
+  const Branch branch = PredictedStickingBranch(system);
   const SpecialPoint& graze = branch.special_points.back();
-  REQUIRE(graze.normal_form.has_value());
   const GrazingNormalForm& form = *graze.normal_form;
-  REQUIRE(form.prediction.has_value());
   const GrazingPrediction& prediction = *form.prediction;
   INFO(prediction.Describe());
   CHECK(prediction.local);
@@ -426,8 +433,7 @@ TEST_CASE(
     "0.19016) follow its family, whose impact speeds, chatter included, are Newton's orbit's",
     "[grazing][prediction][sticking]") {
   const System system = testing::PaperWithMass1StopFile();
-  Branch branch = testing::StickingBranchToNewContact(system);
-  PredictGrazings(system, &branch);
+  const Branch branch = PredictedStickingBranch(system);
   const SpecialPoint& graze = branch.special_points.back();
   const GrazingNormalForm& form = *graze.normal_form;
   const GrazingSweeps sweeps =
