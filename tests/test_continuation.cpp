@@ -557,6 +557,50 @@ TEST_CASE("continuation: a doubled branch ends where it meets the orbit it doubl
   CHECK(relabelled.q == 1);
 }
 
+TEST_CASE(
+    "continuation: a doubled branch whose first step lands on the orbit it doubled goes on to "
+    "its own period doubling (P(22,32) from P(11,16) near 1.8237)",
+    "[continuation]") {
+  // P(11,16) of the paper's system doubles at Ω = 1.823650395. The doubled
+  // branch starts 1e-3 from the doubling; its first step (0.01) landed on
+  // P(11,16) traversed twice, which solves P(22,32)'s equations too, and
+  // the branch ended there at a branch point: its own period doubling,
+  // behind it. It goes down in Ω to P(22,32)'s period doubling, at
+  // 1.823387967 in `impactkit diagram --from 0.4 --to 2.3 --sweep-values
+  // 2401`, whose P(22,32) branch started differently. P(11,16)'s η at its
+  // doubling is recorded from that run.
+  const System system = PaperSystem(1.8236503947508154);
+  Eigen::VectorXd eta(4);
+  eta << -0.13666513885904719, 2.5766773629696536, -0.882694199276055, 0.054331278310384146;
+  OrbitOptions p11_16;
+  p11_16.p = 11;
+  p11_16.q = 16;
+  PeriodicOrbit orbit;
+  REQUIRE(FindOrbit(system, eta, p11_16, &orbit).termination == Termination::kConverged);
+  const ContinuationOptions single = Options(1.8233, 1.8240, 11, 16);
+  const Branch p11 = ContinueBranch({system, orbit, {}}, single);
+  const BranchStart start = DoubledStartIn(system, p11, 1.82364, 1.82366, single);
+  const Branch p22 =
+      ContinueBranch(start, Options(1.8233, 1.8240, 22, 32, ContinuationDirection::kIncreasing));
+  CHECK(p22.end != Termination::kBranchPoint);
+  REQUIRE(p22.points.size() > 2);
+  const SpecialPoint* pd = Find(p22, SpecialPointType::kPeriodDoubling, 1.8233, 1.8236);
+  REQUIRE(pd != nullptr);
+  CHECK_THAT(pd->parameter, Catch::Matchers::WithinAbs(1.823387967, 1e-8));
+  // Independently: orbits found by Newton (FindOrbit) 1e-7 either side of
+  // it, from its orbit, have their real multiplier nearest -1 on either
+  // side of -1.
+  double sides = 1.0;
+  for (double offset : {-1e-7, 1e-7}) {
+    const std::complex<double> lambda = testing::RecomputedMultiplier(
+        At(system, "omega", pd->parameter + offset), 22, 32, pd->point.orbit.eta, -1.0);
+    CHECK(std::abs(lambda.imag()) == 0.0);
+    CHECK(std::abs(lambda + 1.0) < 1e-3);
+    sides *= lambda.real() + 1.0;
+  }
+  CHECK(sides < 0);
+}
+
 TEST_CASE("continuation: a bound at the end of the parameter's range (r = 1) is reached",
           "[continuation]") {
   const System system = PaperSystem(1.2);

@@ -132,7 +132,25 @@ class BranchTracer {
         // No test function is located in this last interval: at the branch
         // point the shorter orbit's multiplier −1 is +1 for this one, a
         // fold that is not one.
-        EndAtBranchPoint(from, *next, &half);
+        if (const std::optional<BranchPoint> at = BranchPointAhead(from, *next)) {
+          EndAtBranchPoint(*at, &half);
+          return half;
+        }
+        // The corrector left the branch: for the shorter orbit's branch,
+        // which solves this family's equations too and crosses it at the
+        // branch point behind `from` (a doubled branch's start lies 1e-3
+        // from its period doubling, its first step is longer), or for the
+        // mirror half beyond that point. A jump to another branch, as
+        // max_correction refuses one: a shorter step.
+        if (step > options_.min_step) {
+          step = std::max(step / 2.0, options_.min_step);
+          continue;
+        }
+        half.end = Termination::kCorrectorFailed;
+        half.end_message = fmt::format(
+            "the corrector reached the branch of {} behind the branch's last point even with the "
+            "smallest step {:g} at {} = {:.10g}",
+            ShorterName(), options_.min_step, problem_.Parameter(), from.parameter);
         return half;
       }
       if (beyond) {
@@ -415,15 +433,29 @@ class BranchTracer {
     return std::nullopt;
   }
 
-  /// Ends the branch at the point between `from` and `next` where its orbit
-  /// repeats: beyond it the branch would walk the same orbits again with
-  /// their impacts renumbered.
-  void EndAtBranchPoint(const BranchPoint& from, const BranchPoint& next, HalfBranch* half) const {
+  /// The point between `from` and `next` where the branch's orbit repeats,
+  /// if the branch passed it: located, and ahead of `from` along its
+  /// tangent. A step that lands on the shorter orbit's branch, or on the
+  /// mirror half of this one, with the meeting point behind `from` (or
+  /// where none is located but `from` itself) jumped to another branch and
+  /// passed nothing: on the far side of the meeting point from `from` lie
+  /// the points the branch has walked already, not those it walks next.
+  std::optional<BranchPoint> BranchPointAhead(const BranchPoint& from,
+                                              const BranchPoint& next) const {
     const Eigen::VectorXd direction = from.repeat_gap;
     const BranchPoint located = PrimitiveBifurcation(from, next)
                                     .value_or(LocateZero(from, next, [&](const BranchPoint& point) {
                                       return point.repeat_gap.dot(direction);
                                     }));
+    const double ahead =
+        from.tangent.dot(BranchProblem::PointX(located) - BranchProblem::PointX(from));
+    if (!(ahead > 0)) return std::nullopt;
+    return located;
+  }
+
+  /// Ends the branch at `located`, where its orbit repeats: beyond it the
+  /// branch would walk the same orbits again with their impacts renumbered.
+  void EndAtBranchPoint(const BranchPoint& located, HalfBranch* half) const {
     Accept(located, half);
     SpecialPoint special;
     special.type = SpecialPointType::kBranchPoint;
