@@ -8,6 +8,8 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "closed_form_sdof.hpp"
 #include "cvode_impacts.hpp"
@@ -557,48 +559,119 @@ TEST_CASE("continuation: a doubled branch ends where it meets the orbit it doubl
   CHECK(relabelled.q == 1);
 }
 
-TEST_CASE(
-    "continuation: a doubled branch whose first step lands on the orbit it doubled goes on to "
-    "its own period doubling (P(22,32) from P(11,16) near 1.8237)",
-    "[continuation]") {
-  // P(11,16) of the paper's system doubles at Ω = 1.823650395. The doubled
-  // branch starts 1e-3 from the doubling; its first step (0.01) landed on
-  // P(11,16) traversed twice, which solves P(22,32)'s equations too, and
-  // the branch ended there at a branch point: its own period doubling,
-  // behind it. It goes down in Ω to P(22,32)'s period doubling, at
-  // 1.823387967 in `impactkit diagram --from 0.4 --to 2.3 --sweep-values
-  // 2401`, whose P(22,32) branch started differently. P(11,16)'s η at its
-  // doubling is recorded from that run.
-  const System system = PaperSystem(1.8236503947508154);
-  Eigen::VectorXd eta(4);
-  eta << -0.13666513885904719, 2.5766773629696536, -0.882694199276055, 0.054331278310384146;
-  OrbitOptions p11_16;
-  p11_16.p = 11;
-  p11_16.q = 16;
+namespace {
+
+/// The orbit P(p, q) of the paper's system at Ω = `omega`, from `eta`.
+std::pair<System, PeriodicOrbit> PaperOrbit(double omega, int p, int q,
+                                            const std::vector<double>& eta) {
+  const System system = PaperSystem(omega);
+  OrbitOptions options;
+  options.p = p;
+  options.q = q;
   PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(system, eta, p11_16, &orbit).termination == Termination::kConverged);
-  const ContinuationOptions single = Options(1.8233, 1.8240, 11, 16);
-  const Branch p11 = ContinueBranch({system, orbit, {}}, single);
-  const BranchStart start = DoubledStartIn(system, p11, 1.82364, 1.82366, single);
-  const Branch p22 =
-      ContinueBranch(start, Options(1.8233, 1.8240, 22, 32, ContinuationDirection::kIncreasing));
-  CHECK(p22.end != Termination::kBranchPoint);
-  REQUIRE(p22.points.size() > 2);
-  const SpecialPoint* pd = Find(p22, SpecialPointType::kPeriodDoubling, 1.8233, 1.8236);
+  REQUIRE(FindOrbit(system, Eigen::Map<const Eigen::VectorXd>(eta.data(), 4), options, &orbit)
+              .termination == Termination::kConverged);
+  return {system, orbit};
+}
+
+/// The branch doubled at the period doubling of `branch` in (low, high),
+/// followed over [from, to] from its start.
+Branch DoubledBranchIn(const System& system, const Branch& branch, double low, double high,
+                       double from, double to) {
+  const ContinuationOptions single = Options(from, to, branch.p, branch.q);
+  const BranchStart start = DoubledStartIn(system, branch, low, high, single);
+  return ContinueBranch(
+      start, Options(from, to, 2 * branch.p, 2 * branch.q, ContinuationDirection::kIncreasing));
+}
+
+/// P(22,32) from P(11,16)'s period doubling at Ω = 1.823650395, on
+/// [1.8233, 1.8240]. P(11,16)'s η there is recorded from `impactkit
+/// diagram --from 0.4 --to 2.3 --sweep-values 2401`.
+Branch P22From11() {
+  const auto [system, orbit] = PaperOrbit(
+      1.8236503947508154, 11, 16,
+      {-0.13666513885904719, 2.5766773629696536, -0.882694199276055, 0.054331278310384146});
+  const Branch p11 = ContinueBranch({system, orbit, {}}, Options(1.8233, 1.8240, 11, 16));
+  return DoubledBranchIn(system, p11, 1.82364, 1.82366, 1.8233, 1.8240);
+}
+
+/// The period doubling of `branch` in (low, high), required, and checked
+/// independently: orbits found by Newton (FindOrbit) 1e-7 either side of
+/// it, from its orbit, have their real multiplier nearest -1 on either
+/// side of -1.
+const SpecialPoint& CheckedPeriodDoubling(const Branch& branch, double low, double high) {
+  const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, low, high);
   REQUIRE(pd != nullptr);
-  CHECK_THAT(pd->parameter, Catch::Matchers::WithinAbs(1.823387967, 1e-8));
-  // Independently: orbits found by Newton (FindOrbit) 1e-7 either side of
-  // it, from its orbit, have their real multiplier nearest -1 on either
-  // side of -1.
   double sides = 1.0;
   for (double offset : {-1e-7, 1e-7}) {
-    const std::complex<double> lambda = testing::RecomputedMultiplier(
-        At(system, "omega", pd->parameter + offset), 22, 32, pd->point.orbit.eta, -1.0);
-    CHECK(std::abs(lambda.imag()) == 0.0);
+    const std::complex<double> lambda =
+        testing::RecomputedMultiplier(At(PaperSystem(1.0), "omega", pd->parameter + offset),
+                                      branch.p, branch.q, pd->point.orbit.eta, -1.0);
+    CHECK(lambda.imag() == 0.0);
     CHECK(std::abs(lambda + 1.0) < 1e-3);
     sides *= lambda.real() + 1.0;
   }
   CHECK(sides < 0);
+  return *pd;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "continuation: a doubled branch whose first step lands on the orbit it doubled goes on to "
+    "its own period doubling (P(22,32) from P(11,16) near 1.8237)",
+    "[continuation]") {
+  // The doubled branch starts 1e-3 from P(11,16)'s doubling; its first
+  // step (0.01) landed on P(11,16) traversed twice, which solves
+  // P(22,32)'s equations too, and the branch ended there at a branch point:
+  // its own period doubling, behind it. It goes down in Ω to P(22,32)'s
+  // period doubling, at 1.823387967 in the 2401-value run, whose P(22,32)
+  // branch started differently.
+  const Branch p22 = P22From11();
+  CHECK(p22.end != Termination::kBranchPoint);
+  REQUIRE(p22.points.size() > 2);
+  const SpecialPoint& pd = CheckedPeriodDoubling(p22, 1.8233, 1.8236);
+  CHECK_THAT(pd.parameter, Catch::Matchers::WithinAbs(1.823387967, 1e-8));
+}
+
+TEST_CASE(
+    "continuation: a step onto the orbit it doubled started from another of its impacts is no "
+    "branch point (P(36,16) from P(18,8) near 1.6848)",
+    "[continuation]") {
+  // P(18,8), born near P(9,4) traversed twice, has its impacts 0 and 9
+  // close. A step of the doubled branch from its start landed on P(18,8)
+  // twice, and the orbit's meeting point, located by secant steps on
+  // P(18,8)'s det(DP + I), was its period doubling started from impact 9:
+  // ahead of the start, 1.3e-2 away from it for a step of 5e-3, and the
+  // branch ended there. Each of its points is a primitive P(36,16), the
+  // repeat checked again by the orbit's own map, as is the orbit found by
+  // Newton at its far end. P(18,8)'s η at its doubling is recorded from
+  // `impactkit diagram --from 0.4 --to 2.3`.
+  const auto [system, orbit] =
+      PaperOrbit(1.6848320037472346, 18, 8,
+                 {0.2270529211123809, 2.2831689766573504, -1.439545545814765, 0.02390468639651502});
+  const Branch p18 = ContinueBranch({system, orbit, {}}, Options(1.6840, 1.6856, 18, 8));
+  const Branch p36 = DoubledBranchIn(system, p18, 1.68482, 1.68484, 1.6840, 1.6856);
+  CHECK(p36.end != Termination::kBranchPoint);
+  REQUIRE(p36.points.size() > 2);
+  for (const BranchPoint& point : p36.points) {
+    const ImpactMap map(At(system, "omega", point.parameter));
+    CHECK(PrimitivePeriod(map, point.orbit.eta, 36, 16, 1e-6).p == 36);
+  }
+  // Down in Ω, 2e-4 at least from the doubling (1.684603 when written).
+  const BranchPoint& last = p36.points.back();
+  CHECK(last.parameter < 1.68463);
+  OrbitOptions p36_16;
+  p36_16.p = 36;
+  p36_16.q = 16;
+  PeriodicOrbit again;
+  REQUIRE(
+      FindOrbit(At(system, "omega", last.parameter), last.orbit.eta, p36_16, &again).termination ==
+      Termination::kConverged);
+  CHECK((again.eta - last.orbit.eta).norm() < 1e-6);
+  CHECK(
+      PrimitivePeriod(ImpactMap(At(system, "omega", last.parameter)), again.eta, 36, 16, 1e-6).p ==
+      36);
 }
 
 TEST_CASE("continuation: a bound at the end of the parameter's range (r = 1) is reached",

@@ -333,9 +333,7 @@ class BranchTracer {
   /// the critical point solved directly from it (critical_point.hpp) — the
   /// bracketing falls short where trials between a and b do not converge,
   /// as on long orbits near a graze. Empty if the direct solve fails or
-  /// lands off the stretch a–b (its distances to a and b sum to more than
-  /// 1.5 times the chord: the stretch's curvature allows a little more than
-  /// the chord, a point outside it much more): a sign change of
+  /// lands off the stretch a–b (OnStretch): a sign change of
   /// det(D P ∓ I) that no multiplier at ±1 explains (one passing through
   /// infinity) is no point, and a solve that runs back to a point located
   /// before is none either.
@@ -345,11 +343,7 @@ class BranchTracer {
     const std::optional<Eigen::VectorXd> x = detail::SolveCriticalPoint(
         problem_, BranchProblem::PointX(located), lambda, options_.orbit.newton);
     if (!x) return std::nullopt;
-    const double stretch = (BranchProblem::PointX(b) - BranchProblem::PointX(a)).norm();
-    if ((*x - BranchProblem::PointX(a)).norm() + (*x - BranchProblem::PointX(b)).norm() >
-        1.5 * stretch) {
-      return std::nullopt;
-    }
+    if (!OnStretch(*x, BranchProblem::PointX(a), BranchProblem::PointX(b))) return std::nullopt;
     std::optional<BranchPoint> point = problem_.Describe(*x, a.tangent);
     if (!point) return std::nullopt;
     point->arclength = a.arclength + a.tangent.dot(*x - BranchProblem::PointX(a));
@@ -434,12 +428,16 @@ class BranchTracer {
   }
 
   /// The point between `from` and `next` where the branch's orbit repeats,
-  /// if the branch passed it: located, and ahead of `from` along its
-  /// tangent. A step that lands on the shorter orbit's branch, or on the
-  /// mirror half of this one, with the meeting point behind `from` (or
-  /// where none is located but `from` itself) jumped to another branch and
-  /// passed nothing: on the far side of the meeting point from `from` lie
-  /// the points the branch has walked already, not those it walks next.
+  /// if the branch passed it: located, ahead of `from` along its tangent
+  /// and on the stretch from–next (OnStretch). A step that lands on the
+  /// shorter orbit's branch, or on the mirror half of this one, with the
+  /// meeting point behind `from` (or where none is located but `from`
+  /// itself) jumped to another branch and passed nothing: on the far side
+  /// of the meeting point lie the points the branch has walked already, not
+  /// those it walks next. So does a step whose meeting point is located off
+  /// the stretch: the shorter orbit started from another of its impacts (a
+  /// P(18,8) next to P(9,4) twice has impacts 0 and 9 close), whose branch
+  /// also solves this family's equations.
   std::optional<BranchPoint> BranchPointAhead(const BranchPoint& from,
                                               const BranchPoint& next) const {
     const Eigen::VectorXd direction = from.repeat_gap;
@@ -447,10 +445,21 @@ class BranchTracer {
                                     .value_or(LocateZero(from, next, [&](const BranchPoint& point) {
                                       return point.repeat_gap.dot(direction);
                                     }));
-    const double ahead =
-        from.tangent.dot(BranchProblem::PointX(located) - BranchProblem::PointX(from));
-    if (!(ahead > 0)) return std::nullopt;
+    const Eigen::VectorXd x = BranchProblem::PointX(located), a = BranchProblem::PointX(from);
+    if (!(from.tangent.dot(x - a) > 0) || !OnStretch(x, a, BranchProblem::PointX(next))) {
+      return std::nullopt;
+    }
     return located;
+  }
+
+  /// Whether x lies on the stretch of branch between the points a and b:
+  /// its distances to them sum to at most 1.5 times the chord (the
+  /// stretch's curvature allows a little more than the chord, and where a
+  /// step crosses onto a branch that meets this one at right angles, √2
+  /// times; a point off the stretch much more).
+  static bool OnStretch(const Eigen::VectorXd& x, const Eigen::VectorXd& a,
+                        const Eigen::VectorXd& b) {
+    return (x - a).norm() + (x - b).norm() <= 1.5 * (b - a).norm();
   }
 
   /// Ends the branch at `located`, where its orbit repeats: beyond it the
