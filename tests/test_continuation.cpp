@@ -598,7 +598,7 @@ Branch P22From11() {
 /// The period doubling of `branch` in (low, high), required, and checked
 /// independently: orbits found by Newton (FindOrbit) 1e-7 either side of
 /// it, from its orbit, have their real multiplier nearest -1 on either
-/// side of -1.
+/// side of -1 (and within 0.1 of it: a long orbit's moves by 4e-3 there).
 const SpecialPoint& CheckedPeriodDoubling(const Branch& branch, double low, double high) {
   const SpecialPoint* pd = Find(branch, SpecialPointType::kPeriodDoubling, low, high);
   REQUIRE(pd != nullptr);
@@ -608,7 +608,7 @@ const SpecialPoint& CheckedPeriodDoubling(const Branch& branch, double low, doub
         testing::RecomputedMultiplier(At(PaperSystem(1.0), "omega", pd->parameter + offset),
                                       branch.p, branch.q, pd->point.orbit.eta, -1.0);
     CHECK(lambda.imag() == 0.0);
-    CHECK(std::abs(lambda + 1.0) < 1e-3);
+    CHECK(std::abs(lambda + 1.0) < 0.1);
     sides *= lambda.real() + 1.0;
   }
   CHECK(sides < 0);
@@ -632,6 +632,32 @@ TEST_CASE(
   REQUIRE(p22.points.size() > 2);
   const SpecialPoint& pd = CheckedPeriodDoubling(p22, 1.8233, 1.8236);
   CHECK_THAT(pd.parameter, Catch::Matchers::WithinAbs(1.823387967, 1e-8));
+}
+
+TEST_CASE(
+    "continuation: where one side of a period doubling's flip eigenvector corrects onto the "
+    "orbit it doubles, the doubled branch starts on the other (P(44,64) from P(22,32) near "
+    "1.8234)",
+    "[continuation]") {
+  // At P(22,32)'s period doubling the hyperplane 1e-3 along the flip
+  // eigenvector cuts P(22,32)'s own branch 2e-5 away in Ω (its η moves
+  // fast with Ω), and the corrector landed there: no start, and no
+  // P(44,64). The other side is the mirror half, the same orbits. The
+  // branch goes down to P(44,64)'s period doubling, at 1.823339173 in the
+  // 2401-value run.
+  const Branch p22 = P22From11();
+  const SpecialPoint& pd = CheckedPeriodDoubling(p22, 1.8233, 1.8236);
+  const System system = At(PaperSystem(1.0), "omega", pd.parameter);
+  const std::optional<BranchStart> start =
+      DoubledBranchStart(system, p22, pd, Options(1.8233, 1.8240, 22, 32));
+  REQUIRE(start.has_value());
+  const ImpactMap map(start->system);
+  CHECK(PrimitivePeriod(map, start->orbit.eta, 44, 64, 1e-6).p == 44);
+  const Branch p44 =
+      ContinueBranch(*start, Options(1.8233, 1.8240, 44, 64, ContinuationDirection::kIncreasing));
+  CHECK(p44.end != Termination::kBranchPoint);
+  const SpecialPoint& doubling = CheckedPeriodDoubling(p44, 1.8233, 1.82338);
+  CHECK_THAT(doubling.parameter, Catch::Matchers::WithinAbs(1.823339173, 1e-8));
 }
 
 TEST_CASE(

@@ -71,17 +71,27 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
     throw InvalidInput("DoubledBranchStart needs a located period doubling point");
   }
   // At the flip the doubled orbits leave the single one along the flip
-  // eigenvector (a pitchfork of P^{2k}).
+  // eigenvector (a pitchfork of P^{2k}), on both sides: the two halves are
+  // the same orbits, mirror images (impacts renumbered by p).
   const BranchProblem doubled = ProblemOf(system, branch, options, 2);
-  Eigen::VectorXd w;
-  const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, offset, &w);
-  if (!x) return std::nullopt;
-  // Genuinely doubled: not a fixed point of P_I^p (the single orbit also
-  // solves the doubled equations).
   const BranchProblem single = ProblemOf(system, branch, options);
-  Eigen::VectorXd u;
-  if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * offset) return std::nullopt;
-  return StartAt(doubled, *x, w);
+  // The eigenvector's sign is arbitrary. The hyperplane `offset` from the
+  // flip also cuts the single orbit's branch, which solves the doubled
+  // equations too, and on a long orbit's (whose η moves fast with μ) that
+  // cut can be as near as the doubled orbit: where the corrector lands on
+  // it, or fails, the other side.
+  for (const double side : {offset, -offset}) {
+    Eigen::VectorXd w;
+    const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &w);
+    if (!x) continue;
+    // Genuinely doubled: not a fixed point of P_I^p.
+    Eigen::VectorXd u;
+    if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * std::abs(offset)) continue;
+    // Heading away from the period doubling: along w, whose sign `side`
+    // carries.
+    return StartAt(doubled, *x, side > 0 ? w : Eigen::VectorXd(-w));
+  }
+  return std::nullopt;
 }
 
 std::optional<BranchStart> PitchforkBranchStart(const System& system, const Branch& branch,

@@ -191,8 +191,10 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
 
 /// A first point on the P(2p, 2q) branch born at the period doubling `pd`
 /// of `branch`, displaced from it by `offset` (arclength) along the flip
-/// eigenvector, with the direction leading away from the period doubling.
-/// Empty if the corrector does not converge to a genuinely doubled orbit.
+/// eigenvector, with the direction leading away from the period doubling;
+/// by −`offset` (the mirror half: the same orbits) where the corrector does
+/// not converge on that side, or converges to the single orbit. Empty if it
+/// converges to a genuinely doubled orbit on neither side.
 std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch& branch,
                                               const SpecialPoint& pd,
                                               const ContinuationOptions& options,
