@@ -660,6 +660,42 @@ TEST_CASE(
   CHECK_THAT(doubling.parameter, Catch::Matchers::WithinAbs(1.823339173, 1e-8));
 }
 
+namespace {
+
+/// The doubled branch born at the period doubling of the paper's P(p,q)
+/// (η `eta` there, at Ω = `omega`), traced on [omega - 8e-4, omega + 8e-4]:
+/// it goes on, each of its points a primitive P(2p,2q) (the repeat checked
+/// again by the orbit's own map), as is the orbit Newton (FindOrbit) finds
+/// again at its far end, which lies below `below`.
+void CheckDoubledGoesOn(double omega, int p, int q, const std::vector<double>& eta, double below) {
+  const auto [system, orbit] = PaperOrbit(omega, p, q, eta);
+  const Branch single =
+      ContinueBranch({system, orbit, {}}, Options(omega - 8e-4, omega + 8e-4, p, q));
+  const Branch doubled =
+      DoubledBranchIn(system, single, omega - 1e-5, omega + 1e-5, omega - 8e-4, omega + 8e-4);
+  CHECK(doubled.end != Termination::kBranchPoint);
+  REQUIRE(doubled.points.size() > 2);
+  for (const BranchPoint& point : doubled.points) {
+    const ImpactMap map(At(system, "omega", point.parameter));
+    CHECK(PrimitivePeriod(map, point.orbit.eta, 2 * p, 2 * q, 1e-6).p == 2 * p);
+  }
+  const BranchPoint& last = doubled.points.back();
+  CHECK(last.parameter < below);
+  OrbitOptions options;
+  options.p = 2 * p;
+  options.q = 2 * q;
+  PeriodicOrbit again;
+  REQUIRE(
+      FindOrbit(At(system, "omega", last.parameter), last.orbit.eta, options, &again).termination ==
+      Termination::kConverged);
+  CHECK((again.eta - last.orbit.eta).norm() < 1e-6);
+  CHECK(
+      PrimitivePeriod(ImpactMap(At(system, "omega", last.parameter)), again.eta, 2 * p, 2 * q, 1e-6)
+          .p == 2 * p);
+}
+
+}  // namespace
+
 TEST_CASE(
     "continuation: a step onto the orbit it doubled started from another of its impacts is no "
     "branch point (P(36,16) from P(18,8) near 1.6848)",
@@ -669,35 +705,27 @@ TEST_CASE(
   // twice, and the orbit's meeting point, located by secant steps on
   // P(18,8)'s det(DP + I), was its period doubling started from impact 9:
   // ahead of the start, 1.3e-2 away from it for a step of 5e-3, and the
-  // branch ended there. Each of its points is a primitive P(36,16), the
-  // repeat checked again by the orbit's own map, as is the orbit found by
-  // Newton at its far end. P(18,8)'s η at its doubling is recorded from
-  // `impactkit diagram --from 0.4 --to 2.3`.
-  const auto [system, orbit] =
-      PaperOrbit(1.6848320037472346, 18, 8,
-                 {0.2270529211123809, 2.2831689766573504, -1.439545545814765, 0.02390468639651502});
-  const Branch p18 = ContinueBranch({system, orbit, {}}, Options(1.6840, 1.6856, 18, 8));
-  const Branch p36 = DoubledBranchIn(system, p18, 1.68482, 1.68484, 1.6840, 1.6856);
-  CHECK(p36.end != Termination::kBranchPoint);
-  REQUIRE(p36.points.size() > 2);
-  for (const BranchPoint& point : p36.points) {
-    const ImpactMap map(At(system, "omega", point.parameter));
-    CHECK(PrimitivePeriod(map, point.orbit.eta, 36, 16, 1e-6).p == 36);
-  }
-  // Down in Ω, 2e-4 at least from the doubling (1.684603 when written).
-  const BranchPoint& last = p36.points.back();
-  CHECK(last.parameter < 1.68463);
-  OrbitOptions p36_16;
-  p36_16.p = 36;
-  p36_16.q = 16;
-  PeriodicOrbit again;
-  REQUIRE(
-      FindOrbit(At(system, "omega", last.parameter), last.orbit.eta, p36_16, &again).termination ==
-      Termination::kConverged);
-  CHECK((again.eta - last.orbit.eta).norm() < 1e-6);
-  CHECK(
-      PrimitivePeriod(ImpactMap(At(system, "omega", last.parameter)), again.eta, 36, 16, 1e-6).p ==
-      36);
+  // branch ended there. It goes down in Ω (to 1.684603 when written).
+  // P(18,8)'s η at its doubling is recorded from `impactkit diagram --from
+  // 0.4 --to 2.3`, as is P(20,16)'s below.
+  CheckDoubledGoesOn(
+      1.6848320037472346, 18, 8,
+      {0.2270529211123809, 2.2831689766573504, -1.439545545814765, 0.02390468639651502}, 1.68463);
+}
+
+TEST_CASE(
+    "continuation: a doubled branch leaving the orbit it doubled passes no branch point (P(40,32) "
+    "from P(20,16) near 1.7229)",
+    "[continuation]") {
+  // The first step from the start landed on P(20,16) twice 4.3e-5 higher
+  // in Ω, where secant steps on P(20,16)'s det(DP + I) found a zero beside
+  // the step, near where P(20,16) itself is born from P(10,8): ahead of
+  // the start and on the step's stretch, and the branch ended there. At its
+  // start the branch leaves P(20,16) (its repeat gap grows), so it cannot
+  // meet it within a step. It goes down in Ω (to 1.722599 when written).
+  CheckDoubledGoesOn(
+      1.7229064964213758, 20, 16,
+      {0.1304281918447981, 2.3663635415366597, -1.2588010212966088, 0.06354957847962905}, 1.72263);
 }
 
 TEST_CASE("continuation: a bound at the end of the parameter's range (r = 1) is reached",

@@ -62,13 +62,23 @@ std::optional<BranchPoint> BranchProblem::Describe(const Eigen::VectorXd& x,
   point.tangent = *tangent;
   point.test_values = EvaluateBifurcationTests(point.orbit.jacobian, point.orbit.multipliers);
   if (repeat_divisor_ > 1) {
-    const SectionImage part = map->Iterate(eta, Events() / repeat_divisor_, false);
-    if (!part.Ok()) return std::nullopt;
-    point.repeat_gap = part.state - eta;
-    point.repeat_gap(map->TimeIndex()) -=
-        (q() / repeat_divisor_) * map->GetSystem().ForcingPeriod();
+    std::optional<Eigen::VectorXd> gap = RepeatGap(x);
+    if (!gap) return std::nullopt;
+    point.repeat_gap = *std::move(gap);
   }
   return point;
+}
+
+std::optional<Eigen::VectorXd> BranchProblem::RepeatGap(const Eigen::VectorXd& x) const {
+  if (repeat_divisor_ == 1) return std::nullopt;
+  const SectionMap* map = MapAt(Mu(x));
+  if (!map) return std::nullopt;
+  const Eigen::VectorXd eta = Eta(x);
+  const SectionImage part = map->Iterate(eta, Events() / repeat_divisor_, false);
+  if (!part.Ok()) return std::nullopt;
+  Eigen::VectorXd gap = part.state - eta;
+  gap(map->TimeIndex()) -= (q() / repeat_divisor_) * map->GetSystem().ForcingPeriod();
+  return gap;
 }
 
 BranchProblem FamilyProblem(const System& system, const ContinuationOptions& options,

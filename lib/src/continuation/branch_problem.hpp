@@ -88,6 +88,11 @@ class BranchProblem {
   std::optional<BranchPoint> Describe(const Eigen::VectorXd& x,
                                       const Eigen::VectorXd& previous) const;
 
+  /// The repeat gap (BranchPoint::repeat_gap) of the state at X, on the
+  /// branch or off it; empty where the map fails there or the family has no
+  /// repeat divisor.
+  std::optional<Eigen::VectorXd> RepeatGap(const Eigen::VectorXd& x) const;
+
   /// Whether a map failed since the last call because the release map's
   /// chatter stopped ending in sticking (SectionCurve::TakeStoppedSticking).
   bool TakeStoppedSticking() const { return curve_.TakeStoppedSticking(); }

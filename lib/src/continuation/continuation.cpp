@@ -428,18 +428,22 @@ class BranchTracer {
   }
 
   /// The point between `from` and `next` where the branch's orbit repeats,
-  /// if the branch passed it: located, ahead of `from` along its tangent
-  /// and on the stretch from–next (OnStretch). A step that lands on the
-  /// shorter orbit's branch, or on the mirror half of this one, with the
-  /// meeting point behind `from` (or where none is located but `from`
-  /// itself) jumped to another branch and passed nothing: on the far side
-  /// of the meeting point lie the points the branch has walked already, not
-  /// those it walks next. So does a step whose meeting point is located off
-  /// the stretch: the shorter orbit started from another of its impacts (a
-  /// P(18,8) next to P(9,4) twice has impacts 0 and 9 close), whose branch
-  /// also solves this family's equations.
+  /// if the branch passed it: the branch approaches the shorter orbit at
+  /// `from` (Approaches), and the point is located ahead of `from` along
+  /// its tangent and on the stretch from–next (OnStretch). A step that
+  /// lands on the shorter orbit's branch, or on the mirror half of this
+  /// one, from a point leaving it (a doubled branch's start, 1e-3 from its
+  /// period doubling, and the points after it) or with the meeting point
+  /// behind `from` (or where none is located but `from` itself) jumped to
+  /// another branch and passed nothing: on the far side of the meeting
+  /// point lie the points the branch has walked already, not those it walks
+  /// next. So does a step whose meeting point is located off the stretch:
+  /// the shorter orbit started from another of its impacts (a P(18,8) next
+  /// to P(9,4) twice has impacts 0 and 9 close), whose branch also solves
+  /// this family's equations.
   std::optional<BranchPoint> BranchPointAhead(const BranchPoint& from,
                                               const BranchPoint& next) const {
+    if (!Approaches(from)) return std::nullopt;
     const Eigen::VectorXd direction = from.repeat_gap;
     const BranchPoint located = PrimitiveBifurcation(from, next)
                                     .value_or(LocateZero(from, next, [&](const BranchPoint& point) {
@@ -450,6 +454,19 @@ class BranchTracer {
       return std::nullopt;
     }
     return located;
+  }
+
+  /// Whether the branch at `point` heads for the orbit repeated: its
+  /// repeat gap g shrinks along its tangent t (g · Dg t < 0, Dg t by a
+  /// forward difference over kGapDifference). Near the meeting point g is
+  /// linear in arclength (g ≈ g' (σ − σ*)), so a branch that reaches it
+  /// within a step approaches it there, and one leaving it does not. Where
+  /// the map fails at the difference's point it cannot tell: true.
+  bool Approaches(const BranchPoint& point) const {
+    const Eigen::VectorXd x = BranchProblem::PointX(point) + kGapDifference * point.tangent;
+    const std::optional<Eigen::VectorXd> ahead = problem_.RepeatGap(x);
+    if (!ahead) return true;
+    return point.repeat_gap.dot(*ahead - point.repeat_gap) < 0;
   }
 
   /// Whether x lies on the stretch of branch between the points a and b:
@@ -614,6 +631,11 @@ class BranchTracer {
   /// How far (arclength) an extrapolated monitor zero may lie from a
   /// sticking family's last point for its end to be called that event.
   static constexpr double kExtrapolationReach = 1e-3;
+  /// The arclength of Approaches' difference: short enough that g is
+  /// linear over it (steps are 1e-7 to 0.02 long), long enough that g's
+  /// change over it (~1e-6, g' being of order 1) stands far above g's
+  /// rounding (1e-13 to 1e-11 on long orbits).
+  static constexpr double kGapDifference = 1e-6;
 
   const BranchProblem& problem_;
   const ContinuationOptions& options_;
