@@ -136,12 +136,12 @@ class BranchTracer {
           EndAtBranchPoint(*at, &half);
           return half;
         }
-        // The corrector left the branch: for the shorter orbit's branch,
-        // which solves this family's equations too and crosses it at the
-        // branch point behind `from` (a doubled branch's start lies 1e-3
-        // from its period doubling, its first step is longer), or for the
-        // mirror half beyond that point. A jump to another branch, as
-        // max_correction refuses one: a shorter step.
+        // The corrector left the branch without passing the point where it
+        // meets the shorter orbit: for the shorter orbit's branch, which
+        // solves this family's equations too (a doubled branch's start lies
+        // 1e-3 from its period doubling, its first step is longer), or for
+        // the mirror half beyond the meeting point. A jump to another
+        // branch, as max_correction refuses one: a shorter step.
         if (step > options_.min_step) {
           step = std::max(step / 2.0, options_.min_step);
           continue;
