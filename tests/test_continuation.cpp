@@ -8,13 +8,16 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "closed_form_sdof.hpp"
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
+#include "impactkit/analysis/start_orbit.hpp"
 #include "impactkit/continuation/continuation.hpp"
+#include "impactkit/io/system_file.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/orbit.hpp"
 #include "recomputed_special_point.hpp"
@@ -393,6 +396,48 @@ TEST_CASE(
   REQUIRE(contact != nullptr);
   CHECK(contact->vanishing_impact < 0);
   CHECK(std::abs(contact->parameter - end.parameter) < 1e-8);
+}
+
+TEST_CASE(
+    "continuation: a long orbit's vanishing impact is located where the orbit without it "
+    "touches, though both orbits' multipliers reach 1e4 there",
+    "[continuation]") {
+  // The clearance example's P(16,6), born at P(8,3)'s period doubling at
+  // 1.2825, loses impact 4 near 1.258. Its corrector stalls 3e-4 short, and
+  // the orbit without the impact, P(15,6), leaves a seed from a neighbour
+  // 1e-6 away outside its map's reach: the locator must extrapolate it.
+  System system = ReadSystemFile(IMPACTKIT_SOURCE_DIR "/examples/systems/clearance-1dof.toml");
+  system = At(system, "omega", 1.29);
+  StartOrbitRequest request;
+  request.p = 8;
+  request.q = 3;
+  const StartOrbit p83 = FindStartOrbit(system, request);
+  REQUIRE(p83.summary.termination == Termination::kConverged);
+  const Branch single = ContinueBranch(
+      {system, p83.orbit, {}}, Options(1.25, 1.29, 8, 3, ContinuationDirection::kDecreasing));
+  const ContinuationOptions options =
+      Options(1.25, 1.29, 16, 6, ContinuationDirection::kIncreasing);
+  const Branch doubled =
+      ContinueBranch(DoubledStartIn(system, single, 1.282, 1.283, options), options);
+  REQUIRE(doubled.end == Termination::kGrazing);
+  const SpecialPoint& end = doubled.special_points.back();
+  REQUIRE(end.vanishing_impact >= 0);
+  // Independently: P(15,6), from the seed past the end, continued to its
+  // new contact, located by its own clearance.
+  std::optional<Branch> reduced;
+  for (const GrazingSeed& seed : SeedsAtGrazing(system, doubled, end, options)) {
+    PeriodicOrbit orbit;
+    if (seed.orbit.p != 15 || FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
+                                  Termination::kConverged) {
+      continue;
+    }
+    reduced = ContinueBranch({seed.system, orbit, {}}, Options(1.25, 1.29, 15, 6));
+  }
+  REQUIRE(reduced.has_value());
+  const SpecialPoint* contact = Find(*reduced, SpecialPointType::kGrazing, 1.2579, 1.2581);
+  REQUIRE(contact != nullptr);
+  CHECK(contact->vanishing_impact < 0);
+  CHECK(std::abs(contact->parameter - end.parameter) < 1e-9);
 }
 
 TEST_CASE("a range's ends may come in either order", "[continuation]") {

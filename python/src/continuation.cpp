@@ -309,14 +309,22 @@ void BindContinuation(py::module_& module) {
   py::class_<GrazingSeed>(module, "GrazingSeed",
                           "A seed at a grazing point for the orbit with one impact more or "
                           "fewer: refine it with find_orbit(seed.system, p=seed.p, q=seed.q, "
-                          "seed=seed.eta).")
+                          "stop=seed.stop, seed=seed.eta) (a sticking family's with "
+                          "releases=seed.releases instead of p).")
       .def_readonly("system", &GrazingSeed::system, "At the seed's parameter value.")
       .def_property_readonly(
           "p", [](const GrazingSeed& s) { return s.orbit.p; }, "Impacts per orbit (p +- 1).")
       .def_property_readonly(
           "q", [](const GrazingSeed& s) { return s.orbit.q; }, "Forcing periods per orbit.")
       .def_property_readonly(
-          "eta", [](const GrazingSeed& s) { return s.eta; }, "The seed impact state.");
+          "releases", [](const GrazingSeed& s) { return s.orbit.releases; },
+          "Sticking phases per orbit of a sticking family's seed (else 0).")
+      .def_property_readonly(
+          "stop", [](const GrazingSeed& s) { return s.orbit.SectionStop(); },
+          "The stop (0-based) the seed state is at: find_orbit's stop.")
+      .def_property_readonly(
+          "eta", [](const GrazingSeed& s) { return s.eta; },
+          "The seed state: an impact state, or a sticking family's release state.");
 
   const char* continue_doc =
       R"(Follows the branch of `orbit` (found for `system`), or from a BranchStart,

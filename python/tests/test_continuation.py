@@ -2,6 +2,7 @@
 the special points' multipliers at their critical values."""
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -78,11 +79,34 @@ def test_grazing_seeds_refine_to_orbits_with_one_impact_more_or_fewer():
     refined = []
     for seed in seeds:
         try:
-            refined.append(impactkit.find_orbit(seed.system, p=seed.p, q=seed.q, seed=seed.eta))
+            refined.append(impactkit.find_orbit(seed.system, p=seed.p, q=seed.q, stop=seed.stop,
+                                                seed=seed.eta))
         except impactkit.NumericalError:
             pass  # a side of the grazing where that orbit does not exist
     assert refined and all(o.residual < 1e-10 and o.p == 2 for o in refined)
 
+
+
+def test_grazing_seed_at_the_second_stop_refines_with_its_stop():
+    # The clearance example's P(16,6) loses an impact at the lower stop
+    # near 1.258: the seed for P(15,6) lies there, and refined at that stop
+    # its family has its new contact where P(16,6)'s impact vanishes.
+    path = os.path.join(os.environ["IMPACTKIT_SOURCE_DIR"], "examples/systems/clearance-1dof.toml")
+    system = impactkit.System.from_file(path).with_parameter("omega", 1.29)
+    single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=8, q=3),
+                                       from_=1.25, to=1.29, direction="decreasing")
+    pd = next(sp for sp in single.special_points if sp.type == "period_doubling")
+    doubled = impactkit.continue_branch(impactkit.doubled_branch_start(system, single, pd),
+                                        from_=1.25, to=1.29)
+    assert doubled.end == "grazing"
+    end = doubled.special_points[-1]
+    seed = next(s for s in impactkit.seeds_at_grazing(system, doubled, end)
+                if s.p == 15 and s.system.get("omega") < end.parameter)
+    assert seed.stop == 1 and seed.releases == 0
+    orbit = impactkit.find_orbit(seed.system, p=seed.p, q=seed.q, stop=seed.stop, seed=seed.eta)
+    reduced = impactkit.continue_branch(seed.system, orbit, from_=1.25, to=1.29)
+    assert reduced.end == "grazing"
+    assert abs(reduced.values[-1] - end.parameter) < 1e-9
 
 def test_sticking_family_ends_where_the_simulation_stops_sticking():
     # The paper's sticking orbit at Omega = 0.2, continued as any orbit is:

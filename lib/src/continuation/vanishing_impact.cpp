@@ -4,6 +4,8 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace impactkit::detail {
 namespace {
@@ -15,8 +17,12 @@ constexpr double kClearanceTolerance = 1e-13;
 /// ... or the step in μ below this, relative to max(1, |μ|).
 constexpr double kStepTolerance = 1e-14;
 
-/// The reduced orbit's clearance at μ, seeded from (and updating) `seed`;
-/// empty where no P(p − 1, q) orbit with a flight maximum is found.
+/// The reduced orbit's clearance at μ, seeded from the orbits found before
+/// (linearly extrapolated in μ from the last two); empty where no
+/// P(p − 1, q) orbit with a flight maximum is found. The extrapolation
+/// matters: a long reduced orbit's multipliers reach 1e4 near the grazing,
+/// and from the last orbit alone a step of 1e-6 in μ already leaves the
+/// seed outside the map's reach (P(15,6) of the clearance example).
 class ReducedOrbitClearance {
  public:
   ReducedOrbitClearance(const BranchProblem& problem, const OrbitOptions& options,
@@ -31,19 +37,36 @@ class ReducedOrbitClearance {
     } catch (const InvalidInput&) {
       return std::nullopt;  // μ outside the parameter's range
     }
-    PeriodicOrbit orbit;
-    if (FindOrbit(system, seed_, options_, &orbit).termination != Termination::kConverged ||
-        !orbit.contacts.clearance) {
-      return std::nullopt;
+    // The extrapolated seed first, then the last orbit's (where the
+    // impact phase τ wrapped round between the two).
+    for (const Eigen::VectorXd& seed : Seeds(mu)) {
+      PeriodicOrbit orbit;
+      if (FindOrbit(system, seed, options_, &orbit).termination == Termination::kConverged &&
+          orbit.contacts.clearance) {
+        before_ = std::exchange(last_, Found{mu, orbit.eta});
+        return *orbit.contacts.clearance;
+      }
     }
-    seed_ = orbit.eta;
-    return *orbit.contacts.clearance;
+    return std::nullopt;
   }
 
  private:
+  struct Found {
+    double mu;
+    Eigen::VectorXd eta;
+  };
+
+  std::vector<Eigen::VectorXd> Seeds(double mu) const {
+    if (!last_) return {seed_};
+    if (!before_ || before_->mu == last_->mu) return {last_->eta};
+    const double ratio = (mu - last_->mu) / (last_->mu - before_->mu);
+    return {last_->eta + ratio * (last_->eta - before_->eta), last_->eta};
+  }
+
   const BranchProblem& problem_;
   OrbitOptions options_;
-  Eigen::VectorXd seed_;
+  Eigen::VectorXd seed_;  ///< until an orbit is found
+  std::optional<Found> last_, before_;
 };
 
 }  // namespace
