@@ -4,8 +4,8 @@
 # tables after the paper's): `impactkit diagram --grazings` on the 3-mass chain
 # examples/systems/three-mass.toml over Ω 0.3-0.7 (32 grazings), on one mass
 # in the symmetric clearance examples/systems/clearance-1dof.toml (two stops)
-# over Ω 0.6-2.2 (19 grazings), and on the sticking chain of
-# examples/systems/paper-mass1-stop.toml over Ω 0.14-0.2 (10 grazings of
+# over Ω 0.6-2.2 (21 grazings), and on the sticking chain of
+# examples/systems/paper-mass1-stop.toml over Ω 0.14-0.2 (11 grazings of
 # sticking families). Prints one check line per grazing and writes each
 # diagram's JSON and its checks' JSON; 2-3.5 minutes on 2 shared cores,
 # most of it the 3-mass chain's (the clearance's takes about 16 s, the

@@ -1,6 +1,7 @@
 """examples/python/ run as a user runs them (small sizes), each writing its
 figure; the branch example's special points are the library's."""
 
+import json
 import os
 import subprocess
 import sys
@@ -31,3 +32,48 @@ def test_p11_branch(tmp_path):
     for sp in branch.special_points:
         assert sp.describe("omega") in out
     assert figure.stat().st_size > 10000
+
+
+def test_grazing_table_rows_from_checks_and_notes(tmp_path):
+    # Three checks of a made-up diagram: one followed and agreeing (a
+    # complex pair), one unstable and not followed, one stable and not
+    # followed whose reason only the earlier table knows; and a fourth, at a
+    # vanishing impact of a family other than P(p+1,q), with no reason yet.
+    def check(param, orbit, contact, follows, agrees, unstable):
+        return {"param": param, "grazing_orbit": orbit, "contact": contact,
+                "prediction": {"scenario": "jump", "unstable_grazing_orbit": unstable},
+                "sweeps": {"expected": "P(3,1)", "past": "P(3,1)", "follows": follows,
+                           "agrees": agrees, "hysteresis": True}}
+
+    def node(param, p, q, vanishing, eigenvalue):
+        return {"type": "grazing", "param": param, "p": p, "q": q,
+                "vanishing_impact": 1 if vanishing else None,
+                "normal_form": {"eigenvalues": [eigenvalue]}}
+
+    grazings = tmp_path / "g.json"
+    grazings.write_text(json.dumps({"grazings": [
+        check(0.5, "P(2,1)", "new", True, True, False),
+        check(0.25, "P(4,1)", "vanishing", False, False, True),
+        check(0.75, "P(1,1)", "new", False, False, False),
+        check(0.875, "P(2,1)", "vanishing", False, False, False)]}))
+    diagram = tmp_path / "d.json"
+    diagram.write_text(json.dumps({"nodes": [
+        node(0.5, 2, 1, False, [0.3, 0.4]), node(0.25, 5, 1, True, [-2.5, 0.0]),
+        node(0.75, 1, 1, False, [0.9, 0.0]), node(0.875, 7, 3, True, [0.125, 0.0]),
+        {"type": "fold", "param": 0.6}]}))
+    notes = tmp_path / "notes.md"
+    notes.write_text("| 0.7500000 | P(1,1), new contact | 0.9 | x | x | x | a coexisting P(3,1) |\n")
+    script = os.path.join(os.environ["IMPACTKIT_SOURCE_DIR"], "examples", "grazing_table.py")
+    done = subprocess.run([sys.executable, script, str(grazings), str(diagram), "--notes",
+                           str(notes)], check=True, capture_output=True, text=True)
+    rows = done.stdout.splitlines()[2:]
+    assert rows == [
+        "| 0.2500000 | P(4,1), vanishing impact | −2.50 | P(3,1) (jump) | P(3,1) | "
+        "not followed; hysteresis | unstable |",
+        "| 0.5000000 | P(2,1), new contact | 0.500 (pair) | P(3,1) (jump) | P(3,1) | "
+        "agrees; hysteresis |  |",
+        "| 0.7500000 | P(1,1), new contact | 0.900 | P(3,1) (jump) | P(3,1) | "
+        "not followed; hysteresis | a coexisting P(3,1) |",
+        "| 0.8750000 | P(2,1), vanishing impact (P(7,3)'s) | 0.125 | P(3,1) (jump) | P(3,1) | "
+        "not followed; hysteresis |  |"]
+    assert done.stderr == "needs a note: 0.8750000 P(2,1), vanishing impact (P(7,3)'s)\n"
