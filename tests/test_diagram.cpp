@@ -487,3 +487,30 @@ TEST_CASE(
   CHECK_THAT(fold->parameter, Catch::Matchers::WithinAbs(1.676008591, 1e-9));
   CHECK(std::abs(fold->multiplier - 1.0) < 1e-7);
 }
+
+TEST_CASE(
+    "diagram: a seed on the branch of an earlier seed of its family is not traced, while "
+    "another family is traced beside them",
+    "[diagram]") {
+  // Counted by the progress reports, one per accepted point of any branch
+  // traced: the same with and without the repeated P(1,1), on two threads.
+  const System at_11 = PaperSystem(1.1), at_21 = PaperSystem(0.6), later = PaperSystem(1.3);
+  DiagramOptions options = Options(0.5, 1.4, 0);
+  options.threads = 2;
+  const auto trace = [&](const std::vector<DiagramSeed>& seeds, std::int64_t* points) {
+    *points = 0;
+    const RunControl control([&](const Progress&) { ++*points; });
+    return TraceDiagram(seeds, options, control);
+  };
+  const DiagramSeed p11{at_11, testing::SeededOrbit(at_11, 1, 1), "P(1,1)"};
+  const DiagramSeed p21{at_21, testing::SeededOrbit(at_21, 2, 1), "P(2,1)"};
+  const DiagramSeed again{later, testing::SeededOrbit(later, 1, 1), "P(1,1) again"};
+  std::int64_t without = 0, with = 0;
+  const Diagram two = trace({p11, p21}, &without);
+  const Diagram three = trace({p11, p21, again}, &with);
+  REQUIRE(two.branches.size() == 2);
+  REQUIRE(three.branches.size() == 2);
+  CHECK(three.duplicate_starts == 1);
+  CHECK(with == without);
+  CHECK(without > 0);
+}

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -177,44 +178,85 @@ class NetworkTracer {
     return kept;
   }
 
-  /// Traces the starts (on up to options.threads threads) and adds, in
-  /// order, each branch whose start no earlier branch of the generation
-  /// holds. Returns the indices of the added branches.
+  /// Where a start of a generation is: waiting for the earlier starts of
+  /// its family, being traced, traced, or dropped (on one of their branches).
+  enum class StartState { kWaiting, kRunning, kTraced, kDropped };
+
+  /// What a worker does next with a generation's starts.
+  struct NextStart {
+    enum { kTrace, kWait, kDone } action = kDone;
+    std::size_t index = 0;  ///< the start to trace (kTrace)
+  };
+
+  /// The first waiting start whose family's earlier starts are all decided,
+  /// dropping on the way each whose orbit an earlier branch of its family
+  /// holds. A start lies only on branches of its own family, so deciding
+  /// the starts of one family in order drops exactly those an in-order
+  /// trace would, and no worker traces one of them: the branches traced do
+  /// not depend on the threads, and families are traced at once.
+  NextStart Decide(const std::vector<PendingStart>& starts, const std::vector<Family>& families,
+                   const std::vector<Branch>& traced, const std::vector<std::exception_ptr>& errors,
+                   std::vector<StartState>* states) const {
+    bool busy = false;
+    for (std::size_t k = 0; k < starts.size(); ++k) {
+      busy = busy || (*states)[k] == StartState::kRunning;
+      if ((*states)[k] != StartState::kWaiting) continue;
+      bool decided = true, held = false;
+      for (std::size_t j = 0; j < k && decided; ++j) {
+        if (families[j] != families[k]) continue;
+        decided = (*states)[j] == StartState::kTraced || (*states)[j] == StartState::kDropped;
+        held = held || ((*states)[j] == StartState::kTraced && !errors[j] &&
+                        Holds(traced[j], starts[k], families[k]));
+      }
+      if (!decided) {
+        busy = true;
+        continue;
+      }
+      (*states)[k] = held ? StartState::kDropped : StartState::kRunning;
+      if (!held) return {NextStart::kTrace, k};
+    }
+    return {busy ? NextStart::kWait : NextStart::kDone, 0};
+  }
+
+  /// Whether `branch` holds the start's orbit.
+  bool Holds(const Branch& branch, const PendingStart& pending, Family family) const {
+    return OnBranch(branch, family, GetParameter(pending.start.system, diagram_.parameter),
+                    Signature(pending.start.orbit, family.k), options_.same_branch_tolerance);
+  }
+
+  /// Traces the starts (on up to options.threads threads), each unless an
+  /// earlier start's branch of the generation holds it (Decide), and adds
+  /// the branches in start order. Returns the indices of the added branches.
   std::vector<int> TraceGeneration(const std::vector<PendingStart>& starts) {
     if (!starts.empty() && static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
       Incomplete(Termination::kMaxPoints,
                  fmt::format("max_branches ({}) reached", options_.max_branches));
       return {};  // not traced at all: none of them could be kept
     }
+    std::vector<Family> families;
+    for (const PendingStart& pending : starts) families.push_back(StartFamily(pending));
     std::vector<Branch> traced(starts.size());
     std::vector<std::exception_ptr> errors(starts.size());
-    std::size_t next_start = 0;
+    std::vector<StartState> states(starts.size(), StartState::kWaiting);
     std::mutex mutex;
+    std::condition_variable decided;
     auto work = [&] {
+      std::unique_lock<std::mutex> lock(mutex);
       for (;;) {
-        std::size_t k;
-        {
-          std::lock_guard<std::mutex> lock(mutex);
-          if (next_start == starts.size()) return;
-          k = next_start++;
+        const NextStart next = Decide(starts, families, traced, errors, &states);
+        if (next.action == NextStart::kDone) {
+          decided.notify_all();  // a drop may have left the others nothing to wait for
+          return;
         }
-        ContinuationOptions options = options_.continuation;
-        options.orbit = starts[k].orbit;
-        options.direction = starts[k].direction;
-        // An exception may not leave a worker thread (it would terminate
-        // the program): kept, and rethrown or counted after the join.
-        try {
-          const RunControl branch_control(
-              [&](const Progress& point) {
-                control_.Report({.stage = "diagram",
-                                 .done = static_cast<std::int64_t>(diagram_.branches.size()),
-                                 .parameter = point.parameter});
-              },
-              control_);
-          traced[k] = ContinueBranch(starts[k].start, options, branch_control);
-        } catch (...) {
-          errors[k] = std::current_exception();
+        if (next.action == NextStart::kWait) {
+          decided.wait(lock);
+          continue;
         }
+        lock.unlock();
+        Trace(starts[next.index], &traced[next.index], &errors[next.index]);
+        lock.lock();
+        states[next.index] = StartState::kTraced;
+        decided.notify_all();
       }
     };
     std::vector<std::thread> workers;
@@ -236,11 +278,8 @@ class NetworkTracer {
 
     std::vector<int> added;
     for (std::size_t k = 0; k < starts.size(); ++k) {
-      if (errors[k]) continue;
-      if (k > 0 && Traced(starts[k])) {  // an earlier start of this generation was on it
-        ++diagram_.duplicate_starts;
-        continue;
-      }
+      if (states[k] == StartState::kDropped) ++diagram_.duplicate_starts;
+      if (errors[k] || states[k] == StartState::kDropped) continue;
       if (static_cast<int>(diagram_.branches.size()) >= options_.max_branches) {
         Incomplete(Termination::kMaxPoints,
                    fmt::format("max_branches ({}) reached", options_.max_branches));
@@ -251,6 +290,27 @@ class NetworkTracer {
       added.push_back(static_cast<int>(diagram_.branches.size()) - 1);
     }
     return added;
+  }
+
+  /// Follows one start's branch into *branch. An exception may not leave a
+  /// worker thread (it would terminate the program): kept in *error, and
+  /// rethrown or counted after the join.
+  void Trace(const PendingStart& pending, Branch* branch, std::exception_ptr* error) const {
+    ContinuationOptions options = options_.continuation;
+    options.orbit = pending.orbit;
+    options.direction = pending.direction;
+    try {
+      const RunControl branch_control(
+          [&](const Progress& point) {
+            control_.Report({.stage = "diagram",
+                             .done = static_cast<std::int64_t>(diagram_.branches.size()),
+                             .parameter = point.parameter});
+          },
+          control_);
+      *branch = ContinueBranch(pending.start, options, branch_control);
+    } catch (...) {
+      *error = std::current_exception();
+    }
   }
 
   /// Records the first reason the network is cut short.
