@@ -416,6 +416,13 @@ TEST_CASE("diagram: default options are valid and bad ones are refused", "[diagr
   CHECK(options.IsValid(&error));
   CHECK(SweepSeedOptions{}.IsValid(&error));
   CHECK(SweptDiagramOptions{}.IsValid(&error) == false);  // no range yet: lower == upper
+  CHECK(SweepRefineOptions{}.IsValid(&error));
+  SweptDiagramOptions swept;
+  swept.diagram = Options(0.5, 1.0, 2);
+  CHECK(swept.IsValid(&error));
+  swept.refine.factor = 0;
+  CHECK_FALSE(swept.IsValid(&error));
+  CHECK(error.find("factor") != std::string::npos);
   options.threads = 0;
   CHECK_FALSE(options.IsValid(&error));
   CHECK(error.find("threads") != std::string::npos);
@@ -486,6 +493,62 @@ TEST_CASE(
   REQUIRE(fold != branch.special_points.end());
   CHECK_THAT(fold->parameter, Catch::Matchers::WithinAbs(1.676008591, 1e-9));
   CHECK(std::abs(fold->multiplier - 1.0) < 1e-7);
+}
+
+TEST_CASE(
+    "diagram: refining the sweep where the motion changes finds the paper's P(4,6) window, "
+    "narrower than the sweep's spacing, between its period doubling and its fold",
+    "[diagram]") {
+  // The window is 1.7728-1.7749 (P(4,6) between its period doubling, where
+  // P(8,12) begins below, and its fold: docs/continuation.md); a sweep of
+  // spacing 0.004 has at most one value in it, so no window and no seed.
+  const System system = PaperSystem(1.7);
+  SweptDiagramOptions options;
+  options.sweep.parameter = "omega";
+  options.sweep.from = 1.70;
+  options.sweep.to = 1.80;
+  options.sweep.steps = 26;
+  const SweepResult coarse = RunSweep(system, options.sweep);
+  const auto p46 = [](const std::vector<DiagramSeed>& seeds) {
+    return std::find_if(seeds.begin(), seeds.end(), [](const DiagramSeed& s) {
+      return !s.orbit.Sticks() && s.orbit.p == 4 && s.orbit.q == 6;
+    });
+  };
+  const std::vector<DiagramSeed> unrefined =
+      SeedsFromSweep(system, options.sweep, coarse, options.seeds);
+  CHECK(p46(unrefined) == unrefined.end());
+
+  SweepResult refined = coarse;
+  refined.points = RefineSweep(system, options.sweep, coarse, options.refine);
+  REQUIRE(refined.points.size() > coarse.points.size());
+  for (std::size_t k = 1; k < refined.points.size(); ++k) {
+    CHECK(refined.points[k].value > refined.points[k - 1].value);  // sweep order kept
+  }
+  const std::vector<DiagramSeed> seeds =
+      SeedsFromSweep(system, options.sweep, refined, options.seeds);
+  const auto seed = p46(seeds);
+  REQUIRE(seed != seeds.end());
+  // The branch through the seed, followed by continuation (not by a sweep):
+  // the seed lies where it is stable, between its period doubling and fold.
+  ContinuationOptions continuation;
+  continuation.from = 1.76;
+  continuation.to = 1.78;
+  continuation.orbit.p = 4;
+  continuation.orbit.q = 6;
+  continuation.direction = ContinuationDirection::kBoth;
+  const Branch branch = ContinueBranch({seed->system, seed->orbit, {}}, continuation);
+  auto located = [&](SpecialPointType type) {
+    for (const SpecialPoint& s : branch.special_points) {
+      if (s.type == type) return s.point.parameter;
+    }
+    return std::nan("");
+  };
+  const double doubling = located(SpecialPointType::kPeriodDoubling);
+  const double fold = located(SpecialPointType::kFold);
+  CHECK_THAT(doubling, Catch::Matchers::WithinAbs(1.772792, 2e-6));
+  CHECK_THAT(fold, Catch::Matchers::WithinAbs(1.774922, 2e-6));
+  CHECK(seed->system.omega > doubling);
+  CHECK(seed->system.omega < fold);
 }
 
 TEST_CASE(

@@ -1,6 +1,6 @@
 /// `impactkit diagram`: the connected bifurcation diagram over a parameter
-/// range — a brute-force sweep whose periodic and sticking windows seed
-/// branches, and
+/// range — a brute-force sweep, refined where the motion changes, whose
+/// periodic and sticking windows seed branches, and
 /// the network of branches traced from them through their period
 /// doublings, grazings and branch points (impactkit/analysis/
 /// swept_diagram.hpp does the work).
@@ -34,6 +34,9 @@
 namespace impactkit::cli {
 namespace {
 
+/// The library's recipe: its sweep and refinement are the defaults here.
+const SweptDiagramOptions kRecipe;
+
 struct DiagramRequest {
   SystemOptions system;
   OrbitSeedOptions seed;
@@ -44,7 +47,9 @@ struct DiagramRequest {
   double step = ContinuationOptions{}.initial_step, max_step = ContinuationOptions{}.max_step;
   int max_points = ContinuationOptions{}.max_points;
   int max_depth = DiagramOptions{}.max_depth, max_branches = DiagramOptions{}.max_branches;
-  int sweep_values = 481, sweep_transient = 300, sweep_record = 40, max_q = 16;
+  int sweep_values = kRecipe.sweep.steps, sweep_transient = kRecipe.sweep.transient_periods,
+      sweep_record = kRecipe.sweep.recorded_periods, max_q = kRecipe.sweep.classify.period.max_q;
+  int refine = kRecipe.refine.factor;
   int threads = 0;  ///< 0: all cores
   std::string json, plot, grazings, axis = "velocity";
 };
@@ -104,6 +109,7 @@ SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
   options.sweep.recorded_periods = request.sweep_record;
   options.sweep.classify.period.max_q = request.max_q;
   options.sweep.threads = threads;
+  options.refine.factor = request.refine;
   // One flag bounds the windows seeded: no longer period than the sweep
   // looks for, and no more impacts per orbit than that.
   options.seeds.max_p = request.max_q;
@@ -116,9 +122,9 @@ SweptDiagramOptions MakeOptions(const DiagramRequest& request) {
 Provenance DiagramProvenance(const DiagramRequest& request, const System& system) {
   return MakeProvenance(request.system, system,
                         fmt::format("diagram --param {} --from {} --to {} --max-depth {} "
-                                    "--sweep-values {} --max-q {}",
+                                    "--sweep-values {} --refine {} --max-q {}",
                                     request.parameter, request.from, request.to, request.max_depth,
-                                    request.sweep_values, request.max_q));
+                                    request.sweep_values, request.refine, request.max_q));
 }
 
 void RunDiagram(const DiagramRequest& request) {
@@ -151,6 +157,10 @@ void RunDiagram(const DiagramRequest& request) {
       swept = TraceSweptDiagram(system, seeds, options, progress.Control());
     }
     fmt::print("sweep:      {}\n", swept.sweep.BriefReport());
+    if (swept.refined_values > 0) {
+      fmt::print("refined:    {} values where the motion changes or has no period\n",
+                 swept.refined_values);
+    }
   }
   PredictGrazings(system, &swept.diagram);
   fmt::print("seeds:      {}\n", swept.seeds.size());
@@ -190,8 +200,9 @@ void AddDiagramCommand(CLI::App& app) {
   auto request = std::make_shared<DiagramRequest>();
   CLI::App* command = app.add_subcommand(
       "diagram",
-      "The connected bifurcation diagram over a parameter range: a brute-force sweep whose "
-      "periodic and sticking windows seed branches, each followed both ways, and at every "
+      "The connected bifurcation diagram over a parameter range: a brute-force sweep, swept "
+      "again finer where the motion changes, whose periodic and sticking windows seed "
+      "branches, each followed both ways, and at every "
       "period doubling, grazing and branch point the branch that starts there, each branch "
       "once. Prints every branch and special point in parameter order.");
   AddSystemOptions(*command, request->system);
@@ -227,7 +238,7 @@ void AddDiagramCommand(CLI::App& app) {
       ->group(group);
   command
       ->add_option("--sweep-values", request->sweep_values,
-                   "Values of the seeding sweep (0: no sweep; then --start seeds)")
+                   "Values of the seeding sweep before --refine (0: no sweep; then --start seeds)")
       ->check(AtMost(kMaxSteps, "values"))
       ->capture_default_str()
       ->group(group);
@@ -237,6 +248,14 @@ void AddDiagramCommand(CLI::App& app) {
       ->group(group);
   command->add_option("--sweep-record", request->sweep_record, "Sweep recorded periods")
       ->check(AtMost(kMaxPeriods, "periods"))
+      ->capture_default_str()
+      ->group(group);
+  command
+      ->add_option("--refine", request->refine,
+                   "Values per sweep interval after refining it where the neighbours' motions "
+                   "differ or have no period (chaotic, unresolved), so that windows narrower "
+                   "than the spacing seed branches (1: no refinement)")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str()
       ->group(group);
   command->add_option("--max-q", request->max_q, "Longest period the sweep looks for")
