@@ -591,6 +591,23 @@ def trace_diagram(
     progress: Progress = False,
 ) -> Diagram: ...
 
+def swept_diagram(
+    system: System,
+    *,
+    parameter: str = "omega",
+    from_: float,
+    to: float,
+    sweep_values: int = 481,
+    sweep_transient: int = 300,
+    sweep_record: int = 40,
+    max_q: int = 16,
+    refine: int = 5,
+    max_depth: int = 8,
+    max_branches: int = 200,
+    threads: int = 1,
+    progress: Progress = False,
+) -> Diagram: ...
+
 class MapOptions(_OptionSet):
     def __init__(
         self,

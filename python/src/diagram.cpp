@@ -1,18 +1,22 @@
-// impactkit.trace_diagram, Diagram, DiagramNode, DiagramEdge, DiagramBranch:
-// continuation/diagram.hpp and diagram_graph.hpp.
+// impactkit.trace_diagram, impactkit.swept_diagram, Diagram, DiagramNode,
+// DiagramEdge, DiagramBranch: continuation/diagram.hpp, diagram_graph.hpp
+// and analysis/swept_diagram.hpp.
 #include "impactkit/continuation/diagram.hpp"
 
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "bindings.hpp"
 #include "impactkit/analysis/grazing_prediction.hpp"
+#include "impactkit/analysis/swept_diagram.hpp"
 #include "impactkit/io/diagram_output.hpp"
+#include "impactkit/model/parameters.hpp"
 #include "option_sets.hpp"
 
 namespace impactkit::python {
@@ -62,6 +66,37 @@ Diagram Trace(const std::vector<std::pair<System, PeriodicOrbit>>& starts,
   return WithoutGil([&] {
     Diagram diagram = TraceDiagram(seeds, options, run);
     if (!starts.empty()) PredictGrazings(starts.front().first, &diagram);
+    return diagram;
+  });
+}
+
+/// The sweep-seeded network, as `impactkit diagram` traces it: the
+/// library's recipe (SweptDiagramOptions) with the command's knobs.
+struct SweptArguments {
+  std::string parameter;
+  double from, to;
+  int sweep_values, sweep_transient, sweep_record, max_q, refine, max_depth, max_branches, threads;
+};
+
+Diagram Swept(const System& system, const SweptArguments& a, const py::object& progress) {
+  SweptDiagramOptions options;
+  options.diagram.continuation.parameter = a.parameter;
+  options.diagram.continuation.from = a.from;
+  options.diagram.continuation.to = a.to;
+  options.diagram.max_depth = a.max_depth;
+  options.diagram.max_branches = a.max_branches;
+  options.diagram.threads = options.sweep.threads = a.threads;
+  options.sweep.steps = a.sweep_values;
+  options.sweep.transient_periods = a.sweep_transient;
+  options.sweep.recorded_periods = a.sweep_record;
+  options.sweep.classify.period.max_q = options.seeds.max_p = a.max_q;
+  options.refine.factor = a.refine;
+  System start = system;
+  SetParameter(start, a.parameter, std::min(a.from, a.to));
+  const InterruptibleRun run(progress);
+  return WithoutGil([&] {
+    Diagram diagram = TraceSweptDiagram(start, {}, options, run).diagram;
+    PredictGrazings(start, &diagram);
     return diagram;
   });
 }
@@ -212,6 +247,38 @@ void BindDiagram(py::module_& module) {
   const DiagramOptions kNetwork;
   const ContinuationOptions& kBranch = kNetwork.continuation;
   BindDiagramOptions(module, kNetwork);
+  const SweptDiagramOptions kRecipe;
+  module.def(
+      "swept_diagram",
+      [](const System& system, const std::string& parameter, double from, double to,
+         int sweep_values, int sweep_transient, int sweep_record, int max_q, int refine,
+         int max_depth, int max_branches, int threads, const py::object& progress) {
+        return Swept(system,
+                     {parameter, from, to, sweep_values, sweep_transient, sweep_record, max_q,
+                      refine, max_depth, max_branches, threads},
+                     progress);
+      },
+      py::arg("system"), py::kw_only(), py::arg("parameter") = kBranch.parameter, py::arg("from_"),
+      py::arg("to"), py::arg("sweep_values") = kRecipe.sweep.steps,
+      py::arg("sweep_transient") = kRecipe.sweep.transient_periods,
+      py::arg("sweep_record") = kRecipe.sweep.recorded_periods,
+      py::arg("max_q") = kRecipe.sweep.classify.period.max_q,
+      py::arg("refine") = kRecipe.refine.factor, py::arg("max_depth") = kNetwork.max_depth,
+      py::arg("max_branches") = kNetwork.max_branches, py::arg("threads") = kNetwork.threads,
+      py::arg("progress") = false,
+      R"(The connected bifurcation diagram over from_..to seeded by a sweep, as
+`impactkit diagram` traces it (the library's TraceSweptDiagram and its
+defaults): sweep_values values of sweep_transient + sweep_record forcing
+periods (whole transients, periods up to max_q), swept again with `refine`
+values per interval where neighbouring motions differ or are chaotic or
+unresolved (1: no refinement), so that windows narrower than the spacing
+seed branches too; each periodic or sticking window (two values or more,
+at most max_q impacts) seeds a branch, and the network is traced from them
+(see trace_diagram). threads: sweep threads and branches traced at once; the
+result does not depend on it. Returns a Diagram. Raises ValueError for bad
+input. Releases the GIL; Ctrl-C raises KeyboardInterrupt.
+progress: True draws a tqdm bar where tqdm is installed; a callable gets {stage,
+done, total, parameter, parameter2} at each report.)");
   module.def("trace_diagram", &Trace, py::arg("seeds"), py::kw_only(),
              py::arg("parameter") = kBranch.parameter, py::arg("from_"), py::arg("to"),
              py::arg("initial_step") = kBranch.initial_step, py::arg("max_step") = kBranch.max_step,

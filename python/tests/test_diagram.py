@@ -136,3 +136,22 @@ def test_grazing_nodes_carry_their_normal_form_as_the_branches_special_points(di
                    if s.type == "grazing" and s.parameter == node.parameter]
         assert located and node.normal_form == located[0].normal_form
         assert node.normal_form["prediction"]["motion"]
+
+
+def test_swept_diagram_equals_the_command_line_diagram(tmp_path):
+    """impactkit.swept_diagram is `impactkit diagram` with no --start: the
+    same nodes and edges from the library's recipe (refined sweep included),
+    with the command line's defaults for what it is not given."""
+    system = impactkit.System.paper(0.8)
+    mine = impactkit.swept_diagram(system, from_=0.8, to=0.9, sweep_values=41, sweep_record=20,
+                                   max_depth=3, threads=2)
+    out = tmp_path / "d.json"
+    subprocess.run([os.environ["IMPACTKIT_CLI"], "diagram", "--from", "0.8", "--to", "0.9",
+                    "--sweep-values", "41", "--sweep-record", "20", "--max-depth", "3",
+                    "--threads", "2", "--json", str(out)], check=True, capture_output=True)
+    cli = json.loads(out.read_text())
+    assert [n["type"] for n in cli["nodes"]] == [n.type for n in mine.nodes]
+    assert [n["param"] for n in cli["nodes"]] == [n.parameter for n in mine.nodes]
+    assert [(e["from"], e["to"]) for e in cli["edges"]] == list(zip(mine.edge_from, mine.edge_to))
+    origins = [b.origin for b in mine.branches]
+    assert any(o.startswith("sweep window P(3,2)") for o in origins)
