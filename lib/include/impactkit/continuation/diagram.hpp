@@ -21,8 +21,10 @@
 /// parameter range, max_depth, max_branches and the per-branch point cap.
 ///
 /// Starts are taken breadth first (a seed's branch, then what starts on it,
-/// ...); those of one generation are traced on `threads` threads, and the
-/// result does not depend on the thread count.
+/// ...); those of one generation are traced on `threads` threads, the
+/// starts of one family (section, impacts or releases, and q) in order,
+/// each only once no earlier start's branch of its family holds it, so no
+/// duplicate is traced and the result does not depend on the thread count.
 
 #include <functional>
 #include <string>
