@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <set>
 #include <utility>
 
@@ -576,4 +577,48 @@ TEST_CASE(
   CHECK(three.duplicate_starts == 1);
   CHECK(with == without);
   CHECK(without > 0);
+}
+
+TEST_CASE(
+    "diagram: on the paper's range the defaults' refined sweep seeds every window the 2401 "
+    "uniform values seed",
+    "[diagram]") {
+  // Each window of the 2401-value sweep (Ω 0.4 to 2.3, no refinement) has a
+  // window of the same P(p,q) in the defaults' 481 refined values that
+  // overlaps it, or lies within 0.005 in Ω (a coarse spacing) of it: the
+  // same windows, P(4,6) included. A window's range is its seed's origin,
+  // "sweep window P(p,q) omega lo..hi".
+  const auto range = [](const DiagramSeed& seed) {
+    double lo = 0, hi = 0;
+    REQUIRE(std::sscanf(seed.origin.c_str() + seed.origin.rfind(' ') + 1, "%lf..%lf", &lo, &hi) ==
+            2);
+    return std::pair{lo, hi};
+  };
+  const System system = PaperSystem(0.4);
+  SweptDiagramOptions defaults;
+  defaults.sweep.from = 0.4;
+  defaults.sweep.to = 2.3;
+  defaults.sweep.threads = 2;
+  SweepOptions uniform = defaults.sweep;
+  uniform.steps = 2401;
+  const std::vector<DiagramSeed> fine =
+      SeedsFromSweep(system, uniform, RunSweep(system, uniform), defaults.seeds);
+  SweepResult coarse = RunSweep(system, defaults.sweep);
+  coarse.points = RefineSweep(system, defaults.sweep, coarse, defaults.refine);
+  const std::vector<DiagramSeed> refined =
+      SeedsFromSweep(system, defaults.sweep, coarse, defaults.seeds);
+  REQUIRE(fine.size() >= 10);
+  bool p46 = false;
+  for (const DiagramSeed& seed : fine) {
+    INFO(seed.origin);
+    const bool matched = std::any_of(refined.begin(), refined.end(), [&](const DiagramSeed& other) {
+      const auto [lo, hi] = range(seed);
+      const auto [other_lo, other_hi] = range(other);
+      return other.orbit.p == seed.orbit.p && other.orbit.q == seed.orbit.q &&
+             other_lo <= hi + 5e-3 && lo <= other_hi + 5e-3;
+    });
+    CHECK(matched);
+    p46 = p46 || (seed.orbit.p == 4 && seed.orbit.q == 6);
+  }
+  CHECK(p46);
 }
