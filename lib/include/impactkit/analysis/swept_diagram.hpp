@@ -92,7 +92,8 @@ struct SweptDiagramOptions {
 
 struct SweptDiagram {
   /// The brute-force points under the diagram: the sweep's and the refined
-  /// stretches' (in sweep order; chunks and seconds count both).
+  /// stretches' (in sweep order; its seconds include the refinement's, its
+  /// chunks and iterations are the sweep's own).
   SweepResult sweep;
   int refined_values = 0;          ///< how many of the points the refinement added
   std::vector<DiagramSeed> seeds;  ///< the caller's, then the sweep's
