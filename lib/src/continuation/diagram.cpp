@@ -391,14 +391,25 @@ class NetworkTracer {
         // Both sides: which side the orbit with an impact more or fewer
         // lives on depends on the grazing; a side holding none fails to
         // converge or converges onto a traced branch.
-        for (const GrazingSeed& seed : SeedsAtGrazing(system, branch, s, options)) {
+        const std::vector<GrazingSeed> near = SeedsAtGrazing(system, branch, s, options);
+        const std::vector<GrazingSeed> nearer = SeedsAtGrazing(system, branch, s, options, 1e-4);
+        for (std::size_t side = 0; side < near.size(); ++side) {
           PeriodicOrbit orbit;
-          if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
-              Termination::kConverged) {
+          // Newton's basin beside a grazing is narrow (the map is a square
+          // root there): a side whose seed misses it is tried once nearer.
+          const GrazingSeed* seed = &near[side];
+          bool found = FindOrbit(seed->system, seed->eta, seed->orbit, &orbit).termination ==
+                       Termination::kConverged;
+          if (!found && side < nearer.size()) {
+            seed = &nearer[side];
+            found = FindOrbit(seed->system, seed->eta, seed->orbit, &orbit).termination ==
+                    Termination::kConverged;
+          }
+          if (!found) {
             ++diagram_.failed_starts;
             continue;
           }
-          add({seed.system, orbit, {}}, ContinuationDirection::kBoth, seed.orbit.p, seed.orbit.q,
+          add({seed->system, orbit, {}}, ContinuationDirection::kBoth, seed->orbit.p, seed->orbit.q,
               "seeded at the ");
         }
       }
