@@ -112,9 +112,11 @@ int SpecialNodes(const Diagram& d) {
 
 void Row(const std::string& name, const Run& run) {
   const SweptDiagram& s = run.swept;
-  fmt::print("| {} | {} ({} refined) | {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |\n", name,
+  fmt::print("| {} | {} ({} refined) | {} | {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |\n", name,
              s.sweep.points.size(), s.refined_values, s.seeds.size(), s.diagram.branches.size(),
-             SpecialNodes(s.diagram), run.cpu - run.network_cpu, run.network_cpu, run.cpu);
+             SpecialNodes(s.diagram),
+             s.diagram.termination == Termination::kCompleted ? "yes" : s.diagram.message,
+             run.cpu - run.network_cpu, run.network_cpu, run.cpu);
 }
 
 }  // namespace
@@ -129,8 +131,8 @@ int main(int argc, char** argv) {
   const Run recipe = Measure(defaults);
   fmt::print("Ω 0.4 to 2.3, {} threads; CPU seconds of this process\n\n", threads);
   fmt::print(
-      "| run | sweep values | seeds | branches | special points | sweep + seeds CPU s | "
-      "network CPU s | total CPU s |\n|---|---|---|---|---|---|---|---|\n");
+      "| run | sweep values | seeds | branches | special points | complete | sweep + seeds CPU "
+      "s | network CPU s | total CPU s |\n|---|---|---|---|---|---|---|---|---|\n");
   Row("2401 uniform values", fine);
   Row("defaults (481, refined x5)", recipe);
   fmt::print("\nCPU ratio defaults / 2401 values: {:.3f} (target <= 0.333)\n",
