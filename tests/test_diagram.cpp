@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -621,4 +622,45 @@ TEST_CASE(
     p46 = p46 || (seed.orbit.p == 4 && seed.orbit.q == 6);
   }
   CHECK(p46);
+}
+
+TEST_CASE(
+    "diagram: a grazing seed 1e-4 from the grazing, the network's second try, converges onto "
+    "the branch the seed 1e-3 away reaches",
+    "[diagram]") {
+  // P(1,1)'s new contact near 0.8564: on each side where both seeds
+  // converge, the P(2,1) branches traced from their orbits cover each
+  // other (CoveredBy: every point of one on the other's curve).
+  const System system = PaperSystem(1.0);
+  ContinuationOptions options = Options(0.5, 1.2, 1).continuation;
+  options.direction = ContinuationDirection::kBoth;
+  options.orbit.p = options.orbit.q = 1;
+  const Branch branch = ContinueBranch({system, testing::SeededOrbit(system, 1, 1), {}}, options);
+  const auto graze =
+      std::find_if(branch.special_points.begin(), branch.special_points.end(),
+                   [](const SpecialPoint& s) { return s.type == SpecialPointType::kGrazing; });
+  REQUIRE(graze != branch.special_points.end());
+  CHECK_THAT(graze->point.parameter, Catch::Matchers::WithinAbs(0.8564344, 1e-6));
+  const std::vector<GrazingSeed> near = SeedsAtGrazing(system, branch, *graze, options);
+  const std::vector<GrazingSeed> nearer = SeedsAtGrazing(system, branch, *graze, options, 1e-4);
+  const auto trace = [&](const GrazingSeed& seed) -> std::optional<Branch> {
+    PeriodicOrbit orbit;
+    if (FindOrbit(seed.system, seed.eta, seed.orbit, &orbit).termination !=
+        Termination::kConverged) {
+      return std::nullopt;
+    }
+    ContinuationOptions p21 = options;
+    p21.orbit = seed.orbit;
+    return ContinueBranch({seed.system, orbit, {}}, p21);
+  };
+  int compared = 0;
+  for (std::size_t side = 0; side < std::min(near.size(), nearer.size()); ++side) {
+    const std::optional<Branch> a = trace(near[side]), b = trace(nearer[side]);
+    if (!a || !b) continue;
+    CHECK(a->p == 2);
+    CHECK(CoveredBy(*a, *b));
+    CHECK(CoveredBy(*b, *a));
+    ++compared;
+  }
+  CHECK(compared >= 1);
 }
