@@ -2,14 +2,14 @@
 # Every grazing's prediction checked against brute-force sweeps on systems
 # besides the paper's (docs/continuation.md, "What a grazing will do", the
 # tables after the paper's): `impactkit diagram --grazings` on the 3-mass chain
-# examples/systems/three-mass.toml over Ω 0.3-0.7 (32 grazings), on one mass
+# examples/systems/three-mass.toml over Ω 0.3-0.7 (81 grazings), on one mass
 # in the symmetric clearance examples/systems/clearance-1dof.toml (two stops)
-# over Ω 0.6-2.2 (21 grazings), and on the sticking chain of
+# over Ω 0.6-2.2 (23 grazings), and on the sticking chain of
 # examples/systems/paper-mass1-stop.toml over Ω 0.14-0.2 (11 grazings of
 # sticking families). Prints one check line per grazing and writes each
-# diagram's JSON and its checks' JSON; 2-3.5 minutes on 2 shared cores,
-# most of it the 3-mass chain's (the clearance's takes about 16 s, the
-# sticking chain's 30-70 s).
+# diagram's JSON and its checks' JSON; about 3 minutes on 2 cores, most of
+# it the 3-mass chain's (the clearance's takes about 13 s, the sticking
+# chain's 30-70 s).
 #
 #   examples/grazing_checks_other_systems.sh [impactkit binary] [data folder]
 #
