@@ -199,9 +199,13 @@ TEST_CASE("a record log gives back every record it was given, field by field", "
   // Impacts of a 3-DOF system, as an ImpactRecorder's vector of records
   // would have held them; every view's fields and vectors are the record's.
   // 10^5 of them: both of the log's buffers grow past 2 MiB, into huge
-  // pages (core/large_buffer_allocator.hpp), copied there as they grow.
+  // pages (core/large_buffer_allocator.hpp), copied there as they grow;
+  // from no room, and from room for fewer (it grows past it) or more.
+  const std::size_t room = GENERATE(0, 60000, 200000);
+  INFO("reserved " << room);
   std::vector<Impact> given;
   ImpactLog log;
+  log.reserve(room);
   for (int k = 0; k < 100000; ++k) {
     const double s = k;
     const Eigen::Vector3d x(s, 0.5 * s, -1.0), v(0.1 * s, -2.0, s * s), after(-0.1 * s, 2.0, 1.0);

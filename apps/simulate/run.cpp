@@ -138,6 +138,7 @@ SimulationOptions SimulationOptionsOf(const SimulateRequest& request) {
 
 WindowRecorders::WindowRecorders(const Window& window, std::optional<double> sample_interval)
     : steady(window.period) {
+  steady.Reserve(window.periods);
   all.Add(steady);
   all.Add(sticking);
   if (sample_interval) all.Add(series.emplace(window.begin, *sample_interval, /*events=*/true));

@@ -47,11 +47,20 @@ class RecordLog {
         throw InvalidInput("RecordLog: every recorded vector must have one length");
       }
     }
+    if (scalars_.empty()) values_.reserve(reserved_ * Layout::kVectors * length);
     length_ = length;
     for (const Eigen::VectorXd* v : vectors) {
       values_.insert(values_.end(), v->data(), v->data() + length_);
     }
     scalars_.push_back(Layout::ScalarsOf(record));
+  }
+
+  /// Room for `records` records without growing (their vectors' length is
+  /// the first record's): a long run's records then fault each page in
+  /// once, where growing by doubling faults in about twice their size.
+  void reserve(std::size_t records) {
+    scalars_.reserve(records);
+    reserved_ = records;
   }
 
   std::size_t size() const { return scalars_.size(); }
@@ -92,6 +101,7 @@ class RecordLog {
   /// Record i's vectors at [i kVectors length, (i + 1) kVectors length).
   std::vector<double, LargeBufferAllocator<double>> values_;
   Eigen::Index length_ = 0;
+  std::size_t reserved_ = 0;
 };
 
 }  // namespace impactkit

@@ -123,6 +123,8 @@ class TimeSeriesRecorder : public Observer {
   void OnSegment(const Segment& segment) override;
   void OnImpact(const Impact& impact) override;
   const SampleLog& Samples() const { return samples_; }
+  /// Room for `samples` samples (RecordLog::reserve).
+  void Reserve(std::size_t samples) { samples_.reserve(samples); }
 
  private:
   /// The sticking or release, if any, that the segment's first instant is.
@@ -144,6 +146,8 @@ class ImpactRecorder : public Observer {
  public:
   void OnImpact(const Impact& impact) override { impacts_.push_back(impact); }
   const ImpactLog& Impacts() const { return impacts_; }
+  /// Room for `impacts` impacts (RecordLog::reserve).
+  void Reserve(std::size_t impacts) { impacts_.reserve(impacts); }
 
  private:
   ImpactLog impacts_;
@@ -155,6 +159,8 @@ class StroboscopicRecorder : public Observer {
   explicit StroboscopicRecorder(double period) : sampler_(0.0, period) {}
   void OnSegment(const Segment& segment) override { sampler_.OnSegment(segment); }
   const SampleLog& Points() const { return sampler_.Samples(); }
+  /// Room for `points` points (RecordLog::reserve).
+  void Reserve(std::size_t points) { sampler_.Reserve(points); }
 
  private:
   TimeSeriesRecorder sampler_;
