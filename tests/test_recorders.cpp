@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "impactkit/analysis/steady_window.hpp"
 #include "impactkit/core/large_buffer_allocator.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
@@ -236,6 +237,36 @@ TEST_CASE("a record log gives back every record it was given, field by field", "
   CHECK(log.back().v_after == given.back().v_after);
   log.push_back(given.front());
   CHECK(log.back().x == given.front().x);
+}
+
+TEST_CASE("a steady window given room records what one without room does", "[recorders]") {
+  // Room for the whole window, for too few periods (it grows past it) and
+  // for a negative count (none): the same impacts, points and period P(2,1)
+  // as the window recorded without room, value for value.
+  const double omega = 0.6;
+  const int periods = 300;
+  const double period = PaperSystem(omega).ForcingPeriod();
+  SteadyWindowRecorder plain(period);
+  RecordSteady(omega, periods, plain);
+  for (const long room : {long{periods}, 10L, -5L}) {
+    INFO("room for " << room << " periods");
+    SteadyWindowRecorder reserved(period);
+    reserved.Reserve(room);
+    RecordSteady(omega, periods, reserved);
+    REQUIRE(reserved.Impacts().size() == plain.Impacts().size());
+    REQUIRE(reserved.Strobe().size() == plain.Strobe().size());
+    for (std::size_t k = 0; k < plain.Impacts().size(); ++k) {
+      CHECK(reserved.Impacts()[k].t == plain.Impacts()[k].t);
+      CHECK(reserved.Impacts()[k].x == plain.Impacts()[k].x);
+    }
+    for (std::size_t k = 0; k < plain.Strobe().size(); ++k) {
+      CHECK(reserved.Strobe()[k].x == plain.Strobe()[k].x);
+    }
+    const MotionPeriod motion = reserved.Period();
+    CHECK(motion.periodic);
+    CHECK(motion.p == 2);
+    CHECK(motion.q == 1);
+  }
 }
 
 TEST_CASE("the record logs' allocator aligns large buffers to 2 MiB and keeps every value",
