@@ -87,17 +87,30 @@ def read_notes(path):
     return notes
 
 
+def read_json(path, key, writer):
+    """The list `key` of the JSON file at `path`, or exit with why not."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)[key]
+    except (OSError, ValueError) as e:
+        sys.exit(f"grazing_table.py: cannot read {path}: {e}")
+    except (KeyError, TypeError):
+        sys.exit(f"grazing_table.py: {path} has no '{key}' list: is it what {writer} writes?")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("grazings")
     parser.add_argument("diagram")
     parser.add_argument("--notes", help="an earlier table whose last column to keep")
     args = parser.parse_args()
-    with open(args.grazings, encoding="utf-8") as f:
-        checks = json.load(f)["grazings"]
-    with open(args.diagram, encoding="utf-8") as f:
-        nodes = [n for n in json.load(f)["nodes"] if n["type"] == "grazing"]
-    notes = read_notes(args.notes)
+    checks = read_json(args.grazings, "grazings", "impactkit diagram --grazings")
+    nodes = [n for n in read_json(args.diagram, "nodes", "impactkit diagram --json")
+             if n.get("type") == "grazing"]
+    try:
+        notes = read_notes(args.notes)
+    except OSError as e:
+        sys.exit(f"grazing_table.py: cannot read the notes: {e}")
     print("| Ω | grazing orbit | λ | predicted | swept | result | why, where not followed or disagreeing |")
     print("|---|---|---|---|---|---|---|")
     for check in sorted(checks, key=lambda c: c["param"]):

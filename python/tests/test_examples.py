@@ -77,3 +77,16 @@ def test_grazing_table_rows_from_checks_and_notes(tmp_path):
         "| 0.8750000 | P(2,1), vanishing impact (P(7,3)'s) | 0.125 | P(3,1) (jump) | P(3,1) | "
         "not followed; hysteresis |  |"]
     assert done.stderr == "needs a note: 0.8750000 P(2,1), vanishing impact (P(7,3)'s)\n"
+
+
+def test_grazing_table_refuses_files_it_cannot_use(tmp_path):
+    script = os.path.join(os.environ["IMPACTKIT_SOURCE_DIR"], "examples", "grazing_table.py")
+    diagram = tmp_path / "d.json"
+    diagram.write_text(json.dumps({"nodes": []}))
+    wrong = tmp_path / "w.json"
+    wrong.write_text(json.dumps({"branches": []}))
+    for args, message in (([str(tmp_path / "missing.json"), str(diagram)], "cannot read"),
+                          ([str(wrong), str(diagram)], "has no 'grazings' list"),
+                          ([str(diagram), str(diagram)], "has no 'grazings' list")):
+        done = subprocess.run([sys.executable, script, *args], capture_output=True, text=True)
+        assert done.returncode != 0 and message in done.stderr and "Traceback" not in done.stderr
