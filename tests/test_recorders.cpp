@@ -237,6 +237,11 @@ TEST_CASE("a record log gives back every record it was given, field by field", "
   CHECK(log.back().v_after == given.back().v_after);
   log.push_back(given.front());
   CHECK(log.back().x == given.front().x);
+  // Room asked for once records exist keeps them and takes more.
+  log.reserve(2 * given.size());
+  log.push_back(given[1]);
+  CHECK(log.back().x == given[1].x);
+  CHECK(log[given.size() / 2].v == given[given.size() / 2].v);
 }
 
 TEST_CASE("a steady window given room records what one without room does", "[recorders]") {

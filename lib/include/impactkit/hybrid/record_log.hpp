@@ -55,12 +55,14 @@ class RecordLog {
     scalars_.push_back(Layout::ScalarsOf(record));
   }
 
-  /// Room for `records` records without growing (their vectors' length is
-  /// the first record's): a long run's records then fault each page in
-  /// once, where growing by doubling faults in about twice their size.
+  /// Room for `records` records without growing (asked before the first
+  /// record, the room for their vectors waits for its length): a long
+  /// run's records then fault each page in once, where growing by
+  /// doubling faults in about twice their size.
   void reserve(std::size_t records) {
     scalars_.reserve(records);
     reserved_ = records;
+    if (!scalars_.empty()) values_.reserve(records * Layout::kVectors * length_);
   }
 
   std::size_t size() const { return scalars_.size(); }
