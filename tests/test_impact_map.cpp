@@ -2,8 +2,10 @@
 #include <catch2/catch.hpp>
 #include <complex>
 
+#include "cvode_impacts.hpp"
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
+#include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"
 
 using Catch::Matchers::WithinAbs;
@@ -180,5 +182,33 @@ TEST_CASE("map failures are reported, never returned as numbers", "[impact_map]"
     CHECK_THROWS_AS(map.Apply(eta, 1, false), InvalidInput);
     CHECK_THROWS_AS(map.Apply(Eigen::VectorXd::Ones(3), 1, false), InvalidInput);
     CHECK_THROWS_AS(map.Apply(Eigen::VectorXd::Ones(4), 0, false), InvalidInput);
+  }
+}
+
+TEST_CASE("a mode that holds a mass is decomposed only where one is held", "[impact_map]") {
+  // Undamped, forced at the natural frequency sqrt(2) of mass 1 while the
+  // stop holds mass 2: that mode has no bounded steady response, the free
+  // one (frequencies 0.618, 1.618) has.
+  System s = PaperSystem(std::sqrt(2.0));
+  SetParameter(s, "c", 0.0);
+  SECTION("the simulator, which may hold the mass, refuses the system at once") {
+    CHECK_THROWS_WITH(Simulator(s), Catch::Contains("stuck subsystem (mass 2 held at the stop)"));
+  }
+  SECTION("the impact map, which holds no mass, follows the impacts CVODE finds") {
+    const reference::ReferenceRun cvode =
+        reference::CvodeImpacts(s, RestState(s).x, RestState(s).v, 0.0, 60.0, {});
+    REQUIRE(cvode.impacts.size() >= 4);
+    // The state just before the first impact, by CVODE's smooth flow.
+    Eigen::VectorXd x = RestState(s).x, v = RestState(s).v;
+    reference::CvodeLinearFlow(s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(2),
+                               s.omega, 0.0, x, v, cvode.impacts[0].t);
+    const ImpactMap map(s);
+    const MapResult r = map.Apply(map.ToEta(cvode.impacts[0].t, x, v), 3, false);
+    REQUIRE(r.termination == Termination::kCompleted);
+    for (int k = 0; k < 3; ++k) {
+      // CVODE's global error after 60 time units: ~1e-10 (cvode_impacts.hpp).
+      CHECK_THAT(r.path[k](map.TimeIndex()), WithinAbs(cvode.impacts[k + 1].t, 1e-8));
+      CHECK_THAT(map.Speed(r.path[k], 0), WithinAbs(cvode.impacts[k + 1].velocity, 1e-8));
+    }
   }
 }

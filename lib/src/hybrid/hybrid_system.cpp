@@ -14,21 +14,29 @@ HybridSystem::HybridSystem(const System& system) : system_(system) {
   ValidateParameters(system_);
   for (int k = 0; k < system_.StopCount(); ++k) stops_.emplace_back(system_, k);
   free_ = std::make_unique<const Mode>(system_, stops_, 0);
-  // (A held mode may have no coordinates left: N = 1, or every mass held.)
-  for (int k = 0; k < system_.StopCount(); ++k) {
-    held_.push_back(std::make_unique<const Mode>(system_, stops_, StopBit(k)));
-  }
+  held_ = std::make_unique<LazyMode[]>(stops_.size());
   inverse_mass_ = detail::SymmetricInverse(system_.mass);
   time_scale_ = free_->Flow().ShortestPeriod();
 }
 
 const Mode& HybridSystem::Holding(StopSet held) const {
   if (held == 0) return *free_;
-  if (std::has_single_bit(held)) return *held_[std::countr_zero(held)];
+  // (A held mode may have no coordinates left: N = 1, or every mass held.)
+  if (std::has_single_bit(held)) {
+    LazyMode& single = held_[std::countr_zero(held)];
+    // A throw leaves the flag unset: the next call throws the same.
+    std::call_once(single.once,
+                   [&] { single.mode = std::make_unique<const Mode>(system_, stops_, held); });
+    return *single.mode;
+  }
   const std::lock_guard<std::mutex> lock(combined_mutex_);
   std::unique_ptr<const Mode>& mode = combined_[held];
   if (!mode) mode = std::make_unique<const Mode>(system_, stops_, held);
   return *mode;
+}
+
+void HybridSystem::PrepareHeldModes() const {
+  for (int k = 0; k < StopCount(); ++k) Holding(StopBit(k));
 }
 
 Eigen::VectorXd HybridSystem::Acceleration(double t, const Eigen::VectorXd& x,

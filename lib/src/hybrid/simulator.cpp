@@ -62,6 +62,7 @@ struct Simulator::Impl {
       : hybrid(std::move(h)), options(o) {
     std::string error;
     if (!options.IsValid(&error)) throw InvalidInput(error);
+    hybrid->PrepareHeldModes();
   }
 };
 

@@ -7,9 +7,11 @@
 /// built on one; share it (std::shared_ptr) to decompose a parameter
 /// value's flows once.
 ///
-/// The free mode and the modes of one held stop are decomposed at
-/// construction; a mode of several held stops (stops on several masses,
-/// all sticking at once) when a motion first reaches it, thread-safely.
+/// The free mode is decomposed at construction; a mode with held stops
+/// when it is first asked for, thread-safely. Most users of a parameter
+/// value never hold a mass (the impact map, continuation's maps at μ ± h),
+/// and decomposing the held modes eagerly was 10 % of a connected
+/// diagram's CPU time (docs/performance.md).
 
 #include <Eigen/Dense>
 #include <map>
@@ -26,9 +28,8 @@ namespace impactkit {
 
 class HybridSystem {
  public:
-  /// Throws InvalidInput for an invalid system, or one whose free or held
-  /// mode has no bounded steady response (an undamped mode forced at its
-  /// frequency).
+  /// Throws InvalidInput for an invalid system, or one whose free mode has
+  /// no bounded steady response (an undamped mode forced at its frequency).
   explicit HybridSystem(const System& system);
   HybridSystem(const HybridSystem&) = delete;
   HybridSystem& operator=(const HybridSystem&) = delete;
@@ -42,13 +43,19 @@ class HybridSystem {
   /// The mode in which the stops in `held` hold their masses. Throws
   /// InvalidInput if its moving masses have no bounded steady response.
   const Mode& Holding(StopSet held) const;
+  /// Decomposes every mode in which one stop holds its mass, so that one
+  /// without a bounded steady response is rejected now rather than where a
+  /// motion first sticks (the simulator's constructor asks for this).
+  void PrepareHeldModes() const;
 
   const LinearFlow& FreeFlow() const { return free_->Flow(); }
   /// Stop `stop`'s gap on the free flow.
   const PreparedOutput& Gap(int stop) const { return free_->Witness(stop)->output; }
   /// The flow while stop `stop` alone holds its mass, and −Fs on it.
-  const LinearFlow& StuckFlow(int stop) const { return held_[stop]->Flow(); }
-  const PreparedOutput& Release(int stop) const { return held_[stop]->Witness(stop)->output; }
+  const LinearFlow& StuckFlow(int stop) const { return Holding(StopBit(stop)).Flow(); }
+  const PreparedOutput& Release(int stop) const {
+    return Holding(StopBit(stop)).Witness(stop)->output;
+  }
   /// The shortest time scale of the free motion (event search, chatter).
   double TimeScale() const { return time_scale_; }
 
@@ -67,7 +74,7 @@ class HybridSystem {
   /// Fs of stop `stop` holding its mass alone, from the moving masses' state.
   double ContactForce(int stop, double t, const Eigen::VectorXd& x_held,
                       const Eigen::VectorXd& v_held) const {
-    return held_[stop]->ContactForce(stop, t, x_held, v_held);
+    return Holding(StopBit(stop)).ContactForce(stop, t, x_held, v_held);
   }
 
   /// The coordinates that move while stop `stop` holds its mass alone (its
@@ -79,8 +86,14 @@ class HybridSystem {
   System system_;
   std::vector<Stop> stops_;
   std::unique_ptr<const Mode> free_;
-  std::vector<std::unique_ptr<const Mode>> held_;  ///< per stop: that stop alone holding
-  /// Modes of several held stops, built on first use.
+  /// A mode built on first use: std::call_once keeps the simulator's
+  /// lookups at every sticking segment free of a lock.
+  struct LazyMode {
+    std::once_flag once;
+    std::unique_ptr<const Mode> mode;
+  };
+  std::unique_ptr<LazyMode[]> held_;  ///< per stop: that stop alone holding
+  /// Modes of several held stops.
   mutable std::map<StopSet, std::unique_ptr<const Mode>> combined_;
   mutable std::mutex combined_mutex_;
   Eigen::MatrixXd inverse_mass_;
