@@ -191,13 +191,16 @@ ExponentialTable::ExponentialTable(std::complex<double> rate) {
 
 namespace {
 
-/// The table of e^{λτ} for a mode's rate λ. Continuation builds the flows
-/// at every parameter value its corrector visits (μ and μ ± h for ∂U/∂μ);
+/// The table of e^{λτ} for a rate λ. Continuation builds the flows at
+/// every parameter value its corrector visits (μ and μ ± h for ∂U/∂μ);
 /// in Ω, r or xs the modes do not move, and building their tables (640
 /// long-double products each) was a quarter of a connected diagram's CPU
-/// time (docs/performance.md). The last few rates' tables are kept per
-/// thread and copied: the same rate, bit for bit, gives the same table.
-ExponentialTable ModeTable(std::complex<double> rate) {
+/// time (docs/performance.md). The forcing's rotor moves with Ω but is
+/// asked for again at one μ: by each mode of a hybrid system, and by the
+/// systems built again at a converged point. The last few rates' tables
+/// are kept per thread and copied: the same rate, bit for bit, gives the
+/// same table.
+ExponentialTable KeptTable(std::complex<double> rate) {
   constexpr std::size_t kKept = 8;
   struct Kept {
     std::uint64_t real, imag;
@@ -219,14 +222,14 @@ ExponentialTable ModeTable(std::complex<double> rate) {
 ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
     : modes_(std::move(modes)),
       omega_(omega),
-      rotor_({0.0, omega}),
+      rotor_(KeptTable({0.0, omega})),
       rotor_series_(0.0, omega * omega) {
   double largest_rate = omega;
   for (const ModeBasis& mode : modes_) {
     series_.emplace_back(mode.decay, mode.beta2);
     largest_rate = std::max(largest_rate, mode.LargestRate());
     const bool oscillates = mode.beta2 > 0;
-    tables_.push_back(oscillates ? ModeTable({-mode.decay, mode.root}) : ExponentialTable());
+    tables_.push_back(oscillates ? KeptTable({-mode.decay, mode.root}) : ExponentialTable());
     inverse_roots_.push_back(oscillates ? 1.0 / mode.root : 0.0);
   }
   anchored_span_ = 1.0 / largest_rate;
