@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 
+#include "core/require.hpp"
+
 namespace impactkit {
 namespace {
 
@@ -146,7 +148,7 @@ NamedParameter::NamedParameter(const System& s, std::string_view name)
 double NamedParameter::Get(const System& s) const {
   if (spec_->get) return spec_->get(s);
   if (spec_->stop) return s.stops.at(index_).*spec_->stop->member;
-  Require(index_ < s.Dof(), fmt::format("{}: the system has {} masses", name_, s.Dof()));
+  Require(index_ < s.Dof(), "{}: the system has {} masses", name_, s.Dof());
   return s.forcing(index_);
 }
 
@@ -154,11 +156,10 @@ void NamedParameter::Set(System& s, double value) const {
   if (spec_->set) {
     spec_->set(s, value);
   } else if (spec_->stop) {
-    Require(index_ < s.StopCount(),
-            fmt::format("{}: the system has {} stops", name_, s.StopCount()));
+    Require(index_ < s.StopCount(), "{}: the system has {} stops", name_, s.StopCount());
     s.stops[index_].*spec_->stop->member = value;
   } else {
-    Require(index_ < s.Dof(), fmt::format("{}: the system has {} masses", name_, s.Dof()));
+    Require(index_ < s.Dof(), "{}: the system has {} masses", name_, s.Dof());
     s.forcing(index_) = value;
   }
 }

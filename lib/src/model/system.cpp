@@ -9,39 +9,39 @@
 #include <limits>
 #include <numbers>
 
+#include "core/require.hpp"
 #include "core/symmetric_eigen.hpp"
 
 namespace impactkit {
 namespace {
 
-void RequireFinite(const Eigen::MatrixXd& m, const std::string& name) {
-  Require(m.allFinite(), name + " has a NaN or infinite entry; all entries must be finite");
+void RequireFinite(const Eigen::MatrixXd& m, std::string_view name) {
+  Require(m.allFinite(), "{} has a NaN or infinite entry; all entries must be finite", name);
 }
 
-void RequireSquare(const Eigen::MatrixXd& m, int n, const std::string& name) {
-  Require(m.rows() == n && m.cols() == n,
-          fmt::format("{} must be {} x {} (N = {}), got {} x {}", name, n, n, n,
-                      static_cast<int>(m.rows()), static_cast<int>(m.cols())));
+void RequireSquare(const Eigen::MatrixXd& m, int n, std::string_view name) {
+  Require(m.rows() == n && m.cols() == n, "{} must be {} x {} (N = {}), got {} x {}", name, n, n, n,
+          static_cast<int>(m.rows()), static_cast<int>(m.cols()));
   RequireFinite(m, name);
   const double scale = m.cwiseAbs().maxCoeff();
-  Require((m - m.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale, name + " must be symmetric");
+  Require((m - m.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale, "{} must be symmetric", name);
 }
 
 void ValidateChain(const ChainParameters& chain) {
-  Require(chain.dof >= 1, fmt::format("n (number of masses) must be >= 1, got {}", chain.dof));
-  Require(std::isfinite(chain.mass) && chain.mass > 0,
-          fmt::format("m (mass) must be finite and > 0, got {}", chain.mass));
+  Require(chain.dof >= 1, "n (number of masses) must be >= 1, got {}", chain.dof);
+  Require(std::isfinite(chain.mass) && chain.mass > 0, "m (mass) must be finite and > 0, got {}",
+          chain.mass);
   Require(std::isfinite(chain.stiffness) && chain.stiffness > 0,
-          fmt::format("k (stiffness) must be finite and > 0, got {}", chain.stiffness));
+          "k (stiffness) must be finite and > 0, got {}", chain.stiffness);
   Require(std::isfinite(chain.damping) && chain.damping >= 0,
-          fmt::format("c (damping) must be finite and >= 0, got {}", chain.damping));
+          "c (damping) must be finite and >= 0, got {}", chain.damping);
 }
 
 void ValidateMatrices(const System& s) {
   const int n = s.Dof();
   Require(n >= 1, "the system needs at least one mass (N >= 1)");
-  Require(n <= kMaxDegreesOfFreedom,
-          fmt::format("the system has N = {} masses; at most {}", n, kMaxDegreesOfFreedom));
+  Require(n <= kMaxDegreesOfFreedom, "the system has N = {} masses; at most {}", n,
+          kMaxDegreesOfFreedom);
   RequireSquare(s.mass, n, "M (mass matrix)");
   RequireSquare(s.damping, n, "C (damping matrix)");
   RequireSquare(s.stiffness, n, "K (stiffness matrix)");
@@ -71,32 +71,39 @@ constexpr double kMaxPeriodRatio = 1e6;
 /// A magnitude of at most kLargest; a scale (a mass, a stiffness, a
 /// frequency) also at least kSmallest. Small entries elsewhere (a forcing
 /// of 1e-300, a damping of 1e-200) are harmless: they only underflow to 0.
-void RequireScale(double value, const std::string& name, bool is_scale = false) {
+void RequireScale(double value, std::string_view name, bool is_scale = false) {
   const double magnitude = std::abs(value);
   if (is_scale) {
     Require(magnitude >= kSmallest && magnitude <= kLargest,
-            fmt::format("{} must be within {:g} … {:g} in magnitude, got {:g}", name, kSmallest,
-                        kLargest, value));
+            "{} must be within {:g} … {:g} in magnitude, got {:g}", name, kSmallest, kLargest,
+            value);
   }
-  Require(magnitude <= kLargest,
-          fmt::format("{} must be at most {:g} in magnitude, got {:g}", name, kLargest, value));
+  Require(magnitude <= kLargest, "{} must be at most {:g} in magnitude, got {:g}", name, kLargest,
+          value);
 }
 
-void RequireScales(const Eigen::MatrixXd& m, const std::string& name) {
+void RequireScales(const Eigen::MatrixXd& m, std::string_view name) {
   for (Eigen::Index i = 0; i < m.size(); ++i) RequireScale(m.data()[i], name);
 }
 
 /// The names of the parameters a matrix comes from: the chain's m, k, c
 /// when the system is a chain, the matrix otherwise.
-std::string Named(const System& s, const char* chain_name, const char* matrix_name) {
+const char* Named(const System& s, const char* chain_name, const char* matrix_name) {
   return s.chain ? chain_name : matrix_name;
 }
 
+/// Below this many masses a dense LU is cheaper than a sparse one, whose
+/// set-up allocates dozens of blocks (for N = 2 it was a tenth of a
+/// connected diagram's allocations: a system is validated at every
+/// parameter value a continuation visits).
+constexpr int kSparseResponseMinDof = 32;
+
 /// Z⁻¹ A for the dynamic stiffness Z; a sparse LU where Z is tridiagonal
-/// (a chain's: O(N) against the dense O(N³)), infinite where Z is singular.
+/// (a chain's: O(N) against the dense O(N³)) and large, infinite where Z
+/// is singular.
 Eigen::VectorXcd ForcedResponse(const Eigen::MatrixXcd& z, const Eigen::VectorXcd& a,
                                 bool tridiagonal) {
-  if (!tridiagonal) return z.partialPivLu().solve(a);
+  if (!tridiagonal || z.rows() < kSparseResponseMinDof) return z.partialPivLu().solve(a);
   const Eigen::SparseMatrix<std::complex<double>> sparse = z.sparseView();
   Eigen::SparseLU<Eigen::SparseMatrix<std::complex<double>>> lu(sparse);
   if (lu.info() != Eigen::Success) {
@@ -108,23 +115,22 @@ Eigen::VectorXcd ForcedResponse(const Eigen::MatrixXcd& z, const Eigen::VectorXc
 /// The scales derived from the entries: natural frequencies, the forcing
 /// period on the fastest mode's time scale, the forced response.
 void ValidateDerivedScales(const System& s) {
-  const std::string mk =
+  const char* mk =
       Named(s, "m (mass) and k (stiffness)", "M (mass matrix) and K (stiffness matrix)");
   const Eigen::VectorXd squares = detail::SolveGeneralized(s.stiffness, s.mass, false).values;
   const double slowest = std::sqrt(squares.minCoeff()), fastest = std::sqrt(squares.maxCoeff());
   Require(slowest >= kSmallest && fastest <= kLargest,
-          fmt::format("{} give natural frequencies from {:g} to {:g}; they must lie within {:g} … "
-                      "{:g}",
-                      mk, slowest, fastest, kSmallest, kLargest));
+          "{} give natural frequencies from {:g} to {:g}; they must lie within {:g} … "
+          "{:g}",
+          mk, slowest, fastest, kSmallest, kLargest);
   Require(fastest <= kMaxFrequencyRatio * slowest,
-          fmt::format("{} give natural frequencies from {:g} to {:g}, a ratio of {:.3g}; at most "
-                      "{:.0e} (the slowest mode would be lost in the rounding of the fastest)",
-                      mk, slowest, fastest, fastest / slowest, kMaxFrequencyRatio));
-  Require(
-      fastest <= kMaxPeriodRatio * s.omega,
-      fmt::format("omega = {:g} is too slow for this system: one forcing period spans {:.3g} "
-                  "periods of its fastest mode (frequency {:g}); at most {:.0e}, omega >= {:.3g}",
-                  s.omega, fastest / s.omega, fastest, kMaxPeriodRatio, fastest / kMaxPeriodRatio));
+          "{} give natural frequencies from {:g} to {:g}, a ratio of {:.3g}; at most "
+          "{:.0e} (the slowest mode would be lost in the rounding of the fastest)",
+          mk, slowest, fastest, fastest / slowest, kMaxFrequencyRatio);
+  Require(fastest <= kMaxPeriodRatio * s.omega,
+          "omega = {:g} is too slow for this system: one forcing period spans {:.3g} "
+          "periods of its fastest mode (frequency {:g}); at most {:.0e}, omega >= {:.3g}",
+          s.omega, fastest / s.omega, fastest, kMaxPeriodRatio, fastest / kMaxPeriodRatio);
   const Eigen::MatrixXcd dynamic_stiffness =
       (s.stiffness - s.omega * s.omega * s.mass).cast<std::complex<double>>() +
       std::complex<double>(0.0, s.omega) * s.damping.cast<std::complex<double>>();
@@ -136,9 +142,9 @@ void ValidateDerivedScales(const System& s) {
           .maxCoeff();
   // Resonance (an infinite or NaN response) is the flows' to report.
   Require(!(std::isfinite(response) && response > kLargest),
-          fmt::format("A (forcing) gives a forced response of amplitude {:g} at omega = {:g}; at "
-                      "most {:g}",
-                      response, s.omega, kLargest));
+          "A (forcing) gives a forced response of amplitude {:g} at omega = {:g}; at "
+          "most {:g}",
+          response, s.omega, kLargest);
 }
 
 /// How messages name stop k's position: xs (stop position), or xs<k>
@@ -152,11 +158,12 @@ std::string PositionName(const System& s, int k) {
 void ValidateStop(const System& s, int k) {
   const StopParameters& stop = s.stops[k];
   const int n = s.Dof();
-  Require(
-      stop.dof >= 0 && stop.dof < n,
-      s.StopCount() == 1
-          ? fmt::format("contact DOF must be in [1, {}], got {}", n, stop.dof + 1)
-          : fmt::format("the mass of stop {} must be in [1, {}], got {}", k + 1, n, stop.dof + 1));
+  const bool on_a_mass = stop.dof >= 0 && stop.dof < n;
+  if (s.StopCount() == 1) {
+    Require(on_a_mass, "contact DOF must be in [1, {}], got {}", n, stop.dof + 1);
+  } else {
+    Require(on_a_mass, "the mass of stop {} must be in [1, {}], got {}", k + 1, n, stop.dof + 1);
+  }
   CheckStopParameterRanges(stop, k, s.StopCount());
 }
 
@@ -166,21 +173,21 @@ void ValidateStopPair(const System& s, int j, int k) {
   const StopParameters &a = s.stops[j], &b = s.stops[k];
   if (a.dof != b.dof) return;
   Require(a.side != b.side,
-          fmt::format("stops {} and {} both limit mass {} from {}: one of them could never be "
-                      "reached; give a mass at most one stop on each side",
-                      j + 1, k + 1, a.dof + 1, a.side == StopSide::kUpper ? "above" : "below"));
+          "stops {} and {} both limit mass {} from {}: one of them could never be "
+          "reached; give a mass at most one stop on each side",
+          j + 1, k + 1, a.dof + 1, a.side == StopSide::kUpper ? "above" : "below");
   const StopParameters &upper = a.side == StopSide::kUpper ? a : b,
                        &lower = a.side == StopSide::kUpper ? b : a;
   Require(lower.position < upper.position,
-          fmt::format("the stops of mass {} leave it no room: the lower one at {} must be below "
-                      "the upper one at {}",
-                      a.dof + 1, lower.position, upper.position));
+          "the stops of mass {} leave it no room: the lower one at {} must be below "
+          "the upper one at {}",
+          a.dof + 1, lower.position, upper.position);
 }
 
 void ValidateStops(const System& s) {
   Require(!s.stops.empty(), "the system needs at least one stop");
-  Require(s.StopCount() <= kMaxStops,
-          fmt::format("the system has {} stops; at most {}", s.StopCount(), kMaxStops));
+  Require(s.StopCount() <= kMaxStops, "the system has {} stops; at most {}", s.StopCount(),
+          kMaxStops);
   for (int k = 0; k < s.StopCount(); ++k) ValidateStop(s, k);
   for (int j = 0; j < s.StopCount(); ++j) {
     for (int k = j + 1; k < s.StopCount(); ++k) ValidateStopPair(s, j, k);
@@ -189,11 +196,11 @@ void ValidateStops(const System& s) {
 
 void ValidateScalars(const System& s) {
   const int n = s.Dof();
-  Require(s.forcing.size() == n, fmt::format("A (forcing) must have N = {} entries, got {}", n,
-                                             static_cast<int>(s.forcing.size())));
+  Require(s.forcing.size() == n, "A (forcing) must have N = {} entries, got {}", n,
+          static_cast<int>(s.forcing.size()));
   Require(s.forcing.allFinite(), "A (forcing) has a NaN or infinite entry");
   Require(std::isfinite(s.omega) && s.omega > 0,
-          fmt::format("omega (forcing frequency) must be finite and > 0, got {}", s.omega));
+          "omega (forcing frequency) must be finite and > 0, got {}", s.omega);
   ValidateStops(s);
 }
 
@@ -225,7 +232,7 @@ Eigen::MatrixXd ChainCouplingMatrix(int dof) {
 System UniformChain(const ChainParameters& chain, const Eigen::VectorXd& forcing, double omega,
                     double stop, double restitution) {
   // Values are checked by Validate(); only the shape is needed to build.
-  Require(chain.dof >= 1, fmt::format("n (number of masses) must be >= 1, got {}", chain.dof));
+  Require(chain.dof >= 1, "n (number of masses) must be >= 1, got {}", chain.dof);
   const Eigen::MatrixXd e = ChainCouplingMatrix(chain.dof);
   System s =
       GeneralSystem(chain.mass * Eigen::MatrixXd::Identity(chain.dof, chain.dof), chain.damping * e,
@@ -289,10 +296,9 @@ StopSet StopsAtRest(const System& s, const Eigen::VectorXd& x, const Eigen::Vect
 
 void ValidateState(const System& s, const HybridState& state) {
   const int n = s.Dof();
-  Require(
-      state.x.size() == n && state.v.size() == n,
-      fmt::format("the initial state must have N = {} positions and {} velocities, got {} and {}",
-                  n, n, static_cast<int>(state.x.size()), static_cast<int>(state.v.size())));
+  Require(state.x.size() == n && state.v.size() == n,
+          "the initial state must have N = {} positions and {} velocities, got {} and {}", n, n,
+          static_cast<int>(state.x.size()), static_cast<int>(state.v.size()));
   Require(std::isfinite(state.t) && state.x.allFinite() && state.v.allFinite(),
           "the initial state has a NaN or infinite entry");
   for (int k = 0; k < s.StopCount(); ++k) {
@@ -300,12 +306,12 @@ void ValidateState(const System& s, const HybridState& state) {
     const int c = stop.dof;
     const bool upper = stop.side == StopSide::kUpper;
     Require(stop.Sign() * (state.x(c) - stop.position) <= 0,
-            fmt::format("initial x{} = {} is beyond the stop {} = {}; it must be {} {}", c + 1,
-                        state.x(c), StopParameterName("xs", k), stop.position,
-                        upper ? "<=" : ">=", StopParameterName("xs", k)));
+            "initial x{} = {} is beyond the stop {} = {}; it must be {} {}", c + 1, state.x(c),
+            StopParameterName("xs", k), stop.position,
+            upper ? "<=" : ">=", StopParameterName("xs", k));
   }
   Require(state.held < (s.StopCount() == kMaxStops ? ~StopSet{0} : StopBit(s.StopCount())),
-          fmt::format("the held stops name a stop beyond the system's {}", s.StopCount()));
+          "the held stops name a stop beyond the system's {}", s.StopCount());
   const StopSet not_at_rest = state.held & ~StopsAtRest(s, state.x, state.v);
   if (not_at_rest != 0) {
     const int k = std::countr_zero(not_at_rest);
