@@ -197,6 +197,11 @@ ExponentialTable::ExponentialTable(std::complex<double> rate) {
   FillTables(rate, kFine * step_, &coarse_, &coarse_increment_);
 }
 
+const std::shared_ptr<const ExponentialTable>& ExponentialTable::Empty() {
+  static const auto empty = std::make_shared<const ExponentialTable>();
+  return empty;
+}
+
 namespace {
 
 /// The table of e^{λτ} for a rate λ. Continuation builds the flows at
@@ -206,13 +211,13 @@ namespace {
 /// time (docs/performance.md). The forcing's rotor moves with Ω but is
 /// asked for again at one μ: by each mode of a hybrid system, and by the
 /// systems built again at a converged point. The last few rates' tables
-/// are kept per thread and copied: the same rate, bit for bit, gives the
+/// are kept per thread and shared: the same rate, bit for bit, gives the
 /// same table.
-ExponentialTable KeptTable(std::complex<double> rate) {
+std::shared_ptr<const ExponentialTable> KeptTable(std::complex<double> rate) {
   constexpr std::size_t kKept = 8;
   struct Kept {
     std::uint64_t real, imag;
-    ExponentialTable table;
+    std::shared_ptr<const ExponentialTable> table;
   };
   thread_local std::vector<Kept> kept;  // the newest last
   const std::uint64_t real = std::bit_cast<std::uint64_t>(rate.real());
@@ -221,7 +226,7 @@ ExponentialTable KeptTable(std::complex<double> rate) {
     if (k.real == real && k.imag == imag) return k.table;
   }
   if (kept.size() == kKept) kept.erase(kept.begin());
-  kept.push_back({real, imag, ExponentialTable(rate)});
+  kept.push_back({real, imag, std::make_shared<const ExponentialTable>(rate)});
   return kept.back().table;
 }
 
@@ -237,7 +242,7 @@ ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
     series_.emplace_back(mode.decay, mode.beta2);
     largest_rate = std::max(largest_rate, mode.LargestRate());
     const bool oscillates = mode.beta2 > 0;
-    tables_.push_back(oscillates ? KeptTable({-mode.decay, mode.root}) : ExponentialTable());
+    tables_.push_back(oscillates ? KeptTable({-mode.decay, mode.root}) : ExponentialTable::Empty());
     inverse_roots_.push_back(oscillates ? 1.0 / mode.root : 0.0);
   }
   anchored_span_ = 1.0 / largest_rate;
