@@ -70,7 +70,7 @@ bool SectionCurve::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u) const 
     cached_x_ = x;
     image.state(map->TimeIndex()) -= q_ * map->GetSystem().ForcingPeriod();
     cached_residual_ = image.state - state;
-    cached_map_jacobian_ = std::move(image.jacobian);
+    cached_image_ = std::move(image);
   }
   *u = cached_residual_;
   return u->allFinite();
@@ -79,7 +79,7 @@ bool SectionCurve::Residual(const Eigen::VectorXd& x, Eigen::VectorXd* u) const 
 bool SectionCurve::MapJacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* dp) const {
   Eigen::VectorXd u;
   if (!Residual(x, &u)) return false;
-  *dp = cached_map_jacobian_;
+  *dp = cached_image_.jacobian;
   return true;
 }
 
@@ -105,7 +105,7 @@ bool SectionCurve::Jacobian(const Eigen::VectorXd& x, Eigen::MatrixXd* jacobian)
     const SectionMap* above = high < 0 ? here : sides[high];
     if (!below || !above) continue;
     const double delta = (low < 0 ? 0.0 : h) + (high < 0 ? 0.0 : h);
-    SectionImage rate = here->ParameterRate(State(x), k_, *below, *above, delta);
+    SectionImage rate = here->ParameterRate(State(x), k_, *below, *above, delta, &cached_image_);
     stopped_sticking_ = stopped_sticking_ || rate.stops_sticking;
     if (!rate.Ok()) continue;
     rate.state(here->TimeIndex()) -=

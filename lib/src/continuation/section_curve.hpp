@@ -84,7 +84,8 @@ class SectionCurve {
   mutable std::vector<std::pair<double, std::unique_ptr<SectionMap>>> maps_;  // newest last
   mutable Eigen::VectorXd cached_x_;  ///< where the two below were computed
   mutable Eigen::VectorXd cached_residual_;
-  mutable Eigen::MatrixXd cached_map_jacobian_;
+  /// P^k there with its Jacobian and steps (ParameterRate reuses them).
+  mutable SectionImage cached_image_;
   mutable bool stopped_sticking_ = false;
 };
 

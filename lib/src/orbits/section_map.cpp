@@ -26,7 +26,8 @@ Eigen::MatrixXd FiniteDifferenceJacobian(const SectionMap& map, const Eigen::Vec
 }
 
 SectionImage SectionMap::ParameterRate(const Eigen::VectorXd& x, int k, const SectionMap& below,
-                                       const SectionMap& above, double delta) const {
+                                       const SectionMap& above, double delta,
+                                       const SectionImage*) const {
   SectionImage low = below.Iterate(x, k, false), high = above.Iterate(x, k, false);
   if (!low.Ok()) return low;
   if (!high.Ok()) return high;

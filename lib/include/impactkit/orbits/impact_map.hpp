@@ -67,6 +67,8 @@ struct MapResult {
   Eigen::MatrixXd jacobian;           ///< D(P_I^p)(η), when asked and kOk
   std::vector<Eigen::VectorXd> path;  ///< η after each impact (size p when kOk)
   std::vector<int> stops;             ///< the stop of each of them (its η's coordinates)
+  /// Each impact's D P_I, when asked and kOk (the product is `jacobian`).
+  std::vector<Eigen::MatrixXd> step_jacobians;
 };
 
 class ImpactMap : public SectionMap {
@@ -98,9 +100,11 @@ class ImpactMap : public SectionMap {
   /// chains the impacts through their analytic Jacobians, so a slow
   /// impact's 1/v is exact rather than differenced.
   double ParameterStep(const Eigen::MatrixXd&) const override { return 1e-6; }
-  /// ParameterDerivative, for `below` and `above` impact maps.
+  /// ParameterDerivative, for `below` and `above` impact maps, on the
+  /// steps of `at_eta` where given.
   SectionImage ParameterRate(const Eigen::VectorXd& eta, int p, const SectionMap& below,
-                             const SectionMap& above, double delta) const override;
+                             const SectionMap& above, double delta,
+                             const SectionImage* at_eta = nullptr) const override;
 
   /// ∂P_I^p(η; μ)/∂μ at fixed η, for a scalar parameter μ of which `below`
   /// and `above` are this map's system at μ - δ₋ and μ + δ₊ (δ₋ + δ₊ =
@@ -108,9 +112,12 @@ class ImpactMap : public SectionMap {
   /// useless near grazing, where the impact time varies like 1/v; here only
   /// the flights' states at FIXED times are differenced (they are smooth in
   /// μ), and the impact times follow by the implicit function theorem on
-  /// x_c(t') = xs(μ), as in the analytic Jacobian. Empty if the map fails.
+  /// x_c(t') = xs(μ), as in the analytic Jacobian. The impacts and their
+  /// Jacobians are `steps` (Iterate(eta, p, true)'s) where it has p of
+  /// them, else followed here. Empty if the map fails.
   Eigen::VectorXd ParameterDerivative(const Eigen::VectorXd& eta, int p, const ImpactMap& below,
-                                      const ImpactMap& above, double delta) const;
+                                      const ImpactMap& above, double delta,
+                                      const std::vector<SectionStep>& steps = {}) const;
 
   /// η of the state just before an impact at time t at stop `stop` (the
   /// section's by default).

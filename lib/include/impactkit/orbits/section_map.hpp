@@ -12,15 +12,27 @@
 
 #include <Eigen/Dense>
 #include <string>
+#include <vector>
 
 #include "impactkit/model/system.hpp"
 
 namespace impactkit {
 
+/// One event of an iterate: the section's state just before it, its stop,
+/// and the Jacobian of the step that reached it.
+struct SectionStep {
+  Eigen::VectorXd state;
+  int stop = 0;
+  Eigen::MatrixXd jacobian;
+};
+
 /// P^k(x), or why the map could not follow it.
 struct SectionImage {
   Eigen::VectorXd state;     ///< P^k(x), when ok
   Eigen::MatrixXd jacobian;  ///< D P^k(x), when asked and ok
+  /// The k steps, when asked for the Jacobian and ok, from a map whose
+  /// ParameterRate chains them (the impact map); else empty.
+  std::vector<SectionStep> steps;
   /// Empty when ok; else what stopped the map, and after how many of the k
   /// events ("after 0 of 1 impacts, lost impact (no further impact)").
   std::string failure;
@@ -52,10 +64,13 @@ class SectionMap {
   virtual double ParameterStep(const Eigen::MatrixXd& jacobian) const = 0;
   /// ∂P^k(x; μ)/∂μ at fixed x (in `state`) for a scalar parameter μ, of
   /// which `below` and `above` are this map's kind at μ − δ₋ and μ + δ₊
-  /// (δ₋ + δ₊ = `delta`; either may be this map). By default the
-  /// difference of their images; not ok where either fails.
+  /// (δ₋ + δ₊ = `delta`; either may be this map). `at_x`, if not null, is
+  /// this map's Iterate(x, k, true), whose steps a map that chains them
+  /// reuses rather than follows again. By default the difference of the
+  /// images of `below` and `above`; not ok where either fails.
   virtual SectionImage ParameterRate(const Eigen::VectorXd& x, int k, const SectionMap& below,
-                                     const SectionMap& above, double delta) const;
+                                     const SectionMap& above, double delta,
+                                     const SectionImage* at_x = nullptr) const;
 
   /// x with its time moved into [0, T): the map commutes with shifts by T,
   /// and small times keep event times precise.
