@@ -3,7 +3,7 @@
 /// Require (core/errors.hpp) with a message formatted only where the
 /// condition fails. A system is validated at every parameter value a
 /// continuation visits (μ and μ ± h of each Jacobian), and formatting each
-/// check's message whether it failed or not was a fifth of a connected
+/// check's message whether it failed or not was a tenth of a connected
 /// diagram's allocations (docs/performance.md).
 
 #include <fmt/format.h>

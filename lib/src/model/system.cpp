@@ -93,7 +93,7 @@ const char* Named(const System& s, const char* chain_name, const char* matrix_na
 }
 
 /// Below this many masses a dense LU is cheaper than a sparse one, whose
-/// set-up allocates dozens of blocks (for N = 2 it was a tenth of a
+/// set-up allocates dozens of blocks (for N = 2 it was an eighth of a
 /// connected diagram's allocations: a system is validated at every
 /// parameter value a continuation visits).
 constexpr int kSparseResponseMinDof = 32;
