@@ -129,6 +129,10 @@ TEST_CASE(
     const SectionImage image = map.Iterate(eta, c.p, true);
     REQUIRE(image.Ok());
     REQUIRE(image.steps.size() == static_cast<std::size_t>(c.p));
+    // The steps are the iterate's: their Jacobians' product is its Jacobian.
+    Eigen::MatrixXd product = Eigen::MatrixXd::Identity(eta.size(), eta.size());
+    for (const SectionStep& step : image.steps) product = step.jacobian * product;
+    CHECK((product - image.jacobian).norm() <= 1e-14 * image.jacobian.norm());
     const SectionImage reused = map.ParameterRate(eta, c.p, below, above, 2 * h, &image);
     const SectionImage followed = map.ParameterRate(eta, c.p, below, above, 2 * h);
     REQUIRE(reused.Ok());

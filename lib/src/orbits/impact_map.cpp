@@ -199,6 +199,7 @@ MapResult ImpactMap::Apply(const Eigen::VectorXd& eta, int p, bool with_jacobian
   if (result.termination == Termination::kCompleted && result.stops.back() != SectionStop()) {
     result.termination = Termination::kOtherStop;
     result.jacobian.resize(0, 0);
+    result.step_jacobians.clear();
   }
   return result;
 }
@@ -213,6 +214,8 @@ MapResult ImpactMap::Follow(const Eigen::VectorXd& eta, int stop, int p, bool wi
   MapResult result;
   result.eta = eta;
   if (with_jacobian) result.jacobian = Eigen::MatrixXd::Identity(eta.size(), eta.size());
+  const bool keep_steps =
+      with_jacobian && p * eta.size() * eta.size() <= MapResult::kKeptStepEntries;
   Eigen::VectorXd next;
   Eigen::MatrixXd step_jacobian;
   for (int k = 0, at = stop; k < p; ++k) {
@@ -220,12 +223,13 @@ MapResult ImpactMap::Follow(const Eigen::VectorXd& eta, int stop, int p, bool wi
     if (!Step(result.eta, at, &next, &next_stop, with_jacobian ? &step_jacobian : nullptr,
               &result.termination)) {
       result.jacobian.resize(0, 0);
+      result.step_jacobians.clear();
       return result;
     }
     result.eta = next;
     if (with_jacobian) {
       result.jacobian = step_jacobian * result.jacobian;
-      result.step_jacobians.push_back(std::move(step_jacobian));
+      if (keep_steps) result.step_jacobians.push_back(std::move(step_jacobian));
     }
     result.path.push_back(next);
     result.stops.push_back(next_stop);
@@ -252,7 +256,7 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
     if (!reuse) {
       MapResult one = Follow(at, stop, 1, true);
       if (one.termination != Termination::kCompleted) return {};
-      followed = {std::move(one.eta), one.stops.back(), std::move(one.step_jacobians.back())};
+      followed = {std::move(one.eta), one.stops.back(), std::move(one.jacobian)};
     }
     const int next_stop = step->stop, c = hybrid_->GetStop(next_stop).Dof();
     const double stop_rate = (above.hybrid_->GetStop(next_stop).Position() -
@@ -300,7 +304,7 @@ SectionImage ImpactMap::Iterate(const Eigen::VectorXd& eta, int p, bool with_jac
   }
   image.state = std::move(result.eta);
   image.jacobian = std::move(result.jacobian);
-  for (int k = 0; with_jacobian && k < p; ++k) {
+  for (std::size_t k = 0; k < result.step_jacobians.size(); ++k) {
     image.steps.push_back(
         {std::move(result.path[k]), result.stops[k], std::move(result.step_jacobians[k])});
   }

@@ -67,8 +67,12 @@ struct MapResult {
   Eigen::MatrixXd jacobian;           ///< D(P_I^p)(η), when asked and kOk
   std::vector<Eigen::VectorXd> path;  ///< η after each impact (size p when kOk)
   std::vector<int> stops;             ///< the stop of each of them (its η's coordinates)
-  /// Each impact's D P_I, when asked and kOk (the product is `jacobian`).
+  /// Each impact's D P_I, when asked, kOk and all p of them fit in
+  /// kKeptStepEntries numbers (the product is `jacobian`); else empty.
   std::vector<Eigen::MatrixXd> step_jacobians;
+  /// 32 MB: a long orbit of a long chain (2N × 2N a step) keeps only its
+  /// product, as it did before the steps were kept.
+  static constexpr Eigen::Index kKeptStepEntries = Eigen::Index{1} << 22;
 };
 
 class ImpactMap : public SectionMap {

@@ -31,7 +31,8 @@ struct SectionImage {
   Eigen::VectorXd state;     ///< P^k(x), when ok
   Eigen::MatrixXd jacobian;  ///< D P^k(x), when asked and ok
   /// The k steps, when asked for the Jacobian and ok, from a map whose
-  /// ParameterRate chains them (the impact map); else empty.
+  /// ParameterRate chains them (the impact map, where they fit in
+  /// MapResult::kKeptStepEntries numbers); else empty.
   std::vector<SectionStep> steps;
   /// Empty when ok; else what stopped the map, and after how many of the k
   /// events ("after 0 of 1 impacts, lost impact (no further impact)").
