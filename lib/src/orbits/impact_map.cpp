@@ -242,7 +242,7 @@ MapResult ImpactMap::Follow(const Eigen::VectorXd& eta, int stop, int p, bool wi
 Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p,
                                                const ImpactMap& below, const ImpactMap& above,
                                                double delta,
-                                               const std::vector<SectionStep>& steps) const {
+                                               std::span<const SectionStep> steps) const {
   const int n = GetSystem().Dof();
   const bool reuse = static_cast<int>(steps.size()) == p;
   Eigen::VectorXd derivative = Eigen::VectorXd::Zero(2 * n);
@@ -281,11 +281,11 @@ Eigen::VectorXd ImpactMap::ParameterDerivative(const Eigen::VectorXd& eta, int p
 SectionImage ImpactMap::ParameterRate(const Eigen::VectorXd& eta, int p, const SectionMap& below,
                                       const SectionMap& above, double delta,
                                       const SectionImage* at_eta) const {
-  static const std::vector<SectionStep> kFollowHere;
+  std::span<const SectionStep> steps;
+  if (at_eta) steps = at_eta->steps;
   SectionImage rate;
   rate.state = ParameterDerivative(eta, p, dynamic_cast<const ImpactMap&>(below),
-                                   dynamic_cast<const ImpactMap&>(above), delta,
-                                   at_eta ? at_eta->steps : kFollowHere);
+                                   dynamic_cast<const ImpactMap&>(above), delta, steps);
   if (rate.state.size() == 0) rate.failure = "the map fails beside the parameter's value";
   return rate;
 }

@@ -27,6 +27,7 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -121,7 +122,7 @@ class ImpactMap : public SectionMap {
   /// them, else followed here. Empty if the map fails.
   Eigen::VectorXd ParameterDerivative(const Eigen::VectorXd& eta, int p, const ImpactMap& below,
                                       const ImpactMap& above, double delta,
-                                      const std::vector<SectionStep>& steps = {}) const;
+                                      std::span<const SectionStep> steps = {}) const;
 
   /// η of the state just before an impact at time t at stop `stop` (the
   /// section's by default).
