@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -21,6 +22,10 @@
 #include "common/provenance.hpp"
 #include "common/system_options.hpp"
 #include "impactkit/model/system.hpp"
+
+#if IMPACTKIT_HAVE_MIMALLOC
+#include <mimalloc.h>
+#endif
 
 namespace {
 
@@ -59,6 +64,22 @@ std::string NoCommandMessage(const CLI::App& app, int argc, char** argv) {
                      KnownCommands(app));
 }
 
+/// The allocator that serves this process's malloc, as --version reports
+/// it: mimalloc where the build links it and it took malloc over (it must
+/// come before the C library in the link), else the C library's.
+std::string AllocatorName() {
+#if IMPACTKIT_HAVE_MIMALLOC
+  void* probe = std::malloc(1);
+  const bool from_mimalloc = mi_is_in_heap_region(probe);
+  std::free(probe);
+  if (from_mimalloc) {
+    const int version = mi_version();  // 209 for 2.0.9
+    return fmt::format("mimalloc {}.{}.{}", version / 100, version / 10 % 10, version % 10);
+  }
+#endif
+  return "the C library's";
+}
+
 /// Where to look after a command-line syntax error.
 std::string HelpHint(const CLI::App& app) {
   const auto chosen = app.get_subcommands();
@@ -75,7 +96,8 @@ int main(int argc, char** argv) {
       "Without --system every command uses the paper's system: {}.",
       impactkit::cli::ParameterList(impactkit::PaperSystem()))};
   app.name("impactkit");
-  app.set_version_flag("--version", std::string("impactkit ") + IMPACTKIT_VERSION);
+  app.set_version_flag(
+      "--version", fmt::format("impactkit {} (malloc: {})", IMPACTKIT_VERSION, AllocatorName()));
   app.require_subcommand(1);
   app.footer(
       "Exit status: 0 success, 1 the run failed or produced no result (output, gnuplot, "

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake
-  libeigen3-dev libsundials-dev libceres-dev libfmt-dev libboost-dev
+  libeigen3-dev libsundials-dev libceres-dev libfmt-dev libboost-dev libmimalloc-dev
   catch2 libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev gnuplot-nox zlib1g-dev
   clang-format
