@@ -189,7 +189,7 @@ TEST_CASE("ModeClock: the parts past the first order within 8 ulps of their size
 
 TEST_CASE("ExponentialTable declines outside its range, and the clock falls back exactly",
           "[mode_clock]") {
-  const ExponentialTable table({-0.1, 1.0});
+  const ExponentialTable table(std::complex<double>(-0.1, 1.0));
   std::complex<double> value;
   CHECK_FALSE(table.Evaluate(-1e-9, &value));
   CHECK_FALSE(table.Evaluate(1e6, &value));
@@ -214,6 +214,40 @@ TEST_CASE("ExponentialTable declines outside its range, and the clock falls back
     }
     const std::complex<double> rotor = clock.Rotor(tau);
     CHECK(std::abs(rotor - std::polar(1.0, 1.3 * tau)) < 1e-15);
+  }
+}
+
+// The rotor's table is shorter (ModeClock::kRotorCoarse): within its range
+// the same bits as the full table's, and e^{iΩτ} to a few ulps; beyond it
+// exactly std::polar. Its range, 2048 h with hΩ in (1/32, 1/16], reaches
+// at least 10 forcing periods whatever Ω.
+TEST_CASE("the rotor's short table: the full table's bits for 10 forcing periods, then std::polar",
+          "[mode_clock]") {
+  constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+  constexpr double kPi = 3.14159265358979323846;
+  for (const double omega : {0.1, 0.6, 1.0, 1.4, 1.75, 23.0}) {
+    const ExponentialTable full(std::complex<double>(0.0, omega));
+    const ExponentialTable short_table(std::complex<double>(0.0, omega), ModeClock::kRotorCoarse);
+    const ModeClock clock({}, omega);
+    const double period = 2 * kPi / omega;
+    for (int i = 0; i <= 4000; ++i) {
+      const double tau = i * 10.0 * period / 4000;  // up to 10 periods
+      std::complex<double> from_full, from_short;
+      CAPTURE(omega, tau);
+      REQUIRE(full.Evaluate(tau, &from_full));
+      REQUIRE(short_table.Evaluate(tau, &from_short));
+      CHECK(from_short == from_full);
+      CHECK(clock.Rotor(tau) == from_full);
+      const double error = std::abs(from_short - Reference({0.0, omega}, tau));
+      CHECK(error < 4.0 * kEpsilon * (1.0 + omega * tau));
+    }
+    for (const double periods : {20.5, 40.0, 300.0}) {
+      const double tau = periods * period;
+      std::complex<double> value;
+      CAPTURE(omega, periods);
+      CHECK_FALSE(short_table.Evaluate(tau, &value));
+      CHECK(clock.Rotor(tau) == std::polar(1.0, omega * tau));
+    }
   }
 }
 

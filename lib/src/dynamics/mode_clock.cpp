@@ -51,21 +51,21 @@ struct ExponentialParts {
   }
 };
 
-/// The tables' entries at τ = k σ, k < count, by the recurrence above:
+/// The tables' first `count` entries, at τ = k σ, by the recurrence above:
 /// each step's rounding is an ulp of long double, so 256 steps stay below
 /// an ulp of double, where exp, expm1 and sincos per entry made a table's
 /// construction cost as much as ten thousand evaluations of it.
-template <std::size_t kCount>
-void FillTables(std::complex<double> rate, double sigma,
-                std::array<std::complex<double>, kCount>* values,
-                std::array<std::complex<double>, kCount>* increments) {
+template <std::size_t kSize>
+void FillTables(std::complex<double> rate, double sigma, std::size_t count,
+                std::array<std::complex<double>, kSize>* values,
+                std::array<std::complex<double>, kSize>* increments) {
   const std::complex<long double> rate_ld(rate.real(), rate.imag());
   const ExponentialParts step = ExponentialParts::At(rate_ld * static_cast<long double>(sigma));
   ExponentialParts parts;
   auto narrow = [](std::complex<long double> z) {
     return std::complex<double>(static_cast<double>(z.real()), static_cast<double>(z.imag()));
   };
-  for (std::size_t k = 0; k < kCount; ++k) {
+  for (std::size_t k = 0; k < count; ++k) {
     (*values)[k] = narrow(parts.value);
     (*increments)[k] = narrow(parts.increment);
     parts.Advance(step);
@@ -181,20 +181,21 @@ double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
   return Envelope(alpha, gamma, DecayFrom(tau_from));
 }
 
-ExponentialTable::ExponentialTable(std::complex<double> rate) {
+ExponentialTable::ExponentialTable(std::complex<double> rate, unsigned coarse_entries) {
+  coarse_entries = std::clamp(coarse_entries, 1u, kCoarse);
   // h = 2^-m with h|λ| in (1/32, 1/16], so |λδ| <= 1/32.
   const double magnitude = std::abs(rate);
   const int exponent = magnitude > 0 ? -std::ilogb(16.0 * magnitude) - 1 : 0;
   step_ = std::ldexp(1.0, exponent);
   inverse_step_ = std::ldexp(1.0, -exponent);
-  limit_ = kFine * kCoarse - 0.5;
+  limit_ = kFine * coarse_entries - 0.5;
   std::complex<double> term = 1.0;
   for (int n = 0; n <= kDegree; ++n) {
     taylor_[n] = {term.real(), term.imag()};
     term *= rate / static_cast<double>(n + 1);
   }
-  FillTables(rate, step_, &fine_, &fine_increment_);
-  FillTables(rate, kFine * step_, &coarse_, &coarse_increment_);
+  FillTables(rate, step_, kFine, &fine_, &fine_increment_);
+  FillTables(rate, kFine * step_, coarse_entries, &coarse_, &coarse_increment_);
 }
 
 const std::shared_ptr<const ExponentialTable>& ExponentialTable::Empty() {
@@ -211,22 +212,25 @@ namespace {
 /// time (docs/performance.md). The forcing's rotor moves with Ω but is
 /// asked for again at one μ: by each mode of a hybrid system, and by the
 /// systems built again at a converged point. The last few rates' tables
-/// are kept per thread and shared: the same rate, bit for bit, gives the
-/// same table.
-std::shared_ptr<const ExponentialTable> KeptTable(std::complex<double> rate) {
+/// are kept per thread and shared: the same rate, bit for bit, and range
+/// give the same table.
+std::shared_ptr<const ExponentialTable> KeptTable(std::complex<double> rate,
+                                                  unsigned coarse_entries) {
   constexpr std::size_t kKept = 8;
   struct Kept {
     std::uint64_t real, imag;
+    unsigned coarse_entries;
     std::shared_ptr<const ExponentialTable> table;
   };
   thread_local std::vector<Kept> kept;  // the newest last
   const std::uint64_t real = std::bit_cast<std::uint64_t>(rate.real());
   const std::uint64_t imag = std::bit_cast<std::uint64_t>(rate.imag());
   for (const Kept& k : kept) {
-    if (k.real == real && k.imag == imag) return k.table;
+    if (k.real == real && k.imag == imag && k.coarse_entries == coarse_entries) return k.table;
   }
   if (kept.size() == kKept) kept.erase(kept.begin());
-  kept.push_back({real, imag, std::make_shared<const ExponentialTable>(rate)});
+  kept.push_back(
+      {real, imag, coarse_entries, std::make_shared<const ExponentialTable>(rate, coarse_entries)});
   return kept.back().table;
 }
 
@@ -235,14 +239,15 @@ std::shared_ptr<const ExponentialTable> KeptTable(std::complex<double> rate) {
 ModeClock::ModeClock(std::vector<ModeBasis> modes, double omega)
     : modes_(std::move(modes)),
       omega_(omega),
-      rotor_(KeptTable({0.0, omega})),
+      rotor_(KeptTable({0.0, omega}, kRotorCoarse)),
       rotor_series_(0.0, omega * omega) {
   double largest_rate = omega;
   for (const ModeBasis& mode : modes_) {
     series_.emplace_back(mode.decay, mode.beta2);
     largest_rate = std::max(largest_rate, mode.LargestRate());
     const bool oscillates = mode.beta2 > 0;
-    tables_.push_back(oscillates ? KeptTable({-mode.decay, mode.root}) : ExponentialTable::Empty());
+    tables_.push_back(oscillates ? KeptTable({-mode.decay, mode.root}, ExponentialTable::kCoarse)
+                                 : ExponentialTable::Empty());
     inverse_roots_.push_back(oscillates ? 1.0 / mode.root : 0.0);
   }
   anchored_span_ = 1.0 / largest_rate;

@@ -16,8 +16,9 @@
 /// (within an ulp of exp and sincos), the Taylor remainder is below
 /// (1/32)^8 / 8! ≈ 2e-17, and the result is within a few ulps of exp and
 /// sincos at about a fifth of their cost. Outside the
-/// table's range (τ < 0, or beyond 16384 h: some 160 periods of that rate)
-/// and for over- and critically damped modes the closed forms are used.
+/// table's range (τ < 0, or beyond 16384 h: 80–160 periods of that rate;
+/// the forcing's rotor 2048 h, ModeClock::kRotorCoarse) and for over- and
+/// critically damped modes the closed forms are used.
 ///
 /// Beside e^{λτ} the clock gives e^{λτ} − 1 without cancellation (from the
 /// polynomial's terms past the first and tables of e^{λkh} − 1; expm1 in
@@ -84,7 +85,10 @@ class ExponentialTable {
  public:
   /// An empty table: Evaluate always declines.
   ExponentialTable() { taylor_.fill(Eigen::Array2d::Zero()); }
-  explicit ExponentialTable(std::complex<double> rate);
+  static constexpr unsigned kCoarse = 256;  ///< coarse entries at most
+  /// The table of e^{λτ} for τ up to 64 `coarse_entries` steps h; the
+  /// entries are the same bits whatever the range.
+  explicit ExponentialTable(std::complex<double> rate, unsigned coarse_entries = kCoarse);
   /// One empty table, shared by the clocks of modes that have none.
   static const std::shared_ptr<const ExponentialTable>& Empty();
 
@@ -144,8 +148,7 @@ class ExponentialTable {
     return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
   }
 
-  static constexpr unsigned kFine = 64;     ///< entries e^{λ k h}, k < kFine
-  static constexpr unsigned kCoarse = 256;  ///< entries e^{λ kFine k h}, k < kCoarse
+  static constexpr unsigned kFine = 64;  ///< entries e^{λ k h}, k < kFine; then e^{λ kFine k h}
   static constexpr int kDegree = 7;
   double step_ = 0.0;                               ///< h, a power of 2
   double inverse_step_ = 0.0;                       ///< 1/h
@@ -202,6 +205,14 @@ std::complex<double> ForcingRotor(double omega, double t);
 /// the rate allows.
 class ModeClock {
  public:
+  /// The rotor's table reaches 2048 h, h Ω in (1/32, 1/16]: 10–20 forcing
+  /// periods from a flight's start, beyond which std::polar gives e^{iΩτ}
+  /// (to an ulp, as the table). The modes' tables are kept while Ω moves,
+  /// but the rotor's is built again at every Ω a continuation visits, and
+  /// building all 256 coarse entries was 10 % of a connected diagram's CPU
+  /// time, for flights that reach a few of them (docs/performance.md).
+  static constexpr unsigned kRotorCoarse = 32;
+
   ModeClock() = default;
   ModeClock(std::vector<ModeBasis> modes, double omega);
 
