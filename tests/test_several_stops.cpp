@@ -468,6 +468,14 @@ TEST_CASE("a clearance's symmetric P(2,1): multipliers and the pitchfork against
     CHECK_THAT(crossing->system.omega, WithinAbs(found->parameter, 1e-6));
     CHECK(std::abs(asymmetry(crossing->orbit)) > 1e-4);
     sides.push_back(asymmetry(crossing->orbit) - at_pitchfork);
+    // Heading away from the pitchfork on either half: the start's tangent
+    // (in (η, Ω)) points from the pitchfork to the start, so each half is
+    // followed outwards and not back across the pitchfork onto the other.
+    Eigen::VectorXd from_pitchfork(crossing->direction.size());
+    from_pitchfork << crossing->orbit.eta - found->point.orbit.eta,
+        crossing->system.omega - found->parameter;
+    CAPTURE(offset);
+    CHECK(crossing->direction.dot(from_pitchfork) > 0);
   }
   CHECK(sides[0] * sides[1] < 0);
 }

@@ -114,7 +114,10 @@ std::optional<BranchStart> PitchforkBranchStart(const System& system, const Bran
   const Eigen::VectorXd t = BranchChord(branch, pitchfork.point.arclength);
   const Eigen::VectorXd d = *x - x_at;
   if (t.size() == 0 || (d - d.dot(t) * t).norm() < 0.5 * std::abs(offset)) return std::nullopt;
-  return StartAt(problem, *x, w);
+  // Heading away from the pitchfork: along w, whose sign `offset` carries
+  // (along w itself, the half on the negative side went back across the
+  // pitchfork and traced the other half again).
+  return StartAt(problem, *x, offset > 0 ? w : Eigen::VectorXd(-w));
 }
 
 namespace {
