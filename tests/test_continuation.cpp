@@ -742,6 +742,23 @@ void CheckDoubledGoesOn(double omega, int p, int q, const std::vector<double>& e
 }  // namespace
 
 TEST_CASE(
+    "continuation: deep in a period-doubling cascade the doubled branch starts nearer its "
+    "doubling, leaving it (P(64,32) from P(32,16) near 1.6872142)",
+    "[continuation]") {
+  // P(4,2), P(8,4), P(16,8) and P(32,16) double at 1.68779, 1.68735,
+  // 1.687239 and 1.6872142: intervals shrinking ~4.6-fold, so P(64,32)
+  // doubles again ~5e-6 below. 1e-3 along the flip eigenvector is past that
+  // stretch: there the corrector failed, or (in the connected diagram)
+  // landed on a P(64,32) from which the first step ran back across the
+  // doubling onto P(32,16) twice, a branch point. The start nearer the
+  // doubling goes down in Ω. P(32,16)'s η at its doubling is recorded from
+  // `impactkit diagram --from 0.4 --to 2.3`.
+  CheckDoubledGoesOn(
+      1.6872142162694004, 32, 16,
+      {0.48584608421134295, 2.094147020164269, -1.2768061120898602, 0.06425237069170288}, 1.6871);
+}
+
+TEST_CASE(
     "continuation: a step onto the orbit it doubled started from another of its impacts is no "
     "branch point (P(36,16) from P(18,8) near 1.6848)",
     "[continuation]") {

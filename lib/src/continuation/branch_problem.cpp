@@ -81,6 +81,14 @@ std::optional<Eigen::VectorXd> BranchProblem::RepeatGap(const Eigen::VectorXd& x
   return gap;
 }
 
+std::optional<bool> BranchProblem::ApproachesRepeat(const Eigen::VectorXd& x,
+                                                    const Eigen::VectorXd& gap,
+                                                    const Eigen::VectorXd& direction) const {
+  const std::optional<Eigen::VectorXd> ahead = RepeatGap(x + kGapDifference * direction);
+  if (!ahead) return std::nullopt;
+  return gap.dot(*ahead - gap) < 0;
+}
+
 BranchProblem FamilyProblem(const System& system, const ContinuationOptions& options,
                             OrbitSection section, int stop, int k, int q) {
   if (section == OrbitSection::kRelease) {

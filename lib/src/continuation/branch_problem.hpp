@@ -92,6 +92,12 @@ class BranchProblem {
   /// branch or off it; empty where the map fails there or the family has no
   /// repeat divisor.
   std::optional<Eigen::VectorXd> RepeatGap(const Eigen::VectorXd& x) const;
+  /// Whether, from X with repeat gap `gap`, the family's orbits head for
+  /// the shorter orbit repeated along `direction`: g shrinks along it
+  /// (g · Dg d < 0, Dg d by a forward difference over kGapDifference).
+  /// Empty where the map fails at the difference's point.
+  std::optional<bool> ApproachesRepeat(const Eigen::VectorXd& x, const Eigen::VectorXd& gap,
+                                       const Eigen::VectorXd& direction) const;
 
   /// Whether a map failed since the last call because the release map's
   /// chatter stopped ending in sticking (SectionCurve::TakeStoppedSticking).
@@ -103,6 +109,12 @@ class BranchProblem {
 
  private:
   BranchProblem(OrbitSection section, SectionCurve curve);
+
+  /// The arclength of ApproachesRepeat's difference: short enough that g
+  /// is linear over it (steps are 1e-7 to 0.02 long), long enough that g's
+  /// change over it (~1e-6, g' being of order 1) stands far above g's
+  /// rounding (1e-13 to 1e-11 on long orbits).
+  static constexpr double kGapDifference = 1e-6;
 
   OrbitSection section_;
   SectionCurve curve_;

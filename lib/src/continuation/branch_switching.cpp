@@ -80,18 +80,32 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
   // equations too, and on a long orbit's (whose η moves fast with μ) that
   // cut can be as near as the doubled orbit: where the corrector lands on
   // it, or fails, the other side.
-  for (const double side : {offset, -offset}) {
-    Eigen::VectorXd w;
-    const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &w);
-    if (!x) continue;
-    // Genuinely doubled: not a fixed point of P_I^p.
-    Eigen::VectorXd u;
-    if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * std::abs(offset)) continue;
-    // Heading away from the period doubling: along w, whose sign `side`
-    // carries.
-    return StartAt(doubled, *x, side > 0 ? w : Eigen::VectorXd(-w));
+  // Near the flip the doubled orbits leave the single one along w, their
+  // repeat gap growing; deep in a cascade the doubled branch's stretch to
+  // its own flip can be far shorter than `offset` (P(64,32) from P(32,16)
+  // at Ω = 1.6872142: ~5e-6 in Ω), and there the corrector fails, or lands
+  // on a doubled orbit whose gap shrinks along w, from which the branch ran
+  // back across the flip. So the offset is cut tenfold, twice, until the
+  // start leaves the single orbit; failing that, the first start found.
+  std::optional<BranchStart> first;
+  for (const double scale : {1.0, 0.1, 0.01}) {
+    for (const double side : {scale * offset, -scale * offset}) {
+      Eigen::VectorXd w;
+      const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &w);
+      if (!x) continue;
+      // Genuinely doubled: not a fixed point of P_I^p.
+      Eigen::VectorXd u;
+      if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * std::abs(side)) continue;
+      // Heading away from the period doubling: along w, whose sign `side`
+      // carries.
+      std::optional<BranchStart> start = StartAt(doubled, *x, side > 0 ? w : Eigen::VectorXd(-w));
+      if (!start) continue;
+      const std::optional<Eigen::VectorXd> gap = doubled.RepeatGap(*x);
+      if (gap && doubled.ApproachesRepeat(*x, *gap, start->direction) == false) return start;
+      if (!first) first = std::move(start);
+    }
   }
-  return std::nullopt;
+  return first;
 }
 
 std::optional<BranchStart> PitchforkBranchStart(const System& system, const Branch& branch,

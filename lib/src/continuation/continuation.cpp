@@ -456,17 +456,14 @@ class BranchTracer {
     return located;
   }
 
-  /// Whether the branch at `point` heads for the orbit repeated: its
-  /// repeat gap g shrinks along its tangent t (g · Dg t < 0, Dg t by a
-  /// forward difference over kGapDifference). Near the meeting point g is
-  /// linear in arclength (g ≈ g' (σ − σ*)), so a branch that reaches it
-  /// within a step approaches it there, and one leaving it does not. Where
-  /// the map fails at the difference's point it cannot tell: true.
+  /// Whether the branch at `point` heads for the orbit repeated along its
+  /// tangent (BranchProblem::ApproachesRepeat). Near the meeting point the
+  /// gap is linear in arclength, so a branch that reaches it within a step
+  /// approaches it there, and one leaving it does not. Where the map fails
+  /// at the difference's point it cannot tell: true.
   bool Approaches(const BranchPoint& point) const {
-    const Eigen::VectorXd x = BranchProblem::PointX(point) + kGapDifference * point.tangent;
-    const std::optional<Eigen::VectorXd> ahead = problem_.RepeatGap(x);
-    if (!ahead) return true;
-    return point.repeat_gap.dot(*ahead - point.repeat_gap) < 0;
+    return problem_.ApproachesRepeat(BranchProblem::PointX(point), point.repeat_gap, point.tangent)
+        .value_or(true);
   }
 
   /// Whether x lies on the stretch of branch between the points a and b:
@@ -631,12 +628,6 @@ class BranchTracer {
   /// How far (arclength) an extrapolated monitor zero may lie from a
   /// sticking family's last point for its end to be called that event.
   static constexpr double kExtrapolationReach = 1e-3;
-  /// The arclength of Approaches' difference: short enough that g is
-  /// linear over it (steps are 1e-7 to 0.02 long), long enough that g's
-  /// change over it (~1e-6, g' being of order 1) stands far above g's
-  /// rounding (1e-13 to 1e-11 on long orbits).
-  static constexpr double kGapDifference = 1e-6;
-
   const BranchProblem& problem_;
   const ContinuationOptions& options_;
   const RunControl& control_;

@@ -193,8 +193,12 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
 /// of `branch`, displaced from it by `offset` (arclength) along the flip
 /// eigenvector, with the direction leading away from the period doubling;
 /// by −`offset` (the mirror half: the same orbits) where the corrector does
-/// not converge on that side, or converges to the single orbit. Empty if it
-/// converges to a genuinely doubled orbit on neither side.
+/// not converge on that side, or converges to the single orbit. Where
+/// neither side gives a doubled orbit that leaves the single one (its
+/// repeat gap growing along the direction), the offset is cut tenfold, and
+/// again: deep in a cascade the doubled branch's stretch to its own period
+/// doubling is shorter than `offset`. Failing that, the first doubled orbit
+/// found; empty if none is found.
 std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch& branch,
                                               const SpecialPoint& pd,
                                               const ContinuationOptions& options,
