@@ -62,6 +62,30 @@ Eigen::VectorXd BranchChord(const Branch& branch, double s) {
   return (BranchProblem::PointX(*after) - BranchProblem::PointX(*before)).normalized();
 }
 
+/// The doubled branch's start corrected `side` along the flip eigenvector
+/// from `pd`, heading away from it; empty where the corrector fails or
+/// lands on the single orbit (a fixed point of P_I^p solves the doubled
+/// equations too). *leaves: whether its repeat gap grows along its
+/// direction, as a start near the flip does.
+std::optional<BranchStart> DoubledStartAt(const BranchProblem& doubled, const BranchProblem& single,
+                                          const SpecialPoint& pd,
+                                          const ContinuationOptions& options, double side,
+                                          bool* leaves) {
+  Eigen::VectorXd w;
+  const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &w);
+  if (!x) return std::nullopt;
+  Eigen::VectorXd u;
+  if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * std::abs(side)) {
+    return std::nullopt;
+  }
+  // Heading away from the period doubling: along w, whose sign `side`
+  // carries.
+  std::optional<BranchStart> start = StartAt(doubled, *x, side > 0 ? w : Eigen::VectorXd(-w));
+  const std::optional<Eigen::VectorXd> gap = doubled.RepeatGap(*x);
+  *leaves = start && gap && doubled.ApproachesRepeat(*x, *gap, start->direction) == false;
+  return start;
+}
+
 }  // namespace
 
 std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch& branch,
@@ -90,18 +114,10 @@ std::optional<BranchStart> DoubledBranchStart(const System& system, const Branch
   std::optional<BranchStart> first;
   for (const double scale : {1.0, 0.1, 0.01}) {
     for (const double side : {scale * offset, -scale * offset}) {
-      Eigen::VectorXd w;
-      const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &w);
-      if (!x) continue;
-      // Genuinely doubled: not a fixed point of P_I^p.
-      Eigen::VectorXd u;
-      if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * std::abs(side)) continue;
-      // Heading away from the period doubling: along w, whose sign `side`
-      // carries.
-      std::optional<BranchStart> start = StartAt(doubled, *x, side > 0 ? w : Eigen::VectorXd(-w));
-      if (!start) continue;
-      const std::optional<Eigen::VectorXd> gap = doubled.RepeatGap(*x);
-      if (gap && doubled.ApproachesRepeat(*x, *gap, start->direction) == false) return start;
+      bool leaves = false;
+      std::optional<BranchStart> start =
+          DoubledStartAt(doubled, single, pd, options, side, &leaves);
+      if (leaves) return start;
       if (!first) first = std::move(start);
     }
   }
