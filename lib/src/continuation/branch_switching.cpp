@@ -25,22 +25,25 @@ BranchProblem ProblemOf(const System& system, const Branch& branch,
 
 /// The new branch leaves the special point `at` along the eigenvector w with
 /// μ stationary: corrected on the hyperplane `offset` along (w, 0) from it.
+/// *away: the unit direction from `at` towards that hyperplane, ±(w, 0) by
+/// the sign of `offset` (the eigenvector's own sign is arbitrary).
 std::optional<Eigen::VectorXd> CorrectAlong(const BranchProblem& problem, const SpecialPoint& at,
                                             const ContinuationOptions& options, double offset,
-                                            Eigen::VectorXd* w) {
+                                            Eigen::VectorXd* away) {
   const Eigen::VectorXd x_at = BranchProblem::Join(at.point.orbit.eta, at.point.parameter);
-  *w = BranchProblem::Join(at.eigenvector, 0.0).normalized();
+  const Eigen::VectorXd w = BranchProblem::Join(at.eigenvector, 0.0).normalized();
+  *away = offset > 0 ? w : Eigen::VectorXd(-w);
   NewtonOptions newton = options.orbit.newton;
   newton.max_iterations = 4 * options.corrector_iterations;
   int iterations = 0;
-  return problem.Correct(x_at + offset * *w, *w, w->dot(x_at) + offset, newton, &iterations);
+  return problem.Correct(x_at + offset * w, w, w.dot(x_at) + offset, newton, &iterations);
 }
 
 /// The start at the corrected point x of `problem`'s branch, heading away
-/// from the special point (along w).
+/// from the special point (along `away`, CorrectAlong's).
 std::optional<BranchStart> StartAt(const BranchProblem& problem, const Eigen::VectorXd& x,
-                                   const Eigen::VectorXd& w) {
-  const std::optional<Eigen::VectorXd> tangent = problem.Tangent(x, w);
+                                   const Eigen::VectorXd& away) {
+  const std::optional<Eigen::VectorXd> tangent = problem.Tangent(x, away);
   if (!tangent) return std::nullopt;
   BranchStart start;
   start.system = problem.SystemAt(BranchProblem::Mu(x));
@@ -71,18 +74,17 @@ std::optional<BranchStart> DoubledStartAt(const BranchProblem& doubled, const Br
                                           const SpecialPoint& pd,
                                           const ContinuationOptions& options, double side,
                                           bool* leaves) {
-  Eigen::VectorXd w;
-  const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &w);
+  Eigen::VectorXd away;
+  const std::optional<Eigen::VectorXd> x = CorrectAlong(doubled, pd, options, side, &away);
   if (!x) return std::nullopt;
   Eigen::VectorXd u;
   if (single.Residual(*x, &u) && u.cwiseAbs().maxCoeff() < 0.1 * std::abs(side)) {
     return std::nullopt;
   }
-  // Heading away from the period doubling: along w, whose sign `side`
-  // carries.
-  std::optional<BranchStart> start = StartAt(doubled, *x, side > 0 ? w : Eigen::VectorXd(-w));
+  std::optional<BranchStart> start = StartAt(doubled, *x, away);
+  if (!start) return std::nullopt;
   const std::optional<Eigen::VectorXd> gap = doubled.RepeatGap(*x);
-  *leaves = start && gap && doubled.ApproachesRepeat(*x, *gap, start->direction) == false;
+  *leaves = gap && doubled.ApproachesRepeat(*x, *gap, start->direction) == false;
   return start;
 }
 
@@ -132,8 +134,8 @@ std::optional<BranchStart> PitchforkBranchStart(const System& system, const Bran
   }
   // The crossing branch leaves along the eigenvector of the multiplier +1.
   const BranchProblem problem = ProblemOf(system, branch, options);
-  Eigen::VectorXd w;
-  const std::optional<Eigen::VectorXd> x = CorrectAlong(problem, pitchfork, options, offset, &w);
+  Eigen::VectorXd away;
+  const std::optional<Eigen::VectorXd> x = CorrectAlong(problem, pitchfork, options, offset, &away);
   if (!x) return std::nullopt;
   // Genuinely the other branch: off the line of this one (the hyperplane
   // also cuts this branch). Its direction is the chord between the branch
@@ -144,10 +146,7 @@ std::optional<BranchStart> PitchforkBranchStart(const System& system, const Bran
   const Eigen::VectorXd t = BranchChord(branch, pitchfork.point.arclength);
   const Eigen::VectorXd d = *x - x_at;
   if (t.size() == 0 || (d - d.dot(t) * t).norm() < 0.5 * std::abs(offset)) return std::nullopt;
-  // Heading away from the pitchfork: along w, whose sign `offset` carries
-  // (along w itself, the half on the negative side went back across the
-  // pitchfork and traced the other half again).
-  return StartAt(problem, *x, offset > 0 ? w : Eigen::VectorXd(-w));
+  return StartAt(problem, *x, away);
 }
 
 namespace {
