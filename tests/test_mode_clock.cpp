@@ -3,9 +3,11 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <vector>
 
+#include "impactkit/core/errors.hpp"
 #include "impactkit/dynamics/mode_clock.hpp"
 
 using namespace impactkit;
@@ -224,12 +226,11 @@ TEST_CASE("ExponentialTable declines outside its range, and the clock falls back
 TEST_CASE("the rotor's short table: the full table's bits for 10 forcing periods, then std::polar",
           "[mode_clock]") {
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
-  constexpr double kPi = 3.14159265358979323846;
   for (const double omega : {0.1, 0.6, 1.0, 1.4, 1.75, 23.0}) {
     const ExponentialTable full(std::complex<double>(0.0, omega));
     const ExponentialTable short_table(std::complex<double>(0.0, omega), ModeClock::kRotorCoarse);
     const ModeClock clock({}, omega);
-    const double period = 2 * kPi / omega;
+    const double period = 2 * std::numbers::pi / omega;
     for (int i = 0; i <= 4000; ++i) {
       const double tau = i * 10.0 * period / 4000;  // up to 10 periods
       std::complex<double> from_full, from_short;
@@ -249,6 +250,10 @@ TEST_CASE("the rotor's short table: the full table's bits for 10 forcing periods
       CHECK(clock.Rotor(tau) == std::polar(1.0, omega * tau));
     }
   }
+  // A range outside 1 to kCoarse coarse entries is refused, not clamped.
+  CHECK_THROWS_AS(ExponentialTable(std::complex<double>(0.0, 1.0), 0u), InvalidInput);
+  CHECK_THROWS_AS(ExponentialTable(std::complex<double>(0.0, 1.0), ExponentialTable::kCoarse + 1),
+                  InvalidInput);
 }
 
 TEST_CASE("the forcing rotor at an instant is std::polar's, whichever instant was asked before",

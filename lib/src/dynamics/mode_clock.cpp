@@ -9,6 +9,8 @@
 #include <numbers>
 #include <vector>
 
+#include "core/require.hpp"
+
 namespace impactkit {
 namespace {
 
@@ -182,7 +184,9 @@ double ModeBasis::Envelope(double alpha, double gamma, double tau_from) const {
 }
 
 ExponentialTable::ExponentialTable(std::complex<double> rate, unsigned coarse_entries) {
-  coarse_entries = std::clamp(coarse_entries, 1u, kCoarse);
+  Require(coarse_entries >= 1 && coarse_entries <= kCoarse,
+          "an exponential table holds 1 to {} coarse entries, asked for {}", kCoarse,
+          coarse_entries);
   // h = 2^-m with h|λ| in (1/32, 1/16], so |λδ| <= 1/32.
   const double magnitude = std::abs(rate);
   const int exponent = magnitude > 0 ? -std::ilogb(16.0 * magnitude) - 1 : 0;

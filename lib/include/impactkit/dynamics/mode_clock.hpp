@@ -87,7 +87,8 @@ class ExponentialTable {
   ExponentialTable() { taylor_.fill(Eigen::Array2d::Zero()); }
   static constexpr unsigned kCoarse = 256;  ///< coarse entries at most
   /// The table of e^{λτ} for τ up to 64 `coarse_entries` steps h; the
-  /// entries are the same bits whatever the range.
+  /// entries are the same bits whatever the range. Throws InvalidInput
+  /// unless 1 <= coarse_entries <= kCoarse.
   explicit ExponentialTable(std::complex<double> rate, unsigned coarse_entries = kCoarse);
   /// One empty table, shared by the clocks of modes that have none.
   static const std::shared_ptr<const ExponentialTable>& Empty();
