@@ -759,6 +759,36 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "continuation: a branch whose corrector fails above its tolerance's rounding floor says so, "
+    "and Newton solves its last orbit again (P(6,4) from P(3,2) near 1.6837)",
+    "[continuation]") {
+  // P(6,4), doubled from P(3,2) at 1.680313472, ends `corrector_failed`
+  // near 1.683711 with multipliers of ~3000: its refused solves stop at
+  // max |U| 1e-11 to 4e-11, above the corrector's 1e-11 and below U's
+  // rounding floor (4.4e-10). The family goes on (docs/continuation.md,
+  // Known limits): a fresh FindOrbit there converges. P(3,2)'s η at its
+  // doubling is recorded from `impactkit diagram --from 0.4 --to 2.3`.
+  const double omega = 1.680313471517176;
+  const auto [system, orbit] = PaperOrbit(
+      omega, 3, 2,
+      {0.11864031853455775, 2.2816397812312026, -1.4930689187935309, 0.17652571087642485});
+  const Branch single = ContinueBranch({system, orbit, {}}, Options(1.6800, 1.6806, 3, 2));
+  const Branch doubled = DoubledBranchIn(system, single, omega - 1e-6, omega + 1e-6, 1.6803, 1.69);
+  REQUIRE(doubled.end == Termination::kCorrectorFailed);
+  CHECK_THAT(doubled.end_message, Catch::Matchers::Contains("rounding floor"));
+  const BranchPoint& last = doubled.points.back();
+  OrbitOptions options;
+  options.p = 6;
+  options.q = 4;
+  PeriodicOrbit again;
+  REQUIRE(
+      FindOrbit(At(system, "omega", last.parameter), last.orbit.eta, options, &again).termination ==
+      Termination::kConverged);
+  CHECK((again.eta - last.orbit.eta).norm() < 1e-6);
+  CHECK(ResidualFloor(again.jacobian, again.eta) > 10 * NewtonOptions{}.residual_tolerance);
+}
+
+TEST_CASE(
     "continuation: a step onto the orbit it doubled started from another of its impacts is no "
     "branch point (P(36,16) from P(18,8) near 1.6848)",
     "[continuation]") {

@@ -55,6 +55,20 @@ std::string NearContact(const BranchPoint& point) {
   return detail::ShortOfEvent(point.orbit.contacts, kReducibleDepth, "just beyond", true);
 }
 
+/// Why a corrector failing at `point` may not be the family's end: "; the
+/// orbit's rounding floor 4.4e-10 is above the corrector's tolerance 1e-11,
+/// so its orbits may go on" where ResidualFloor there exceeds `tolerance`,
+/// else nothing. Past that floor a converged step is refused
+/// (docs/continuation.md, Known limits).
+std::string AboveFloor(const BranchPoint& point, double tolerance) {
+  const double floor = ResidualFloor(point.orbit.jacobian, point.orbit.eta);
+  if (!(floor > tolerance)) return "";
+  return fmt::format(
+      "; the orbit's rounding floor {:.1e} is above the corrector's tolerance {:g}, so its orbits "
+      "may go on",
+      floor, tolerance);
+}
+
 /// Traces one direction of a branch from an oriented start point.
 class BranchTracer {
  public:
@@ -106,8 +120,9 @@ class BranchTracer {
         if (sticks_ ? EndOfSticking(half) : EndAtGrazing(half, /*last_resort=*/true)) return half;
         half.end = Termination::kCorrectorFailed;
         half.end_message = fmt::format(
-            "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}",
-            options_.min_step, problem_.Parameter(), from.parameter, NearContact(from));
+            "the corrector did not converge with the smallest step {:g} at {} = {:.10g}{}{}",
+            options_.min_step, problem_.Parameter(), from.parameter, NearContact(from),
+            AboveFloor(from, newton_.residual_tolerance));
         return half;
       }
       const bool beyond = next->parameter < options_.Lower() || next->parameter > options_.Upper();
