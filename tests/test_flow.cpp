@@ -22,7 +22,7 @@ struct Regime {
   double omega;
 };
 
-Regime Chain(const char* name, int n, double c, double omega) {
+Regime ChainRegime(const char* name, int n, double c, double omega) {
   const System s =
       UniformChain({n, 1.0, 1.0, c}, Eigen::VectorXd::LinSpaced(n, 0.5, 0.1), omega, 0.1, 0.7);
   return {name, s.mass, s.damping, s.stiffness, s.forcing, Eigen::VectorXd::Zero(n), omega};
@@ -30,7 +30,7 @@ Regime Chain(const char* name, int n, double c, double omega) {
 
 /// Non-proportional damping: a dashpot on the first mass only.
 Regime NonProportional() {
-  Regime r = Chain("3-DOF non-proportional", 3, 0.0, 0.8);
+  Regime r = ChainRegime("3-DOF non-proportional", 3, 0.0, 0.8);
   r.m.diagonal() << 1.0, 2.0, 0.5;
   r.c(0, 0) = 0.4;
   r.c(2, 2) = 0.05;
@@ -39,15 +39,15 @@ Regime NonProportional() {
 }
 
 std::vector<Regime> Regimes() {
-  Regime stuck = Chain("1-DOF with constant force (stuck subsystem)", 1, 0.2, 0.7);
+  Regime stuck = ChainRegime("1-DOF with constant force (stuck subsystem)", 1, 0.2, 0.7);
   stuck.f0 = Eigen::VectorXd::Constant(1, 0.1);
-  return {Chain("1-DOF under-damped", 1, 0.1, 1.3),
-          Chain("1-DOF over-damped", 1, 3.0, 0.4),
-          Chain("1-DOF critically damped", 1, 2.0, 0.9),
-          Chain("2-DOF paper", 2, 0.1, 1.4),
-          Chain("2-DOF over-damped", 2, 8.0, 1.4),
-          Chain("5-DOF under-damped", 5, 0.1, 0.9),
-          Chain("5-DOF over-damped", 5, 10.0, 0.9),
+  return {ChainRegime("1-DOF under-damped", 1, 0.1, 1.3),
+          ChainRegime("1-DOF over-damped", 1, 3.0, 0.4),
+          ChainRegime("1-DOF critically damped", 1, 2.0, 0.9),
+          ChainRegime("2-DOF paper", 2, 0.1, 1.4),
+          ChainRegime("2-DOF over-damped", 2, 8.0, 1.4),
+          ChainRegime("5-DOF under-damped", 5, 0.1, 0.9),
+          ChainRegime("5-DOF over-damped", 5, 10.0, 0.9),
           NonProportional(),
           stuck};
 }

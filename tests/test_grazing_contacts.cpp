@@ -21,12 +21,12 @@ using namespace impactkit;
 
 namespace {
 
-struct Case {
+struct ContactCase {
   std::string name;
   System system;
 };
 
-System Chain(int n, double c, double omega) {
+System ChainSystem(int n, double c, double omega) {
   ChainParameters chain;
   chain.dof = n;
   chain.damping = c;
@@ -37,8 +37,8 @@ System Chain(int n, double c, double omega) {
 
 /// The systems the issue names: the paper's chain at three frequencies, a
 /// single mass, a 3-mass chain and a lightly damped chain.
-std::vector<Case> Cases() {
-  std::vector<Case> cases;
+std::vector<ContactCase> ContactCases() {
+  std::vector<ContactCase> cases;
   for (const double omega : {0.5, 1.0, 1.7}) {
     cases.push_back({"paper chain at omega " + std::to_string(omega), PaperSystem(omega)});
   }
@@ -46,8 +46,8 @@ std::vector<Case> Cases() {
                                           Eigen::MatrixXd::Constant(1, 1, 0.05),
                                           Eigen::MatrixXd::Constant(1, 1, 1.0),
                                           Eigen::VectorXd::Constant(1, 0.5), 0.9, 0.1, 0.7)});
-  cases.push_back({"3-mass chain", Chain(3, 0.1, 1.1)});
-  cases.push_back({"lightly damped chain", Chain(2, 0.001, 1.3)});
+  cases.push_back({"3-mass chain", ChainSystem(3, 0.1, 1.1)});
+  cases.push_back({"lightly damped chain", ChainSystem(2, 0.001, 1.3)});
   return cases;
 }
 
@@ -65,7 +65,7 @@ TEST_CASE(
     "a grazing contact is an impact down to the rounding floor, where the square-root law "
     "puts it",
     "[grazing-contacts][simulate]") {
-  for (const Case& base : Cases()) {
+  for (const ContactCase& base : ContactCases()) {
     const System& s0 = base.system;
     const int c = s0.stops[0].dof;
     const double omega = s0.omega, period = 2 * std::numbers::pi / omega;

@@ -7,9 +7,11 @@
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/impact_map.hpp"
+#include "sorted_eigenvalues.hpp"
 
 using Catch::Matchers::WithinAbs;
 using namespace impactkit;
+using testing::SortedEigenvalues;
 
 namespace {
 
@@ -33,14 +35,6 @@ SteadyOrbit Steady(double omega) {
   const ImpactView last = impacts.Impacts().back();
   o.eta = ImpactMap(o.system).ToEta(last.t, last.x, last.v);
   return o;
-}
-
-Eigen::VectorXcd SortedEigenvalues(const Eigen::MatrixXd& m) {
-  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(m).eigenvalues();
-  std::sort(lambda.begin(), lambda.end(), [](auto a, auto b) {
-    return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : a.imag() > b.imag();
-  });
-  return lambda;
 }
 
 /// The stroboscopic map's Jacobian over q periods by central differences of

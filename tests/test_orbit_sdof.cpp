@@ -13,10 +13,12 @@
 
 #include "closed_form_sdof.hpp"
 #include "impactkit/orbits/impact_map.hpp"
+#include "sorted_eigenvalues.hpp"
 
 using namespace impactkit;
 using testing::SdofP11;
 using testing::SdofParameters;
+using testing::SortedEigenvalues;
 
 namespace {
 
@@ -58,16 +60,6 @@ std::string Describe(const Case& c, const SdofP11& o) {
   return "xs = " + std::to_string(c.xs) + ", r = " + std::to_string(c.r) +
          ", omega = " + std::to_string(c.omega) + ", tau = " + std::to_string(o.tau) +
          ", u = " + std::to_string(o.u);
-}
-
-/// Multipliers of the library's Jacobian, in the order of Eigenvalues2.
-std::vector<std::complex<double>> SortedEigenvalues(const Eigen::MatrixXd& j) {
-  const Eigen::VectorXcd l = Eigen::EigenSolver<Eigen::MatrixXd>(j).eigenvalues();
-  std::vector<std::complex<double>> v(l.begin(), l.end());
-  std::sort(v.begin(), v.end(), [](auto a, auto b) {
-    return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : a.imag() > b.imag();
-  });
-  return v;
 }
 
 }  // namespace

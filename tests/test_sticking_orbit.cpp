@@ -21,9 +21,11 @@
 #include "impactkit/orbits/sticking_map.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 #include "seeded_orbit.hpp"
+#include "sorted_eigenvalues.hpp"
 
 using namespace impactkit;
 using Catch::Matchers::WithinAbs;
+using testing::SortedEigenvalues;
 
 namespace {
 
@@ -51,14 +53,6 @@ Eigen::VectorXd Strobe(const Simulator& simulator, double t, const Eigen::Vector
   Eigen::VectorXd out(2 * n);
   out << state.x, state.v;
   return out;
-}
-
-Eigen::VectorXcd SortedEigenvalues(const Eigen::MatrixXd& matrix) {
-  Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(matrix).eigenvalues();
-  std::sort(lambda.begin(), lambda.end(), [](const auto& a, const auto& b) {
-    return std::abs(a) != std::abs(b) ? std::abs(a) > std::abs(b) : a.imag() > b.imag();
-  });
-  return lambda;
 }
 
 /// The multipliers, largest first, of the simulator's stroboscopic map over

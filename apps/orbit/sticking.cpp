@@ -18,10 +18,6 @@
 namespace impactkit::cli {
 namespace {
 
-std::vector<double> ToVector(const Eigen::VectorXd& v) {
-  return std::vector<double>(v.data(), v.data() + v.size());
-}
-
 /// The impacts of stuck phase k's cycle (from the release before it to its
 /// accumulation) faster than the bound: the chatter's tail of ever slower
 /// impacts left out.
@@ -119,7 +115,7 @@ nlohmann::json OrbitJson(const System& system, const PeriodicOrbit& orbit,
   for (const std::complex<double>& m : orbit.multipliers) {
     j["multipliers"].push_back({m.real(), m.imag()});
   }
-  j["state"] = ToVector(orbit.eta);
+  j["state"] = std::vector<double>(orbit.eta.begin(), orbit.eta.end());
   j["system"] = nlohmann::json::parse(SystemToJson(system));
   return j;
 }

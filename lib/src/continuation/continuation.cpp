@@ -44,7 +44,7 @@ struct HalfBranch {
 
 /// A branch point's existence monitor in its linear form
 /// (existence_monitor.hpp).
-std::optional<double> PointMonitor(const BranchPoint& point, Monitor monitor) {
+std::optional<double> BranchPointMonitor(const BranchPoint& point, Monitor monitor) {
   return detail::LinearMonitor(point.orbit, monitor);
 }
 
@@ -175,7 +175,7 @@ class BranchTracer {
       LocateSpecialPoints(from, *next, &half);
       Accept(*next, &half);
       if (!sticks_ && half.points.size() >= 2 &&
-          detail::ZeroAhead(half.points.end()[-2], half.points.back(), step, PointMonitor) &&
+          detail::ZeroAhead(half.points.end()[-2], half.points.back(), step, BranchPointMonitor) &&
           EndAtGrazing(half, /*last_resort=*/false)) {
         return half;
       }
@@ -596,7 +596,7 @@ class BranchTracer {
     };
     const std::optional<detail::MonitorApproach<BranchPoint>> approach =
         detail::ApproachMonitorZero(
-            a, b, monitor, PointMonitor, advance, options_.max_step,
+            a, b, monitor, BranchPointMonitor, advance, options_.max_step,
             [](const BranchPoint&) { return false; }, path);
     if (!approach) return std::nullopt;
     const BranchPoint& previous = approach->previous;
@@ -627,7 +627,7 @@ class BranchTracer {
       // (within ten times its linear extrapolation from a: the secant
       // points of a stalled approach are too close to extrapolate from) is
       // this one.
-      const double m_first = *PointMonitor(a, monitor);
+      const double m_first = *BranchPointMonitor(a, monitor);
       const double ahead = std::abs(best.parameter - a.parameter) * m_lo / (m_first - m_lo);
       if (end && (reached || std::abs(end->parameter - best.parameter) <= 10 * ahead)) {
         special.parameter = end->parameter;
