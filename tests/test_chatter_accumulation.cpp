@@ -14,17 +14,13 @@
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/orbits/sticking_orbit.hpp"
 #include "seeded_orbit.hpp"
+#include "single_mass.hpp"
 
 using namespace impactkit;
 using Catch::Matchers::WithinAbs;
+using testing::SingleMass;
 
 namespace {
-
-System SingleMass(double k, double c, double a, double omega, double xs, double r) {
-  return GeneralSystem(Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, c),
-                       Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, a), omega,
-                       xs, r);
-}
 
 struct Reference {
   double omega, accumulation_phase, stuck_duration;

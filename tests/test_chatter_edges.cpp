@@ -10,17 +10,13 @@
 #include "impactkit/hybrid/recorders.hpp"
 #include "impactkit/hybrid/simulator.hpp"
 #include "impactkit/model/parameters.hpp"
+#include "single_mass.hpp"
 
 using Catch::Matchers::WithinAbs;
 using namespace impactkit;
+using testing::SingleMass;
 
 namespace {
-
-System SingleMass(double k, double c, double a, double omega, double xs, double r) {
-  return GeneralSystem(Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, c),
-                       Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, a), omega,
-                       xs, r);
-}
 
 /// The 3-mass system with r = 1 that logged 2.5 million impacts in
 /// two forcing periods.

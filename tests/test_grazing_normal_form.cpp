@@ -19,17 +19,15 @@
 #include "impactkit/model/parameters.hpp"
 #include "impactkit/orbits/grazing_normal_form.hpp"
 #include "seeded_orbit.hpp"
+#include "single_mass.hpp"
 #include "sticking_grazing.hpp"
 #include "system_at.hpp"
 
 using namespace impactkit;
 using testing::SdofParameters;
+using testing::SdofSystem;
 
 namespace {
-
-System LibrarySystem(const SdofParameters& p) {
-  return UniformChain({1, p.m, p.k, p.c}, Eigen::VectorXd::Constant(1, p.a), p.omega, p.xs, p.r);
-}
 
 /// The paper's branch through the orbit P(p, q) seeded at `omega`, followed
 /// towards `to` to its grazing.
@@ -180,7 +178,7 @@ TEST_CASE(
   SdofParameters p;
   p.omega = 1.2;
   p.xs = p.SteadyAmplitude();  // the response's maximum touches the stop
-  const System system = LibrarySystem(p);
+  const System system = SdofSystem(p);
   const GrazingOrbit orbit{system, 1, {ResponseTouch(system, 0)}};
   const GrazingNormalForm form = ComputeGrazingNormalForm(orbit, "omega");
   const double amplitude = p.SteadyAmplitude();

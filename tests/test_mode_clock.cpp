@@ -15,7 +15,7 @@ using namespace impactkit;
 namespace {
 
 /// e^{λτ} from exp and sincos in long double: an independent reference.
-std::complex<double> Reference(std::complex<double> rate, double tau) {
+std::complex<double> ReferenceExponential(std::complex<double> rate, double tau) {
   const long double decay = std::exp(static_cast<long double>(rate.real()) * tau);
   const long double angle = static_cast<long double>(rate.imag()) * tau;
   return {static_cast<double>(decay * std::cos(angle)),
@@ -38,7 +38,8 @@ std::complex<double> ReferenceIncrement(std::complex<double> rate, double tau) {
 double IncrementError(std::complex<double> increment, std::complex<double> rate, double tau) {
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   const std::complex<double> reference = ReferenceIncrement(rate, tau);
-  const double scale = std::abs(reference) + std::abs(rate) * tau * std::abs(Reference(rate, tau));
+  const double scale =
+      std::abs(reference) + std::abs(rate) * tau * std::abs(ReferenceExponential(rate, tau));
   return std::abs(increment - reference) / (kEpsilon * scale);
 }
 
@@ -64,7 +65,7 @@ TEST_CASE("ExponentialTable: e^{λτ} within 4 ε (1 + |λ|τ) over the table's 
       std::complex<double> value;
       if (!table.Evaluate(tau, &value)) continue;
       ++evaluated;
-      const std::complex<double> reference = Reference(rate, tau);
+      const std::complex<double> reference = ReferenceExponential(rate, tau);
       const double error = std::abs(value - reference) / std::abs(reference);
       worst = std::max(worst, error / (kEpsilon * (1.0 + std::abs(rate) * tau)));
     }
@@ -239,7 +240,7 @@ TEST_CASE("the rotor's short table: the full table's bits for 10 forcing periods
       REQUIRE(short_table.Evaluate(tau, &from_short));
       CHECK(from_short == from_full);
       CHECK(clock.Rotor(tau) == from_full);
-      const double error = std::abs(from_short - Reference({0.0, omega}, tau));
+      const double error = std::abs(from_short - ReferenceExponential({0.0, omega}, tau));
       CHECK(error < 4.0 * kEpsilon * (1.0 + omega * tau));
     }
     for (const double periods : {20.5, 40.0, 300.0}) {

@@ -13,11 +13,13 @@
 
 #include "closed_form_sdof.hpp"
 #include "impactkit/orbits/impact_map.hpp"
+#include "single_mass.hpp"
 #include "sorted_eigenvalues.hpp"
 
 using namespace impactkit;
 using testing::SdofP11;
 using testing::SdofParameters;
+using testing::SdofSystem;
 using testing::SortedEigenvalues;
 
 namespace {
@@ -49,10 +51,6 @@ std::vector<Case> Cases() {
 }
 
 SdofParameters Parameters(const Case& c) { return {1.0, 1.0, 0.1, 0.5, c.xs, c.r, c.omega}; }
-
-System LibrarySystem(const SdofParameters& p) {
-  return UniformChain({1, p.m, p.k, p.c}, Eigen::VectorXd::Constant(1, p.a), p.omega, p.xs, p.r);
-}
 
 Eigen::VectorXd Eta(const SdofP11& o) { return Eigen::Vector2d(o.tau, o.u); }
 
@@ -114,7 +112,7 @@ TEST_CASE("N = 1: closed-form P(1,1) orbits are fixed points of the impact map w
   int valid_from_brief = 0, stable = 0, unstable = 0;
   for (const Case& c : Cases()) {
     const SdofParameters p = Parameters(c);
-    const ImpactMap map(LibrarySystem(p));
+    const ImpactMap map(SdofSystem(p));
     for (const SdofP11& o : testing::SdofP11Solutions(p)) {
       if (!testing::SdofCheckFlight(p, o).Valid()) continue;
       INFO(Describe(c, o));
@@ -150,7 +148,7 @@ TEST_CASE("N = 1: a P(1,1) solution that passes through the stop is not an orbit
   int rejected = 0;
   for (const Case& c : Cases()) {
     const SdofParameters p = Parameters(c);
-    const ImpactMap map(LibrarySystem(p));
+    const ImpactMap map(SdofSystem(p));
     for (const SdofP11& o : testing::SdofP11Solutions(p)) {
       const int samples = 20000;
       const testing::SdofFlightCheck check = testing::SdofCheckFlight(p, o, samples);

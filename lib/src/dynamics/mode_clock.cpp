@@ -14,11 +14,9 @@
 namespace impactkit {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 /// sup over τ >= τ0 of τ e^{-aτ} (a > 0).
 double TauDecayMax(double a, double tau0) {
-  if (a <= 0) return kInfinity;
+  if (a <= 0) return std::numeric_limits<double>::infinity();
   return tau0 >= 1.0 / a ? tau0 * std::exp(-a * tau0) : 1.0 / (a * std::numbers::e);
 }
 
