@@ -219,7 +219,7 @@ TEST_CASE("the work bound ends a run that needs too many events per period", "[s
 }
 
 TEST_CASE("the paper's chain undamped with the stop on mass 1 at xs = 0 runs in bounded work",
-          "[simulate][chatter][slow]") {
+          "[simulate][chatter]") {
   // The issue's hang. At Ω = 1 mass 1 is at an antiresonance (its forced
   // amplitude is 0 = xs), so it rests on the stop with a contact force that
   // is 0 to rounding for long stretches: landings and releases at noise

@@ -67,6 +67,34 @@ TEST_CASE("the first of several crossings is returned, refined to 1e-12", "[even
   CHECK_THAT(*first, WithinAbs(2 * kPi - kPi / 3, 1e-12));
 }
 
+TEST_CASE("a gap whose parts cancel within the resolution of 0 is empty, a rise above it is not",
+          "[events]") {
+  // Two uncoupled unit oscillators, x1 = cos t and x2 = (1 - ε) cos t, and
+  // w = x1 - x2 - δ = ε cos t - δ: w'' nearly cancels while the bound of
+  // |w''| over the flight, from the parts, is 2. With ε = 0 w rests 1e-15
+  // below 0 (within the resolution, 1e-14): no event, certified by the
+  // bound of |w''| from its ends (CurvatureBound) in a few halvings, where
+  // the flight's bound needs millions. With ε = 2e-12, δ = 1e-12 w rises 1e-12
+  // above 0 from t = 5π/3 on: an event, where w' is 1.7e-12 and the parts'
+  // rounding (~1e-16) places it to ~1e-4.
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(2, 2);
+  const LinearFlow flow{
+      identity, 0.0 * identity, identity, Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2), 1.0};
+  EventOptions options{1e-13, 2 * kPi};
+  options.resolution = 1e-14;
+  const auto gap = [&](double epsilon, double delta) {
+    const PreparedOutput output =
+        flow.Prepare({Eigen::RowVector2d(1.0, -1.0), Eigen::RowVector2d::Zero(), 0.0, -delta});
+    return flow.Output(
+        output, 0.0,
+        flow.Transient(0.0, Eigen::Vector2d(1.0, 1.0 - epsilon), Eigen::Vector2d::Zero()));
+  };
+  CHECK_FALSE(FirstUpcrossing(gap(0.0, 1e-15), 2.0, 40.0, options));
+  const auto rise = FirstUpcrossing(gap(2e-12, 1e-12), 2.0, 40.0, options);
+  REQUIRE(rise);
+  CHECK_THAT(*rise, WithinAbs(5 * kPi / 3, 1e-3));
+}
+
 TEST_CASE("leaving the surface is not an event, arriving is", "[events]") {
   // x = cos t against a stop at 0.9: start on the surface at acos(0.9)
   // moving away; the next arrival is at 2π - acos(0.9).

@@ -171,6 +171,16 @@ double TwoSidedUpperBound(const Point& a, const Point& b, double bound) {
   return upper;
 }
 
+/// An upper bound of |w''| over [a, b] from its values at the ends and
+/// B3 >= sup|w'''|: |w''| rises from each end by at most B3 per unit time,
+/// so it stays below where the two lines meet. Where w'' nearly cancels (a
+/// mass resting at its stop's level while the others swing) this is far
+/// below the flight's sup|w''|, and an interval where w stays within the
+/// resolution of 0 is dismissed after a few halvings, not millions.
+double CurvatureBound(const Point& a, const Point& b, const ThirdBound& third) {
+  return 0.5 * (std::abs(a.d2w) + std::abs(b.d2w) + third.b3 * (b.t - a.t));
+}
+
 /// A lower bound of w' over [a, b].
 double SlopeLowerBound(const Point& a, const Point& b, double bound) {
   return 0.5 * (a.dw + b.dw - bound * (b.t - a.t));
@@ -320,7 +330,7 @@ std::optional<double> CertainCrossing(const Signal& w, const Point& p, double ce
 
 /// The first crossing in (a, b], or none, by certified bisection.
 std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, double bound,
-                              const EventOptions& options) {
+                              const ThirdBound& third, const EventOptions& options) {
   if (b.w >= 0 && a.w < 0) {
     if (const double slope = SlopeLowerBound(a, b, bound); slope > 0) {
       const Point& nearer = -a.w < b.w ? a : b;
@@ -329,7 +339,10 @@ std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, d
   }
   // Empty, or w could rise above 0 only by less than the resolution: a
   // touch of the surface that is not resolved (EventOptions::resolution).
-  if (b.w < 0 && TwoSidedUpperBound(a, b, bound) < options.resolution) return std::nullopt;
+  if (b.w < 0 &&
+      TwoSidedUpperBound(a, b, std::min(bound, CurvatureBound(a, b, third))) < options.resolution) {
+    return std::nullopt;
+  }
   if (b.t - a.t <= TimeTolerance(b.t, options)) {
     // A tangency resolved to the tolerance: an event only if w got to 0.
     return b.w >= 0 ? std::optional<double>(b.t) : std::nullopt;
@@ -337,8 +350,8 @@ std::optional<double> Examine(const Signal& w, const Point& a, const Point& b, d
   const Point m = Evaluate(w, 0.5 * (a.t + b.t));
   // By induction Examine returns a crossing whenever its right end has
   // w >= 0, so the right half is searched only from m with w(m) < 0.
-  if (auto left = Examine(w, a, m, bound, options)) return left;
-  return Examine(w, m, b, bound, options);
+  if (auto left = Examine(w, a, m, bound, third, options)) return left;
+  return Examine(w, m, b, bound, third, options);
 }
 
 }  // namespace
@@ -373,12 +386,12 @@ std::optional<double> FirstUpcrossing(const Signal& w, double t_begin, double t_
     if (step >= short_step) {
       const Point next = Evaluate(w, p.t + step);
       // The bound makes next.w <= 0; rounding can make it touch 0.
-      if (next.w >= 0) return Examine(w, p, next, b2, options);
+      if (next.w >= 0) return Examine(w, p, next, b2, third, options);
       p = next;
       continue;
     }
     const Point b = Evaluate(w, std::min(t_end, p.t + std::max(4.0 * step, short_step)));
-    if (auto crossing = Examine(w, p, b, b2, options)) return crossing;
+    if (auto crossing = Examine(w, p, b, b2, third, options)) return crossing;
     p = b;
   }
   return std::nullopt;
