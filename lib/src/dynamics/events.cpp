@@ -177,9 +177,9 @@ double TwoSidedUpperBound(const Point& a, const Point& b, double bound) {
 /// mass resting at its stop's level while the others swing) this is far
 /// below the flight's sup|w''|, and an interval where w stays within the
 /// resolution of 0 is dismissed after a few halvings, not millions. The
-/// ends' w'' carry rounding of ε times w's parts, which over the intervals
-/// examined (h of 1e-3 time scales and less) moves the parabola by far less
-/// than the resolution (64 ε times the same parts).
+/// ends' w'' carry rounding of about ε S ω² (S: the magnitude of w's
+/// parts); over an interval of up to one time scale, 2π/ω, that moves the
+/// parabola by at most ε S (2π)²/8 ≈ 5 ε S, below the resolution, 64 ε S.
 double CurvatureBound(const Point& a, const Point& b, const ThirdBound& third) {
   return 0.5 * (std::abs(a.d2w) + std::abs(b.d2w) + third.b3 * (b.t - a.t));
 }
