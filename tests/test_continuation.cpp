@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "closed_form_sdof.hpp"
+#include "continuation/arclength.hpp"
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/start_orbit.hpp"
@@ -538,6 +539,41 @@ TEST_CASE("test functions vanish at their bifurcations and names round-trip", "[
   CHECK_FALSE(SpecialPointTypeFromName("cusp").has_value());
 }
 
+namespace {
+
+/// A point of a model curve for the zero locator: only where it is.
+struct ModelPoint {
+  double arclength = 0.0;
+};
+
+}  // namespace
+
+TEST_CASE(
+    "the zero locator corrects a trial the corrector cannot reach from the bracket's start nearer "
+    "the bracket's end",
+    "[continuation]") {
+  // tanh(4 (s - 0.55)) on [0, 1], zero at s = 0.55; the model corrector
+  // converges only within `reach` of the point it starts from. The first
+  // secant trial, s = 0.508, lies 0.49 from either end.
+  const auto value = [](const ModelPoint& point) {
+    return std::tanh(4.0 * (point.arclength - 0.55));
+  };
+  const ModelPoint a{0.0}, b{1.0};
+  for (double reach : {1.0, 0.3, 0.04}) {
+    const auto advance = [reach](const ModelPoint& from, double s) -> std::optional<ModelPoint> {
+      if (std::abs(s) > reach) return std::nullopt;
+      return ModelPoint{from.arclength + s};
+    };
+    CHECK_THAT(IllinoisZero(a, b, advance, value).arclength,
+               Catch::Matchers::WithinAbs(0.55, 1e-13));
+  }
+  // Out of reach even after kTrialRetreats halvings: the nearer end in value.
+  const auto nowhere = [](const ModelPoint&, double) -> std::optional<ModelPoint> {
+    return std::nullopt;
+  };
+  CHECK(IllinoisZero(a, b, nowhere, value).arclength == 1.0);
+}
+
 TEST_CASE(
     "continuation: a vanishing impact is located by its defining equation where the slope "
     "is small",
@@ -707,6 +743,12 @@ TEST_CASE(
 
 namespace {
 
+/// P(32,16)'s period doubling, and its η there, recorded from `impactkit
+/// diagram --from 0.4 --to 2.3`.
+constexpr double kP32Doubling = 1.6872142162694004;
+const std::vector<double> kP32Eta = {0.48584608421134295, 2.094147020164269, -1.2768061120898602,
+                                     0.06425237069170288};
+
 /// The doubled branch born at the period doubling of the paper's P(p,q)
 /// (η `eta` there, at Ω = `omega`), traced on [omega - 8e-4, omega + 8e-4]:
 /// it goes on, each of its points a primitive P(2p,2q) (the repeat checked
@@ -751,11 +793,26 @@ TEST_CASE(
   // stretch: there the corrector failed, or (in the connected diagram)
   // landed on a P(64,32) from which the first step ran back across the
   // doubling onto P(32,16) twice, a branch point. The start nearer the
-  // doubling goes down in Ω. P(32,16)'s η at its doubling is recorded from
-  // `impactkit diagram --from 0.4 --to 2.3`.
-  CheckDoubledGoesOn(
-      1.6872142162694004, 32, 16,
-      {0.48584608421134295, 2.094147020164269, -1.2768061120898602, 0.06425237069170288}, 1.6871);
+  // doubling goes down in Ω.
+  CheckDoubledGoesOn(kP32Doubling, 32, 16, kP32Eta, 1.6871);
+}
+
+TEST_CASE(
+    "continuation: a period doubling within a doubled branch's first step is located although "
+    "the branch bends too sharply there for the secant's trial (P(64,32) near 1.6872089)",
+    "[continuation]") {
+  // P(64,32)'s multiplier goes from +1 at its birth to -1 within its first
+  // step (det(DP + I) from 1.96 to -4.87 in the connected diagram), where
+  // μ goes like the square of the distance from the birth: the corrector
+  // did not converge from the tangent prediction of the Illinois method's
+  // first trial, and the doubling was not located. The cascade's intervals
+  // (shrinking ~4.6-fold) put it ~5e-6 below P(32,16)'s.
+  const auto [system, orbit] = PaperOrbit(kP32Doubling, 32, 16, kP32Eta);
+  const Branch single = ContinueBranch({system, orbit, {}},
+                                       Options(kP32Doubling - 8e-4, kP32Doubling + 8e-4, 32, 16));
+  const Branch doubled = DoubledBranchIn(system, single, kP32Doubling - 1e-5, kP32Doubling + 1e-5,
+                                         kP32Doubling - 8e-4, kP32Doubling + 8e-4);
+  CheckedPeriodDoubling(doubled, kP32Doubling - 1e-5, kP32Doubling - 1e-6);
 }
 
 TEST_CASE(

@@ -74,21 +74,61 @@ inline double NextStep(double step, int iterations, double min_step, double max_
 /// Iterations of the locators (the Illinois method, secant approaches).
 inline constexpr int kMaxLocateIterations = 80;
 
+/// Halvings of a failed trial's distance from the bracket's nearer end
+/// before the locator gives up on it.
+inline constexpr int kTrialRetreats = 4;
+
+/// A point near arclength *s from a, corrected from the nearer end of the
+/// bracket (`lo` and `hi`, at lo_s and hi_s from a): at *s, else at half
+/// the distance from that end, a quarter, ... up to kTrialRetreats times,
+/// and *s moved to it. `full_step_failed`: the trial at *s itself was
+/// just corrected from `lo` and failed, so the halving starts at once.
+template <typename Point, typename Advance>
+std::optional<Point> NearerEndTrial(const Point& lo, double lo_s, const Point& hi, double hi_s,
+                                    double* s, bool full_step_failed, Advance advance) {
+  const bool from_lo = std::abs(*s - lo_s) <= std::abs(hi_s - *s);
+  const Point& from = from_lo ? lo : hi;
+  const double from_s = from_lo ? lo_s : hi_s;
+  double step = *s - from_s;
+  for (int retreat = 0; retreat <= kTrialRetreats; ++retreat, step /= 2.0) {
+    if (retreat == 0 && full_step_failed && from_lo) continue;
+    if (std::optional<Point> trial = advance(from, step)) {
+      *s = from_s + step;
+      return trial;
+    }
+  }
+  return std::nullopt;
+}
+
 /// The Illinois method on arclength for the zero of `value` between the
-/// points a (s = 0) and b, where it changes sign, each trial `advance(a,
-/// s)` corrected onto the curve from a (nothing where the corrector
-/// fails). The point with the least |value| found; where no trial
-/// converged (rare: the corrector failing between two good points) the
-/// nearer end stands in, its value saying how near.
+/// points a (s = 0) and b, where it changes sign. Each trial is corrected
+/// onto the curve by `advance(from, s)` (nothing where the corrector fails)
+/// from a, until the corrector fails there; from then on from the
+/// bracket's nearer end (NearerEndTrial). The predictor is a tangent line:
+/// where the curve bends sharply (a doubled branch next to its birth, whose
+/// μ goes like the square of the distance from it and whose multiplier can
+/// go from +1 to −1 within one step) a trial within a's step can be out of
+/// the corrector's reach from a, while from a nearer point it is not. The
+/// point with the least |value| found; where no trial converged (rare: the
+/// corrector failing next to both ends) the nearer end stands in, its value
+/// saying how near.
 template <typename Point, typename Advance, typename Value>
 Point IllinoisZero(const Point& a, const Point& b, Advance advance, Value value) {
+  Point lo_point = a, hi_point = b;
   double lo = 0.0, hi = b.arclength - a.arclength;
   double f_lo = value(a), f_hi = value(b);
   std::optional<Point> best;
   int side = 0;
+  bool from_a = true;
   for (int k = 0; k < kMaxLocateIterations && std::abs(hi - lo) > 1e-14 * std::abs(hi); ++k) {
-    const double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-    const std::optional<Point> trial = advance(a, s);
+    double s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    std::optional<Point> trial;
+    if (from_a) trial = advance(a, s);
+    if (!trial) {
+      // lo is a itself until a trial replaces it.
+      trial = NearerEndTrial(lo_point, lo, hi_point, hi, &s, from_a && lo == 0.0, advance);
+      from_a = false;
+    }
     if (!trial) break;
     const double f = value(*trial);
     if (!best || std::abs(f) < std::abs(value(*best))) best = trial;
@@ -96,11 +136,13 @@ Point IllinoisZero(const Point& a, const Point& b, Advance advance, Value value)
     if ((f > 0) == (f_lo > 0)) {
       lo = s;
       f_lo = f;
+      lo_point = *std::move(trial);
       if (side == -1) f_hi /= 2.0;
       side = -1;
     } else {
       hi = s;
       f_hi = f;
+      hi_point = *std::move(trial);
       if (side == +1) f_lo /= 2.0;
       side = +1;
     }

@@ -347,11 +347,10 @@ class BranchTracer {
   /// point where its multiplier is within kCriticalSolved of lambda, else
   /// the critical point solved directly from it (critical_point.hpp) — the
   /// bracketing falls short where trials between a and b do not converge,
-  /// as on long orbits near a graze. Empty if the direct solve fails or
-  /// lands off the stretch a–b (OnStretch): a sign change of
-  /// det(D P ∓ I) that no multiplier at ±1 explains (one passing through
-  /// infinity) is no point, and a solve that runs back to a point located
-  /// before is none either.
+  /// as on long orbits near a graze — unless its multiplier is farther. Empty if the direct solve
+  /// fails or lands off the stretch a–b (OnStretch): a sign change of det(D P ∓ I) that no
+  /// multiplier at ±1 explains (one passing through infinity) is no point, and a solve that runs
+  /// back to a point located before is none either.
   std::optional<BranchPoint> SolvedCriticalPoint(const BranchPoint& a, const BranchPoint& b,
                                                  const BranchPoint& located, double lambda) const {
     if (CriticalDistance(located, lambda) <= kCriticalSolved) return located;
@@ -362,6 +361,10 @@ class BranchTracer {
     std::optional<BranchPoint> point = problem_.Describe(*x, a.tangent);
     if (!point) return std::nullopt;
     point->arclength = a.arclength + a.tangent.dot(*x - BranchProblem::PointX(a));
+    // The solve holds σ to Newton's tolerance, which on a long orbit can
+    // leave the multiplier farther from lambda (2.5e-7 on P(40,32) at
+    // 1.706015066) than the bracketing's best point (2e-9).
+    if (CriticalDistance(*point, lambda) > CriticalDistance(located, lambda)) return located;
     return point;
   }
 
@@ -372,7 +375,7 @@ class BranchTracer {
 
   /// The zero of `value` between a and b, where it changes sign, by the
   /// Illinois method on arclength (arclength.hpp), each trial corrected
-  /// onto the branch from a.
+  /// onto the branch from a (or nearer the bracket's end where it cannot be).
   template <typename Value>
   BranchPoint LocateZero(const BranchPoint& a, const BranchPoint& b, Value value) const {
     auto advance = [this](const BranchPoint& from, double s) {

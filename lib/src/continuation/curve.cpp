@@ -262,7 +262,7 @@ class CurveTracer {
 
   /// The zero of `value` between a and b, where it changes sign, by the
   /// Illinois method on arclength (arclength.hpp), each trial corrected
-  /// onto the curve from a.
+  /// onto the curve from a (or nearer the bracket's end where it cannot be).
   template <typename Value>
   CurvePoint LocateZero(const CurvePoint& a, const CurvePoint& b, Value value) const {
     auto advance = [this](const CurvePoint& from, double s) {
