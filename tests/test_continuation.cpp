@@ -742,6 +742,22 @@ TEST_CASE(
   CHECK_THAT(doubling.parameter, Catch::Matchers::WithinAbs(1.823339173, 1e-8));
 }
 
+TEST_CASE(
+    "continuation: a period doubling in the same step as a multiplier passing through infinity "
+    "is located (P(88,128) from P(44,64) near 1.8233288)",
+    "[continuation]") {
+  // P(88,128)'s one multiplier not near 0 goes from 0.16 through -1 and
+  // round through infinity to 14.95 within a step (to Ω = 1.8232682):
+  // det(DP + I) flips twice and keeps its sign, det(DP - I) flips once
+  // with no multiplier at +1. The period doubling is at 1.823328809 in the
+  // 2401-value run.
+  const System system = PaperSystem(1.8234);
+  const Branch p44 = DoubledBranchIn(system, P22From11(), 1.8233, 1.8236, 1.8233, 1.8240);
+  const Branch p88 = DoubledBranchIn(system, p44, 1.8233, 1.82338, 1.8229, 1.8240);
+  const SpecialPoint& pd88 = CheckedPeriodDoubling(p88, 1.82332, 1.823335, 1e-8);
+  CHECK_THAT(pd88.parameter, Catch::Matchers::WithinAbs(1.823328809, 1e-8));
+}
+
 namespace {
 
 /// P(32,16)'s period doubling, and its η there, recorded from `impactkit

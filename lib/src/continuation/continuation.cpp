@@ -33,6 +33,9 @@ constexpr double kReducibleDepth = 1e-6;
 /// within this of ±1 is located; otherwise it is solved directly (and
 /// reported only within the test function's max_distance).
 constexpr double kCriticalSolved = 1e-9;
+/// Equal steps a step is cut into where a multiplier passing through
+/// infinity may hide a fold or period doubling (LocateMaskedZeros).
+constexpr int kMaskSamples = 8;
 
 /// One traced direction of a branch.
 struct HalfBranch {
@@ -288,12 +291,15 @@ class BranchTracer {
   /// and inserts the located points before `b`.
   void LocateSpecialPoints(const BranchPoint& a, const BranchPoint& b, HalfBranch* half) const {
     std::vector<SpecialPoint> found;
+    bool through_infinity = false;
     for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
       if (!options_.locate_bifurcations) break;
-      if ((a.test_values[test] > 0) == (b.test_values[test] > 0)) continue;
+      if (!ChangesSign(a, b, test)) continue;
       std::optional<SpecialPoint> special = LocateZero(a, b, test);
       if (special) found.push_back(*special);
+      through_infinity |= !special && BifurcationTests()[test].critical_multiplier.has_value();
     }
+    if (through_infinity) LocateMaskedZeros(a, b, &found);
     for (const UserTest& test : options_.user_tests) {
       if ((test.value(a.orbit) > 0) == (test.value(b.orbit) > 0)) continue;
       found.push_back(LocateUserTest(a, b, test));
@@ -304,6 +310,40 @@ class BranchTracer {
     for (const SpecialPoint& special : found) {
       half->points.push_back(special.point);
       half->special_points.push_back(special);
+    }
+  }
+
+  /// Whether bifurcation test `test` has opposite signs at a and b.
+  static bool ChangesSign(const BranchPoint& a, const BranchPoint& b, std::size_t test) {
+    return (a.test_values[test] > 0) != (b.test_values[test] > 0);
+  }
+
+  /// The folds and period doublings that a multiplier passing through
+  /// infinity between a and b hides: it flips both det(D P ∓ I), so a zero
+  /// of the other in the same step leaves that one's sign as it was (on
+  /// the paper's P(88,128) a multiplier goes from 0.16 through −1 and round
+  /// through infinity to 14.95 in one step). The step is sampled at
+  /// kMaskSamples equal steps, each corrected from the one before, and the
+  /// sign changes between samples of the tests that kept their sign over
+  /// the step are located and added to `found`.
+  void LocateMaskedZeros(const BranchPoint& a, const BranchPoint& b,
+                         std::vector<SpecialPoint>* found) const {
+    std::vector<BranchPoint> samples = {a};
+    const double step = (b.arclength - a.arclength) / kMaskSamples;
+    for (int k = 1; k < kMaskSamples; ++k) {
+      int iterations = 0;
+      std::optional<BranchPoint> next = Advance(samples.back(), step, &iterations);
+      if (!next) break;
+      samples.push_back(*std::move(next));
+    }
+    samples.push_back(b);
+    for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
+      if (!BifurcationTests()[test].critical_multiplier || ChangesSign(a, b, test)) continue;
+      for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
+        if (!ChangesSign(samples[k], samples[k + 1], test)) continue;
+        std::optional<SpecialPoint> special = LocateZero(samples[k], samples[k + 1], test);
+        if (special) found->push_back(*special);
+      }
     }
   }
 
