@@ -318,6 +318,15 @@ class BranchTracer {
     return (a.test_values[test] > 0) != (b.test_values[test] > 0);
   }
 
+  /// Whether every fold and period-doubling test changes sign between a
+  /// and b, as where a multiplier passes through infinity.
+  static bool PassesInfinity(const BranchPoint& a, const BranchPoint& b) {
+    for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
+      if (BifurcationTests()[test].critical_multiplier && !ChangesSign(a, b, test)) return false;
+    }
+    return true;
+  }
+
   /// The folds and period doublings that a multiplier passing through
   /// infinity between a and b hides: it flips both det(D P ∓ I), so a zero
   /// of the other in the same step leaves that one's sign as it was (on
@@ -325,7 +334,9 @@ class BranchTracer {
   /// through infinity to 14.95 in one step). The step is sampled at
   /// kMaskSamples equal steps, each corrected from the one before, and the
   /// sign changes between samples of the tests that kept their sign over
-  /// the step are located and added to `found`.
+  /// the step are located and added to `found` — but for the samples
+  /// between which the passage itself lies (every such test flips there;
+  /// locating there costs a whole failed bracketing).
   void LocateMaskedZeros(const BranchPoint& a, const BranchPoint& b,
                          std::vector<SpecialPoint>* found) const {
     std::vector<BranchPoint> samples = {a};
@@ -340,8 +351,9 @@ class BranchTracer {
     for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
       if (!BifurcationTests()[test].critical_multiplier || ChangesSign(a, b, test)) continue;
       for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
-        if (!ChangesSign(samples[k], samples[k + 1], test)) continue;
-        std::optional<SpecialPoint> special = LocateZero(samples[k], samples[k + 1], test);
+        const BranchPoint &from = samples[k], &to = samples[k + 1];
+        if (!ChangesSign(from, to, test) || PassesInfinity(from, to)) continue;
+        std::optional<SpecialPoint> special = LocateZero(from, to, test);
         if (special) found->push_back(*special);
       }
     }
