@@ -766,17 +766,26 @@ constexpr double kP32Doubling = 1.6872142162694004;
 const std::vector<double> kP32Eta = {0.48584608421134295, 2.094147020164269, -1.2768061120898602,
                                      0.06425237069170288};
 
+/// The branch doubled at the period doubling within `window` of Ω =
+/// `omega` of the paper's P(p,q) (η `eta` at `omega`), both branches traced
+/// on [omega - 8e-4, omega + 8e-4].
+Branch DoubledPaperBranch(double omega, int p, int q, const std::vector<double>& eta,
+                          double window) {
+  const auto [system, orbit] = PaperOrbit(omega, p, q, eta);
+  const Branch single =
+      ContinueBranch({system, orbit, {}}, Options(omega - 8e-4, omega + 8e-4, p, q));
+  return DoubledBranchIn(system, single, omega - window, omega + window, omega - 8e-4,
+                         omega + 8e-4);
+}
+
 /// The doubled branch born at the period doubling of the paper's P(p,q)
 /// (η `eta` there, at Ω = `omega`), traced on [omega - 8e-4, omega + 8e-4]:
 /// it goes on, each of its points a primitive P(2p,2q) (the repeat checked
 /// again by the orbit's own map), as is the orbit Newton (FindOrbit) finds
 /// again at its far end, which lies below `below`.
 void CheckDoubledGoesOn(double omega, int p, int q, const std::vector<double>& eta, double below) {
-  const auto [system, orbit] = PaperOrbit(omega, p, q, eta);
-  const Branch single =
-      ContinueBranch({system, orbit, {}}, Options(omega - 8e-4, omega + 8e-4, p, q));
-  const Branch doubled =
-      DoubledBranchIn(system, single, omega - 1e-5, omega + 1e-5, omega - 8e-4, omega + 8e-4);
+  const System system = PaperSystem(omega);
+  const Branch doubled = DoubledPaperBranch(omega, p, q, eta, 1e-5);
   CHECK(doubled.end != Termination::kBranchPoint);
   REQUIRE(doubled.points.size() > 2);
   for (const BranchPoint& point : doubled.points) {
@@ -824,11 +833,7 @@ TEST_CASE(
   // did not converge from the tangent prediction of the Illinois method's
   // first trial, and the doubling was not located. The cascade's intervals
   // (shrinking ~4.6-fold) put it ~5e-6 below P(32,16)'s.
-  const auto [system, orbit] = PaperOrbit(kP32Doubling, 32, 16, kP32Eta);
-  const Branch single = ContinueBranch({system, orbit, {}},
-                                       Options(kP32Doubling - 8e-4, kP32Doubling + 8e-4, 32, 16));
-  const Branch doubled = DoubledBranchIn(system, single, kP32Doubling - 1e-5, kP32Doubling + 1e-5,
-                                         kP32Doubling - 8e-4, kP32Doubling + 8e-4);
+  const Branch doubled = DoubledPaperBranch(kP32Doubling, 32, 16, kP32Eta, 1e-5);
   CheckedPeriodDoubling(doubled, kP32Doubling - 1e-5, kP32Doubling - 1e-6);
 }
 
@@ -844,13 +849,9 @@ TEST_CASE(
   // test checks the doubling, not that choice. P(20,16)'s η at its
   // doubling is recorded from `impactkit diagram --from 0.4 --to 2.3`.
   const double omega = 1.7060152029582736;
-  const auto [system, orbit] = PaperOrbit(
+  const Branch doubled = DoubledPaperBranch(
       omega, 20, 16,
-      {0.13801249708723845, 2.3536190353919482, -1.3356317999160379, 0.066517585321108588});
-  const Branch single =
-      ContinueBranch({system, orbit, {}}, Options(omega - 8e-4, omega + 8e-4, 20, 16));
-  const Branch doubled =
-      DoubledBranchIn(system, single, omega - 1e-6, omega + 1e-6, omega - 8e-4, omega + 8e-4);
+      {0.13801249708723845, 2.3536190353919482, -1.3356317999160379, 0.066517585321108588}, 1e-6);
   // Newton either side near enough for the multiplier, which moves by 0.3
   // in 2e-8 there (1e-7 away Newton lands on orbits with no multiplier
   // near -1).
