@@ -399,10 +399,12 @@ class BranchTracer {
   /// point where its multiplier is within kCriticalSolved of lambda, else
   /// the critical point solved directly from it (critical_point.hpp) — the
   /// bracketing falls short where trials between a and b do not converge,
-  /// as on long orbits near a graze — unless its multiplier is farther. Empty if the direct solve
-  /// fails or lands off the stretch a–b (OnStretch): a sign change of det(D P ∓ I) that no
-  /// multiplier at ±1 explains (one passing through infinity) is no point, and a solve that runs
-  /// back to a point located before is none either.
+  /// as on long orbits near a graze — unless the solved multiplier is
+  /// farther from lambda than the best point's. Empty if the direct solve
+  /// fails or lands off the stretch a–b (OnStretch): a sign change of
+  /// det(D P ∓ I) that no multiplier at ±1 explains (one passing through
+  /// infinity) is no point, and a solve that runs back to a point located
+  /// before is none either.
   std::optional<BranchPoint> SolvedCriticalPoint(const BranchPoint& a, const BranchPoint& b,
                                                  const BranchPoint& located, double lambda) const {
     if (CriticalDistance(located, lambda) <= kCriticalSolved) return located;
