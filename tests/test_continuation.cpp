@@ -935,3 +935,33 @@ TEST_CASE("continuation: a bound at the end of the parameter's range (r = 1) is 
               .termination == Termination::kConverged);
   CHECK((fresh.eta - branch.points.back().orbit.eta).cwiseAbs().maxCoeff() < 1e-8);
 }
+
+TEST_CASE(
+    "continuation: a period-doubling sign change the locator cannot account for is reported with "
+    "the step that holds it (P(160,128) near 1.70601503)",
+    "[continuation]") {
+  // Doubled from P(80,64) at its period doubling (η recorded from `impactkit
+  // diagram --from 0.4 --to 2.3`), P(160,128) doubles again ~7e-9 below
+  // (the cascade's intervals shrink ~4.7-fold). Its last steps are at the
+  // orbit's rounding floor (1.2e-11, above the corrector's 1e-11): no trial
+  // inside the step converges, and the doubling is not located. Before, it
+  // was dropped silently; now the step is in Branch::unlocated.
+  const double omega = 1.7060150349934093;
+  const Branch doubled = DoubledPaperBranch(
+      omega, 80, 64,
+      {0.13809216395673257, 2.353563004550682, -1.3356099128280987, 0.06652775885643308}, 1e-6);
+  CHECK(Find(doubled, SpecialPointType::kPeriodDoubling, omega - 1e-6, omega) == nullptr);
+  REQUIRE(doubled.unlocated.size() == 1);
+  const UnlocatedZero& step = doubled.unlocated.front();
+  CHECK(step.type == SpecialPointType::kPeriodDoubling);
+  CHECK(step.Describe("omega").starts_with("period doubling not located between omega = "));
+  // Independently: the cascade's intervals shrink by Feigenbaum's δ =
+  // 4.6692 (4.4 to 5.1 over this one), so from P(40,32)'s and P(80,64)'s
+  // doublings P(160,128)'s lies 6.6e-9 below P(80,64)'s, to ~1e-9. (The
+  // connected diagram's own P(160,128), traced from another start, locates
+  // it at 1.7060150284.)
+  const double p40_doubling = 1.706015065643547;
+  const double predicted = omega - (p40_doubling - omega) / 4.6692;
+  CHECK(std::min(step.from, step.to) - 1e-9 < predicted);
+  CHECK(predicted < std::max(step.from, step.to) + 1e-9);
+}

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -41,6 +42,7 @@ constexpr int kMaskSamples = 8;
 struct HalfBranch {
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special_points;
+  std::vector<UnlocatedZero> unlocated;
   Termination end = Termination::kMaxPoints;
   std::string end_message;
 };
@@ -291,15 +293,17 @@ class BranchTracer {
   /// and inserts the located points before `b`.
   void LocateSpecialPoints(const BranchPoint& a, const BranchPoint& b, HalfBranch* half) const {
     std::vector<SpecialPoint> found;
+    std::array<bool, kBifurcationTestCount> located{};
     bool through_infinity = false;
     for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
       if (!options_.locate_bifurcations) break;
       if (!ChangesSign(a, b, test)) continue;
       std::optional<SpecialPoint> special = LocateZero(a, b, test);
+      located[test] = special.has_value();
       if (special) found.push_back(*special);
       through_infinity |= !special && BifurcationTests()[test].critical_multiplier.has_value();
     }
-    if (through_infinity) LocateMaskedZeros(a, b, &found);
+    if (through_infinity) LocateMaskedZeros(a, b, located, &found, &half->unlocated);
     for (const UserTest& test : options_.user_tests) {
       if ((test.value(a.orbit) > 0) == (test.value(b.orbit) > 0)) continue;
       found.push_back(LocateUserTest(a, b, test));
@@ -318,27 +322,42 @@ class BranchTracer {
     return (a.test_values[test] > 0) != (b.test_values[test] > 0);
   }
 
-  /// Whether every fold and period-doubling test changes sign between a
-  /// and b, as where a multiplier passes through infinity.
+  /// Whether a real multiplier passes through infinity between a and b,
+  /// and nothing else happens there: every fold and period-doubling test
+  /// changes sign, and the multiplier of largest modulus goes from beyond
+  /// ±1 on one side to beyond ∓1 on the other (from inside the unit circle
+  /// it would cross ±1 on the way, a fold or period doubling hidden there).
   static bool PassesInfinity(const BranchPoint& a, const BranchPoint& b) {
     for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
       if (BifurcationTests()[test].critical_multiplier && !ChangesSign(a, b, test)) return false;
     }
-    return true;
+    const double from = LargestRealMultiplier(a), to = LargestRealMultiplier(b);
+    return std::abs(from) > 1.0 && std::abs(to) > 1.0 && (from > 0) != (to > 0);
   }
 
-  /// The folds and period doublings that a multiplier passing through
-  /// infinity between a and b hides: it flips both det(D P ∓ I), so a zero
-  /// of the other in the same step leaves that one's sign as it was (on
-  /// the paper's P(88,128) a multiplier goes from 0.16 through −1 and round
-  /// through infinity to 14.95 in one step). The step is sampled at
-  /// kMaskSamples equal steps, each corrected from the one before, and the
-  /// sign changes between samples of the tests that kept their sign over
-  /// the step are located and added to `found` — but for the samples
-  /// between which the passage itself lies (every such test flips there;
-  /// locating there costs a whole failed bracketing).
+  /// The multiplier of largest modulus if it is real, else 0.
+  static double LargestRealMultiplier(const BranchPoint& point) {
+    const Eigen::VectorXcd& multipliers = point.orbit.multipliers;
+    Eigen::Index largest = 0;
+    multipliers.cwiseAbs().maxCoeff(&largest);
+    return multipliers(largest).imag() == 0.0 ? multipliers(largest).real() : 0.0;
+  }
+
+  /// The folds and period doublings of a step a–b over which a fold or
+  /// period-doubling test changed sign and was not located there, as where
+  /// a multiplier passes through infinity: that flips both det(D P ∓ I), so
+  /// a zero of the other in the same step leaves that one's sign as it was
+  /// (on the paper's P(88,128) a multiplier goes from 0.16 through −1 and
+  /// round through infinity to 14.95 in one step). The step is sampled at
+  /// kMaskSamples equal steps, each corrected from the one before. Of the
+  /// tests not `located` over the whole step, each sign change between
+  /// samples is located and added to `found`, or where that fails added to
+  /// `unlocated` — but for the samples between which both tests flip: the
+  /// passage itself (locating there costs a whole failed bracketing).
   void LocateMaskedZeros(const BranchPoint& a, const BranchPoint& b,
-                         std::vector<SpecialPoint>* found) const {
+                         const std::array<bool, kBifurcationTestCount>& located,
+                         std::vector<SpecialPoint>* found,
+                         std::vector<UnlocatedZero>* unlocated) const {
     std::vector<BranchPoint> samples = {a};
     const double step = (b.arclength - a.arclength) / kMaskSamples;
     for (int k = 1; k < kMaskSamples; ++k) {
@@ -349,12 +368,15 @@ class BranchTracer {
     }
     samples.push_back(b);
     for (std::size_t test = 0; test < kBifurcationTestCount; ++test) {
-      if (!BifurcationTests()[test].critical_multiplier || ChangesSign(a, b, test)) continue;
+      if (!BifurcationTests()[test].critical_multiplier || located[test]) continue;
       for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
         const BranchPoint &from = samples[k], &to = samples[k + 1];
         if (!ChangesSign(from, to, test) || PassesInfinity(from, to)) continue;
-        std::optional<SpecialPoint> special = LocateZero(from, to, test);
-        if (special) found->push_back(*special);
+        if (std::optional<SpecialPoint> special = LocateZero(from, to, test)) {
+          found->push_back(*special);
+        } else {
+          unlocated->push_back({BifurcationTests()[test].type, from.parameter, to.parameter});
+        }
       }
     }
   }
@@ -781,6 +803,13 @@ std::string SpecialPoint::Describe(const std::string& parameter_name) const {
   return fmt::format("{} (multiplier {:.9f}{:+.9f}i)", where, multiplier.real(), multiplier.imag());
 }
 
+std::string UnlocatedZero::Describe(const std::string& parameter_name) const {
+  std::string name = ToString(type);
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return fmt::format("{} not located between {} = {:.10g} and {:.10g}", name, parameter_name, from,
+                     to);
+}
+
 bool ContinuationOptions::IsValid(std::string* error) const {
   auto fail = [&](std::string message) {
     if (error) *error = std::move(message);
@@ -896,12 +925,17 @@ Branch ContinueBranch(const BranchStart& start, const ContinuationOptions& optio
       it->point.arclength = -it->point.arclength;
       branch.special_points.push_back(*it);
     }
+    for (auto it = backward.unlocated.rbegin(); it != backward.unlocated.rend(); ++it) {
+      branch.unlocated.push_back({it->type, it->to, it->from});
+    }
     branch.begin = backward.end;
     branch.begin_message = backward.end_message;
   }
   branch.points.insert(branch.points.end(), forward.points.begin(), forward.points.end());
   branch.special_points.insert(branch.special_points.end(), forward.special_points.begin(),
                                forward.special_points.end());
+  branch.unlocated.insert(branch.unlocated.end(), forward.unlocated.begin(),
+                          forward.unlocated.end());
   branch.end = forward.end;
   branch.end_message = forward.end_message;
   DescribeGrazings(start.system, family, &branch);

@@ -137,6 +137,22 @@ struct SpecialPoint {
   std::string Describe(const std::string& parameter_name) const;
 };
 
+/// A step of a branch over which a fold or period-doubling test function
+/// changes sign and neither a located zero nor a multiplier passing through
+/// infinity accounts for it (docs/theory.md §6): a fold or period doubling
+/// may lie in the step and is missing from the branch's special points.
+struct UnlocatedZero {
+  /// The test function that changed sign: kFold (det(D P − I)) or
+  /// kPeriodDoubling (det(D P + I)). In a step where a multiplier also
+  /// passes through infinity, the missing point may be of the other kind.
+  SpecialPointType type = SpecialPointType::kPeriodDoubling;
+  double from = 0.0;  ///< the parameter at the step's ends, in order along the branch
+  double to = 0.0;
+  /// One line: "period doubling not located between omega = 1.706015032
+  /// and 1.706015014".
+  std::string Describe(const std::string& parameter_name) const;
+};
+
 struct Branch {
   std::string parameter;
   /// The section of its orbits: impacting P(p, q), or sticking with
@@ -153,6 +169,9 @@ struct Branch {
   /// increasing end.
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special_points;  ///< in order along the branch
+  /// Sign changes of the fold and period-doubling tests the locator could
+  /// not account for, in order along the branch; empty on most branches.
+  std::vector<UnlocatedZero> unlocated;
   Termination end =
       Termination::kMaxPoints;  ///< why the last point is the last (see ContinueBranch)
   std::string end_message;
