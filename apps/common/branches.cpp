@@ -209,6 +209,7 @@ void PrintBranch(const TracedBranch& traced) {
     }
     if (!s.normal_form_note.empty()) fmt::print("    no normal form: {}\n", s.normal_form_note);
   }
+  for (const UnlocatedZero& u : b.unlocated) fmt::print("  {}\n", u.Describe(b.parameter));
   fmt::print("  ends:   {} ({})\n", ToString(b.end), b.end_message);
 }
 

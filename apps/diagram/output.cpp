@@ -199,6 +199,24 @@ std::optional<std::array<double, 2>> DensestWindow(const Diagram& diagram) {
   return std::array{at[best] - margin, at[best] + width + margin};
 }
 
+/// The steps where a branch's fold or period-doubling test changed sign
+/// unaccounted for (Branch::unlocated), if any branch has one.
+void PrintUnlocated(const std::vector<TracedBranch>& labelled) {
+  bool any = false;
+  for (const TracedBranch& traced : labelled) {
+    for (const UnlocatedZero& u : traced.branch.unlocated) {
+      if (!any) {
+        fmt::print(
+            "not located (a fold or period doubling may lie in these steps, missing above; "
+            "docs/continuation.md, Known limits):\n");
+      }
+      any = true;
+      fmt::print("  {:<8} {}: {}\n", traced.label, FamilyName(traced.branch),
+                 u.Describe(traced.branch.parameter));
+    }
+  }
+}
+
 }  // namespace
 
 void PrintDiagram(const Diagram& diagram) {
@@ -248,6 +266,7 @@ void PrintDiagram(const Diagram& diagram) {
       fmt::print("    {}\n", n.normal_form->prediction->Describe());
     }
   }
+  PrintUnlocated(labelled);
 }
 
 std::vector<LineChart> DiagramFigure(const SweptDiagram& swept, DiagramAxis axis) {

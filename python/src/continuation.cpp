@@ -189,6 +189,26 @@ void BindContinuation(py::module_& module) {
                ", parameter=" + py::repr(py::float_(s.parameter)).cast<std::string>() + ")";
       });
 
+  py::class_<UnlocatedZero>(module, "UnlocatedZero",
+                            "A step of a branch over which a fold or period-doubling test "
+                            "changed sign and the locator could not account for it: a fold or "
+                            "period doubling may lie in the step, missing from special_points.")
+      .def_property_readonly(
+          "type", [](const UnlocatedZero& u) { return ToString(u.type); },
+          "The test that changed sign: 'fold' or 'period_doubling'.")
+      .def_property_readonly(
+          "values",
+          [](const UnlocatedZero& u) {
+            return std::pair{u.from, u.to};
+          },
+          "The parameter at the step's two ends, in order along the branch.")
+      .def("describe", &UnlocatedZero::Describe, py::arg("parameter_name"),
+           "One line, as the command line prints it.")
+      .def("__repr__", [](const UnlocatedZero& u) {
+        return "impactkit.UnlocatedZero(" + ToString(u.type) +
+               ", values=" + py::repr(py::make_tuple(u.from, u.to)).cast<std::string>() + ")";
+      });
+
   py::class_<Branch>(module, "Branch",
                      "A branch of P(p, q) orbits, or of sticking orbits P(inf, q): its points "
                      "in order, as arrays, and its special points.")
@@ -256,6 +276,9 @@ void BindContinuation(py::module_& module) {
           },
           "The orbit at each point (a list of Orbit).")
       .def_readonly("special_points", &Branch::special_points, "In order along the branch.")
+      .def_readonly("unlocated", &Branch::unlocated,
+                    "Steps whose fold or period-doubling sign change was not located (a list of "
+                    "UnlocatedZero, in order along the branch; usually empty).")
       .def_property_readonly(
           "end", [](const Branch& b) { return ToString(b.end); },
           "Why the last point is the last: 'parameter_bound', 'grazing', 'sticking', "

@@ -69,6 +69,32 @@ def test_period_doubling_switches_to_a_genuinely_doubled_branch():
         impactkit.doubled_branch_start(system, single, single.special_points[0])
 
 
+def test_a_period_doubling_not_located_is_listed_with_its_step():
+    # P(160,128), doubled from P(80,64) at its period doubling (eta recorded
+    # from `impactkit diagram --from 0.4 --to 2.3`), doubles again where its
+    # orbits are at their rounding floor: not located there, it is listed
+    # with the step that holds it, which the cascade's ratio (Feigenbaum's
+    # 4.6692, from P(40,32)'s and P(80,64)'s doublings) predicts to ~1e-9.
+    omega, p40_doubling = 1.7060150349934093, 1.706015065643547
+    system = impactkit.System.paper(omega)
+    eta = [0.13809216395673257, 2.353563004550682, -1.3356099128280987, 0.06652775885643308]
+    orbit = impactkit.find_orbit(system, p=80, q=64, seed=eta)
+    single = impactkit.continue_branch(system, orbit, from_=omega - 8e-4, to=omega + 8e-4,
+                                       direction="both")
+    pd = next(sp for sp in single.special_points
+              if sp.type == "period_doubling" and abs(sp.parameter - omega) < 1e-6)
+    start = impactkit.doubled_branch_start(system, single, pd)
+    doubled = impactkit.continue_branch(start, from_=omega - 8e-4, to=omega + 8e-4)
+    assert (doubled.p, doubled.q) == (160, 128)
+    [step] = doubled.unlocated
+    assert step.type == "period_doubling"
+    predicted = omega - (p40_doubling - omega) / 4.6692
+    assert min(step.values) - 1e-9 < predicted < max(step.values) + 1e-9
+    assert json.loads(doubled.to_json())["unlocated"] == [
+        {"type": "period_doubling", "from": step.values[0], "to": step.values[1],
+         "description": step.describe("omega")}]
+
+
 def test_grazing_seeds_refine_to_orbits_with_one_impact_more_or_fewer():
     system = impactkit.System.paper(1.0)
     single = impactkit.continue_branch(system, impactkit.find_orbit(system, p=1, q=1),

@@ -128,6 +128,13 @@ std::string BranchJson(const Branch& b, std::string_view label, std::string_view
   j["special_points"] = nlohmann::json::array();
   for (const SpecialPoint& s : b.special_points)
     j["special_points"].push_back(SpecialJson(s, b.parameter));
+  j["unlocated"] = nlohmann::json::array();
+  for (const UnlocatedZero& u : b.unlocated) {
+    j["unlocated"].push_back({{"type", ToString(u.type)},
+                              {"from", u.from},
+                              {"to", u.to},
+                              {"description", u.Describe(b.parameter)}});
+  }
   return j.dump();
 }
 
