@@ -58,7 +58,7 @@ struct Resolution {
 };
 
 Resolution ResolutionFor(bool quick) {
-  return quick ? Resolution{200, 121, 200, 20, 8, 1} : Resolution{500, 2401, 500, 100, 64, 8};
+  return quick ? Resolution{200, 121, 200, 20, 8, 1} : Resolution{500, 2401, 500, 100, 64, 10};
 }
 
 /// "[2/5] orbits at the paper's frequencies" on stderr, after what stdout

@@ -45,7 +45,7 @@ struct DiagramOptions {
   bool switch_branch_points = true;    ///< start the shorter orbit at a branch point
   bool switch_pitchforks = true;       ///< start both halves of the crossing branch at a pitchfork
   /// Switches from a seed's branch at most (0: the seeds' branches only).
-  int max_depth = 8;
+  int max_depth = 10;
   int max_branches = 200;  ///< branches traced at most
   int threads = 1;         ///< branches of one generation traced at once (>= 1)
   /// Two nodes are one where their parameters differ by less than this
