@@ -942,10 +942,11 @@ TEST_CASE(
     "[continuation]") {
   // Doubled from P(80,64) at its period doubling (η recorded from `impactkit
   // diagram --from 0.4 --to 2.3`), P(160,128) doubles again ~7e-9 below
-  // (the cascade's intervals shrink ~4.7-fold). Its last steps are at the
-  // orbit's rounding floor (1.2e-11, above the corrector's 1e-11): no trial
-  // inside the step converges, and the doubling is not located. Before, it
-  // was dropped silently; now the step is in Branch::unlocated.
+  // (the cascade's intervals shrink ~4.7-fold). There its orbits are at
+  // their rounding floor (1.2e-11, above the corrector's 1e-11; the branch
+  // ends `corrector_failed` 1e-7 beyond), and the doubling is located
+  // neither over the step nor in its eighths. Before, it was dropped
+  // silently; now the step is in Branch::unlocated.
   const double omega = 1.7060150349934093;
   const Branch doubled = DoubledPaperBranch(
       omega, 80, 64,
