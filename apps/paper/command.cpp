@@ -58,7 +58,8 @@ struct Resolution {
 };
 
 Resolution ResolutionFor(bool quick) {
-  return quick ? Resolution{200, 121, 200, 20, 8, 1} : Resolution{500, 2401, 500, 100, 64, 10};
+  return quick ? Resolution{200, 121, 200, 20, 8, 1}
+               : Resolution{500, 2401, 500, 100, 64, DiagramOptions{}.max_depth};
 }
 
 /// "[2/5] orbits at the paper's frequencies" on stderr, after what stdout
