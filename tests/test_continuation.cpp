@@ -14,6 +14,7 @@
 
 #include "closed_form_sdof.hpp"
 #include "continuation/arclength.hpp"
+#include "continuation/existence_monitor.hpp"
 #include "cvode_impacts.hpp"
 #include "impactkit/analysis/orbit_seed.hpp"
 #include "impactkit/analysis/start_orbit.hpp"
@@ -572,6 +573,63 @@ TEST_CASE(
     return std::nullopt;
   };
   CHECK(IllinoisZero(a, b, nowhere, value).arclength == 1.0);
+}
+
+namespace {
+
+/// A point of a model branch for the monitor approach: where it is, and
+/// an orbit whose largest multiplier (the approach's conditioning) is 1.
+struct ModelBranchPoint {
+  explicit ModelBranchPoint(double s) : arclength(s) {}
+  double arclength;
+  struct {
+    Eigen::VectorXcd multipliers = Eigen::VectorXcd::Ones(1);
+  } orbit;
+};
+
+}  // namespace
+
+TEST_CASE(
+    "the monitor approach reaches a zero before the corrector's failures and stops early at one "
+    "beyond them",
+    "[continuation]") {
+  // A clearance 1 - s along the branch, zero at s = 1, from points at
+  // s = 0 and 0.1; the model corrector fails beyond s = wall.
+  using detail::Monitor;
+  const auto monitor = [](const ModelBranchPoint& point, Monitor) -> std::optional<double> {
+    return 1.0 - point.arclength;
+  };
+  const auto never = [](const ModelBranchPoint&) { return false; };
+  const ModelBranchPoint a(0.0), b(0.1);
+  int trials = 0;
+  const auto corrector_to = [&trials](double wall) {
+    return [&trials, wall](const ModelBranchPoint& from, double s,
+                           double) -> std::optional<ModelBranchPoint> {
+      ++trials;
+      if (from.arclength + s > wall) return std::nullopt;
+      return ModelBranchPoint(from.arclength + s);
+    };
+  };
+  std::vector<ModelBranchPoint> path;
+  // Wall at 1.5: the secant reaches the zero.
+  const auto reached =
+      detail::ApproachMonitorZero(a, b, Monitor::kClearance, monitor, corrector_to(1.5), 1.0,
+                                  detail::kEventReach, never, &path);
+  REQUIRE(reached.has_value());
+  CHECK_THAT(reached->best.arclength, Catch::Matchers::WithinAbs(1.0, 1e-12));
+  // Wall at 0.3: trials at 1.0, 0.55 and 0.325 fail (each step half the
+  // last), and the monitor cannot fall below 0.7 before the wall: stop.
+  // Creeping up to the wall by halvings, as the approach did before, took
+  // 44 trials.
+  trials = 0;
+  path.clear();
+  const auto stopped =
+      detail::ApproachMonitorZero(a, b, Monitor::kClearance, monitor, corrector_to(0.3), 1.0,
+                                  detail::kEventReach, never, &path);
+  REQUIRE(stopped.has_value());
+  CHECK(trials == 3);
+  CHECK(path.empty());
+  CHECK_THAT(stopped->linear, Catch::Matchers::WithinAbs(0.9, 1e-15));
 }
 
 TEST_CASE(

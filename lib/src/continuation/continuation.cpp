@@ -673,9 +673,11 @@ class BranchTracer {
       int iterations = 0;
       return Advance(from, s, &iterations, tolerance_scale);
     };
+    const bool reducible_depth = last_resort && monitor == Monitor::kDepth;
+    const double reach = reducible_depth ? kReducibleDepth : detail::kEventReach;
     const std::optional<detail::MonitorApproach<BranchPoint>> approach =
         detail::ApproachMonitorZero(
-            a, b, monitor, BranchPointMonitor, advance, options_.max_step,
+            a, b, monitor, BranchPointMonitor, advance, options_.max_step, reach,
             [](const BranchPoint&) { return false; }, path);
     if (!approach) return std::nullopt;
     const BranchPoint& previous = approach->previous;
@@ -685,9 +687,8 @@ class BranchTracer {
     // multipliers like 1/v, may stall farther out than 10 kGrazingTolerance:
     // when the branch cannot go on (`last_resort`), its reduced orbit still
     // locates it (below).
-    const bool reached = MonitorLength(m_lo, monitor) <= 10 * kGrazingTolerance;
-    const bool reducible =
-        last_resort && monitor == Monitor::kDepth && m_lo * m_lo <= kReducibleDepth;
+    const bool reached = MonitorLength(m_lo, monitor) <= detail::kEventReach;
+    const bool reducible = reducible_depth && m_lo * m_lo <= kReducibleDepth;
     if (!reached && !reducible) return std::nullopt;
     SpecialPoint special;
     special.point = best;

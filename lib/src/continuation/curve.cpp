@@ -327,11 +327,11 @@ class CurveTracer {
     };
     auto beyond = [this](const CurvePoint& p) { return Beyond(p.parameter, p.parameter2); };
     const std::optional<detail::MonitorApproach<CurvePoint>> approach = detail::ApproachMonitorZero(
-        a, b, monitor, PointMonitor, advance, options_.max_step, beyond, path);
+        a, b, monitor, PointMonitor, advance, options_.max_step, detail::kEventReach, beyond, path);
     if (!approach) return std::nullopt;
     const CurvePoint& best = approach->best;
     const double length = detail::MonitorLength(approach->linear, monitor);
-    if (!(length <= 10 * kGrazingTolerance)) return std::nullopt;
+    if (!(length <= detail::kEventReach)) return std::nullopt;
     const OrbitContacts& contacts = best.orbit.contacts;
     const bool pressed = monitor == Monitor::kDepth && contacts.slowest_pressed;
     Codim2Point end;

@@ -30,6 +30,8 @@ enum class Monitor { kClearance, kDepth };
 /// counts.
 inline constexpr double kGrazingTolerance = 1e-10;
 inline constexpr double kGrazingBracket = 1e-13;
+/// The monitor length at which an approach counts as at the event.
+inline constexpr double kEventReach = 10 * kGrazingTolerance;
 
 /// The monitor of `orbit` in the form that varies linearly in arclength
 /// near its zero, so that secant steps converge fast: the clearance itself,
@@ -83,19 +85,31 @@ struct MonitorApproach {
 /// kGrazingTolerance, the step below kGrazingBracket, or after
 /// kMaxLocateIterations; nothing where the monitor does not fall from a
 /// to b or `refuse` rejects a trial. The points passed, in order, in *path.
+///
+/// A step that failed bounds all later ones (they stay short of it), so
+/// once the secant, continued to that bound, leaves the monitor above
+/// `reach` (the length the caller accepts as the event) by more than half
+/// its remaining fall, the approach stops: the monitor would have
+/// to fall twice as steeply as it has been to be reached. Without that
+/// stop an approach towards a zero beyond the bound (a corrector failing
+/// for rounding, not for the event) creeps up to the bound by halvings,
+/// some 35 Newton solves each (docs/performance.md).
 template <typename Point, typename Advance, typename Linear, typename Refuse>
 std::optional<MonitorApproach<Point>> ApproachMonitorZero(const Point& a, const Point& b,
                                                           Monitor monitor, Linear linear,
                                                           Advance advance, double max_step,
-                                                          Refuse refuse, std::vector<Point>* path) {
+                                                          double reach, Refuse refuse,
+                                                          std::vector<Point>* path) {
+  const double reach_linear = monitor == Monitor::kClearance ? reach : std::sqrt(reach);
   MonitorApproach<Point> at{a, b, 0.0};
   std::optional<double> m_prev = linear(a, monitor), m_lo = linear(b, monitor);
   if (!m_prev || !m_lo || !(*m_lo < *m_prev)) return std::nullopt;
   double failed = std::numeric_limits<double>::infinity();  // a step from `best` that failed
   for (int k = 0; k < kMaxLocateIterations && MonitorLength(*m_lo, monitor) > kGrazingTolerance;
        ++k) {
-    double s = *m_lo * (at.best.arclength - at.previous.arclength) / (*m_prev - *m_lo);
-    s = std::min(s, max_step);
+    const double slope = (*m_prev - *m_lo) / (at.best.arclength - at.previous.arclength);
+    if (slope * failed < 0.5 * (*m_lo - reach_linear)) break;  // out of reach before the bound
+    double s = std::min(*m_lo / slope, max_step);
     if (s >= failed) s = 0.5 * failed;
     if (!(s > kGrazingBracket)) break;
     const double conditioning = std::abs(at.best.orbit.multipliers(0));
