@@ -684,7 +684,7 @@ class BranchTracer {
     const BranchPoint& best = approach->best;
     const double m_lo = approach->linear;
     // A vanishing impact of a long orbit, whose rounding grows with its
-    // multipliers like 1/v, may stall farther out than 10 kGrazingTolerance:
+    // multipliers like 1/v, may stall farther out than kEventReach:
     // when the branch cannot go on (`last_resort`), its reduced orbit still
     // locates it (below).
     const bool reached = MonitorLength(m_lo, monitor) <= detail::kEventReach;
