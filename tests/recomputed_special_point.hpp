@@ -36,17 +36,22 @@ inline std::complex<double> NearestMultiplier(const Eigen::VectorXcd& multiplier
   return best;
 }
 
-/// The multiplier nearest `target` of a fresh FindOrbit of P(p, q) from
-/// `eta` in `system`.
-inline std::complex<double> RecomputedMultiplier(const System& system, int p, int q,
-                                                 const Eigen::VectorXd& eta,
-                                                 std::complex<double> target) {
+/// A fresh FindOrbit of P(p, q) from `eta` in `system`, required to converge.
+inline PeriodicOrbit RecomputedOrbit(const System& system, int p, int q,
+                                     const Eigen::VectorXd& eta) {
   OrbitOptions options;
   options.p = p;
   options.q = q;
   PeriodicOrbit orbit;
   REQUIRE(FindOrbit(system, eta, options, &orbit).termination == Termination::kConverged);
-  return NearestMultiplier(orbit.multipliers, target);
+  return orbit;
+}
+
+/// The multiplier nearest `target` of RecomputedOrbit.
+inline std::complex<double> RecomputedMultiplier(const System& system, int p, int q,
+                                                 const Eigen::VectorXd& eta,
+                                                 std::complex<double> target) {
+  return NearestMultiplier(RecomputedOrbit(system, p, q, eta).multipliers, target);
 }
 
 struct RecomputedFold {

@@ -63,12 +63,8 @@ std::complex<double> RecomputedMultiplier(const System& base, const Diagram& dia
 /// (−1)^(real multipliers below −1), a complex pair adding |λ + 1|² > 0.
 double FreshPeriodDoublingTest(const System& base, const Diagram& diagram, const DiagramNode& node,
                                double mu) {
-  OrbitOptions options;
-  options.p = node.p;
-  options.q = node.q;
-  PeriodicOrbit orbit;
-  REQUIRE(FindOrbit(At(base, diagram.parameter, mu), node.point.orbit.eta, options, &orbit)
-              .termination == Termination::kConverged);
+  const PeriodicOrbit orbit = testing::RecomputedOrbit(At(base, diagram.parameter, mu), node.p,
+                                                       node.q, node.point.orbit.eta);
   return (orbit.multipliers.array() + 1.0).prod().real();
 }
 
